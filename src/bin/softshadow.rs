@@ -1,0 +1,2 @@
+//! The `softshadow` command-line program.
+fn main() {}

@@ -1,0 +1,24 @@
+//! Geometry kernels: pure functions and small value types, no allocation in
+//! the hot paths, total on every input (documented answers for degenerate and
+//! non-finite input, never a panic or a NaN).
+//!
+//! | module | what |
+//! |---|---|
+//! | [`predicate`] | exact `orient2d` / `orient3d` for every side decision |
+//! | [`silhouette`] | mesh topology, silhouette edges from a point, conservative silhouettes for a sphere light |
+//! | [`wedge`] | penumbra wedges and the light-image-plane penumbra quad (SISM's coarse test) |
+//! | [`disk`] | area of a polygon ∩ a disk, signed circle-segment occlusion (SISM eq. 3) |
+//! | [`falloff`] | Bernstein smoothstep and the exact straight-edge disk falloff |
+//! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
+//! | [`linear_light`] | OESS: visible fraction of a segment light and its endpoint weights |
+//!
+//! Scalar kernels exist in `f32` and `f64` as submodules generated from one
+//! body (`disk::f32`, `disk::f64`, …).
+
+pub mod disk;
+pub mod distortion;
+pub mod falloff;
+pub mod linear_light;
+pub mod predicate;
+pub mod silhouette;
+pub mod wedge;

@@ -1,0 +1,40 @@
+//! # softshadow
+//!
+//! Geometry kernels for soft shadows from area and linear lights, with the
+//! published algorithms built on them, exact and Monte Carlo references, and
+//! an accuracy-against-run-time report. Pure CPU, deterministic, and meant to
+//! be the trusted reference a GPU implementation is validated against.
+//!
+//! Every part computes the same quantity: the fraction `V(p) ∈ [0, 1]` of a
+//! light's emitting measure visible from a receiver point `p` (see
+//! `DESIGN.md` §1 in the repository).
+//!
+//! ## Modules
+//!
+//! - [`kernel`]: the pure geometry kernels (silhouettes, penumbra wedges,
+//!   disk occlusion, falloff, SSOC distortion, the linear-light kernel) and
+//!   the exact orientation predicates they decide topology with. Depends on
+//!   `glam` alone.
+//!
+//! ## Precision
+//!
+//! Scalar kernels come in both `f32` and `f64`, generated from one body:
+//! `kernel::disk::f64::segment_disk_area` and
+//! `kernel::disk::f32::segment_disk_area` are the same code. Each kernel's
+//! documentation states its domain, its behaviour at the edge of that domain,
+//! its measured accuracy (see `docs/accuracy/kernels.md`) and its source.
+//!
+//! ## Feature flags
+//!
+//! With `--no-default-features` the crate is the kernels alone, on `glam`.
+//!
+//! - `cli` (default): the `softshadow` command-line program.
+//! - `arbitrary`: [`arbitrary`], deterministic generators of near-degenerate
+//!   inputs, shared by the property tests, the fuzz targets and the
+//!   benchmarks.
+
+#![cfg_attr(docsrs, feature(doc_cfg))]
+
+#[cfg(any(test, feature = "arbitrary"))]
+pub mod arbitrary;
+pub mod kernel;
