@@ -10,6 +10,8 @@
 //! enormous edges, exact zeros and boundary values.
 
 pub mod disk;
+pub mod light;
+pub mod mesh;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny, fast, well-mixed 64-bit
 /// generator; deterministic for a seed.

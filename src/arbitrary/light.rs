@@ -1,0 +1,1 @@
+//! Generators for the falloff, SSOC distortion and linear-light kernels.

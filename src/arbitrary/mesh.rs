@@ -1,0 +1,1 @@
+//! Generators for meshes, sphere lights and edges (silhouette and wedge kernels).
