@@ -1,0 +1,176 @@
+//! Shared test support: 256-bit reference arithmetic and Monte Carlo
+//! statistics. Included with `mod support;` by the test files that need it.
+#![allow(dead_code)]
+
+use astro_float::{BigFloat, Consts, RoundingMode, Sign};
+
+/// Working precision of the references, in bits.
+pub const P: usize = 256;
+const RM: RoundingMode = RoundingMode::ToEven;
+
+/// A 256-bit float with the few operations the references need.
+#[derive(Clone, Debug)]
+pub struct Big(pub BigFloat);
+
+impl Big {
+    pub fn new(x: f64) -> Big {
+        Big(BigFloat::from_f64(x, P))
+    }
+    pub fn zero() -> Big {
+        Big::new(0.0)
+    }
+    pub fn add(&self, o: &Big) -> Big {
+        Big(self.0.add(&o.0, P, RM))
+    }
+    pub fn sub(&self, o: &Big) -> Big {
+        Big(self.0.sub(&o.0, P, RM))
+    }
+    pub fn mul(&self, o: &Big) -> Big {
+        Big(self.0.mul(&o.0, P, RM))
+    }
+    pub fn div(&self, o: &Big) -> Big {
+        Big(self.0.div(&o.0, P, RM))
+    }
+    pub fn sqrt(&self) -> Big {
+        Big(self.0.sqrt(P, RM))
+    }
+    pub fn neg(&self) -> Big {
+        Big(self.0.neg())
+    }
+    pub fn is_zero(&self) -> bool {
+        self.0.is_zero()
+    }
+    pub fn is_negative(&self) -> bool {
+        !self.is_zero() && self.0.sign() == Some(Sign::Neg)
+    }
+    pub fn is_positive(&self) -> bool {
+        !self.is_zero() && self.0.sign() == Some(Sign::Pos)
+    }
+    pub fn lt(&self, o: &Big) -> bool {
+        self.0.cmp(&o.0).is_some_and(|c| c < 0)
+    }
+
+    /// The nearest `f64` (to within one rounding of the leading word).
+    pub fn to_f64(&self) -> f64 {
+        if self.is_zero() {
+            return 0.0;
+        }
+        let (words, _, sign, exp, _) = self.0.as_raw_parts().expect("a finite value");
+        let top = *words.last().expect("a mantissa word");
+        let next = if words.len() > 1 {
+            words[words.len() - 2]
+        } else {
+            0
+        };
+        // value = 0.top next … × 2^exp: fold 128 bits, round once.
+        let m = ((top as u128) << 64) | next as u128;
+        let v = (m as f64) * 2f64.powi(exp - 128);
+        if sign == Sign::Neg {
+            -v
+        } else {
+            v
+        }
+    }
+}
+
+/// Constants cache for π and the transcendental functions.
+pub struct Ctx(pub Consts);
+
+impl Ctx {
+    pub fn new() -> Ctx {
+        Ctx(Consts::new().expect("astro-float constants"))
+    }
+    pub fn pi(&mut self) -> Big {
+        Big(self.0.pi(P, RM))
+    }
+    pub fn atan(&mut self, x: &Big) -> Big {
+        Big(x.0.atan(P, RM, &mut self.0))
+    }
+    /// `atan2(y, x)` in `(−π, π]`.
+    pub fn atan2(&mut self, y: &Big, x: &Big) -> Big {
+        if x.is_positive() {
+            return self.atan(&y.div(x));
+        }
+        let pi = self.pi();
+        if x.is_negative() {
+            let base = self.atan(&y.div(x));
+            return if y.is_negative() {
+                base.sub(&pi)
+            } else {
+                base.add(&pi)
+            };
+        }
+        let half_pi = pi.div(&Big::new(2.0));
+        if y.is_positive() {
+            half_pi
+        } else if y.is_negative() {
+            half_pi.neg()
+        } else {
+            Big::zero()
+        }
+    }
+}
+
+/// The two-sided standard-normal quantile `z` with `P(|Z| > z) = alpha`,
+/// by bisection on `erfc` (Abramowitz–Stegun 7.1.26 is too coarse far in the
+/// tail, so `erfc` is integrated by its continued fraction).
+pub fn normal_two_sided_quantile(alpha: f64) -> f64 {
+    let (mut lo, mut hi) = (0.0f64, 40.0f64);
+    for _ in 0..200 {
+        let mid = 0.5 * (lo + hi);
+        if erfc(mid / std::f64::consts::SQRT_2) > alpha {
+            lo = mid;
+        } else {
+            hi = mid;
+        }
+    }
+    0.5 * (lo + hi)
+}
+
+/// The Šidák-corrected per-test significance that keeps the family-wise
+/// false-failure rate at `alpha` over `tests` independent tests.
+pub fn sidak(alpha: f64, tests: usize) -> f64 {
+    // 1 − (1 − α)^(1/k), without cancellation.
+    -((-alpha).ln_1p() / tests as f64).exp_m1()
+}
+
+/// Complementary error function, accurate to ~1e-15 relative for `x ≥ 0`
+/// (series below 2, Lentz continued fraction above).
+pub fn erfc(x: f64) -> f64 {
+    if x < 2.0 {
+        // erf by its Maclaurin series: Σ (−1)^n x^(2n+1) / (n! (2n+1)).
+        let mut term = x;
+        let mut sum = x;
+        let mut n = 0.0;
+        loop {
+            n += 1.0;
+            term *= -x * x / n;
+            let add = term / (2.0 * n + 1.0);
+            sum += add;
+            if add.abs() < 1e-18 * sum.abs() {
+                break;
+            }
+        }
+        1.0 - sum * 2.0 / std::f64::consts::PI.sqrt()
+    } else {
+        // erfc(x) = exp(−x²)/√π · 1/(x + 1/2/(x + 1/(x + 3/2/(x + …)))).
+        let tiny = 1e-300;
+        let mut f = x;
+        let mut c = x;
+        let mut d = 0.0;
+        for k in 1..500 {
+            let a = k as f64 / 2.0;
+            d = x + a * d;
+            d = if d.abs() < tiny { tiny } else { d };
+            c = x + a / c;
+            c = if c.abs() < tiny { tiny } else { c };
+            d = 1.0 / d;
+            let delta = c * d;
+            f *= delta;
+            if (delta - 1.0).abs() < 1e-16 {
+                break;
+            }
+        }
+        (-x * x).exp() / std::f64::consts::PI.sqrt() / f
+    }
+}
