@@ -19,9 +19,10 @@
 //! ## Numerics
 //!
 //! - Angles come from `atan2(cross, dot)`, never from `acos` of a computed
-//!   cosine; the cross and dot products are evaluated with an FMA and an
-//!   error-free product term (pbrt-v4's `DifferenceOfProducts`), so the cross
-//!   product of the input points has relative error ≤ 1.5 ulp.
+//!   cosine. The cross product of the input points, which decides the
+//!   distance of an edge from the centre, is formed from exact products
+//!   (error-free transformations), so it keeps about one ulp of relative
+//!   accuracy under cancellation and is exactly antisymmetric.
 //! - An edge is measured in its own frame (distance `g` of its line from the
 //!   centre, positions `t` along it) from quantities computed directly from
 //!   the inputs: `g = (a × b) / |b − a|` — no foot-of-perpendicular point
@@ -50,31 +51,25 @@ macro_rules! disk_kernels {
         const SAFE_LO: $T = $SAFE_LO;
         const SAFE_HI: $T = $SAFE_HI;
 
-        /// `a·b − c·d` with one rounding plus a tiny error term (pbrt-v4
-        /// `DifferenceOfProducts`): relative error ≤ 1.5 ulp.
-        #[inline]
-        fn difference_of_products(a: $T, b: $T, c: $T, d: $T) -> $T {
-            let cd = c * d;
-            let err = (-c).mul_add(d, cd);
-            a.mul_add(b, -cd) + err
-        }
+        use crate::kernel::eft::$T::two_prod;
 
-        /// `a·b + c·d`, as [`difference_of_products`].
-        #[inline]
-        fn sum_of_products(a: $T, b: $T, c: $T, d: $T) -> $T {
-            difference_of_products(a, b, -c, d)
-        }
-
-        /// The 2D cross product `p × q`.
-        #[inline]
+        /// The 2D cross product `p × q`, accurate to about one ulp even
+        /// under cancellation (both products exactly, then their
+        /// difference), and exactly antisymmetric: `cross(q, p)` is
+        /// `−cross(p, q)` bit for bit.
+        #[inline(always)]
         fn cross(p: $V2, q: $V2) -> $T {
-            difference_of_products(p.x, q.y, p.y, q.x)
+            let (s, se) = two_prod(p.x, q.y);
+            let (t, te) = two_prod(p.y, q.x);
+            (s - t) + (se - te)
         }
 
-        /// The dot product `p · q`.
-        #[inline]
+        /// The dot product `p · q`, plainly rounded: its absolute error
+        /// `ε |p| |q|` costs the angles and positions it feeds no more than
+        /// their own rounding.
+        #[inline(always)]
         fn dot(p: $V2, q: $V2) -> $T {
-            sum_of_products(p.x, q.x, p.y, q.y)
+            p.x * q.x + p.y * q.y
         }
 
         /// `2^e` for `|e|` below the exponent range, exactly.
@@ -148,27 +143,23 @@ macro_rules! disk_kernels {
             if !(r > 0.0 && r.is_finite() && a.is_finite() && b.is_finite()) {
                 return 0.0;
             }
-            // Evaluate in one canonical endpoint order, so that reversing the
-            // edge negates the result exactly: an edge shared by two adjacent
-            // polygons then cancels exactly in a sum.
-            let (a, b, orientation): ($V2, $V2, $T) = if (b.x, b.y) < (a.x, a.y) {
-                (b, a, -1.0)
-            } else {
-                (a, b, 1.0)
-            };
             let m = a.abs().max_element().max(b.abs().max_element()).max(r);
             if m <= SAFE_HI && r >= SAFE_LO {
-                return orientation * area_in_range(r, a, b);
+                return area_in_range(r, a, b);
             }
             // Rescale by an exact power of two; the area scales by its square.
             let e = rescale_exponent(m);
             let s = pow2(-e);
             let back = pow2(e);
-            orientation * area_in_range(r * s, a * s, b * s) * back * back
+            area_in_range(r * s, a * s, b * s) * back * back
         }
 
         /// [`segment_disk_area`] for finite input of moderate magnitude.
-        #[inline]
+        ///
+        /// Every step is exactly antisymmetric in `a ↔ b` (negations,
+        /// commuted sums and products, an odd `atan2`), which is what makes
+        /// reversing the edge negate the result bit for bit.
+        #[inline(always)]
         fn area_in_range(r: $T, a: $V2, b: $V2) -> $T {
             let ab_cross = cross(a, b);
             if ab_cross == 0.0 {
@@ -181,20 +172,20 @@ macro_rules! disk_kernels {
                 return 0.5 * ab_cross;
             }
             let d = b - a;
-            let len = dot(d, d).sqrt();
+            let inv_len = 1.0 / dot(d, d).sqrt();
             // Distance of the line from the centre, signed by the orientation.
-            let g = ab_cross / len;
+            let g = ab_cross * inv_len;
             let abs_g = g.abs();
+            if abs_g >= r {
+                // The whole edge lies outside: one circular sector.
+                return 0.5 * r2 * ab_cross.atan2(dot(a, b));
+            }
             // Positions along the edge's direction, measured from the foot of
             // the perpendicular from the centre; the disk spans [−w, w].
-            let (ta, tb) = (dot(a, d) / len, dot(b, d) / len);
-            let w = if abs_g < r {
-                ((r - abs_g) * (r + abs_g)).sqrt()
-            } else {
-                0.0
-            };
-            if abs_g >= r || tb <= -w || ta >= w {
-                // The whole edge lies outside: one circular sector.
+            let ta = dot(a, d) * inv_len;
+            let tb = dot(b, d) * inv_len;
+            let w = ((r - abs_g) * (r + abs_g)).sqrt();
+            if tb <= -w || ta >= w {
                 return 0.5 * r2 * ab_cross.atan2(dot(a, b));
             }
             // The piece inside the disk is a triangle of height g.
@@ -204,18 +195,24 @@ macro_rules! disk_kernels {
             // exist their angles are summed as one complex product (the sum
             // stays below π, as the triangle's angle at the origin does).
             let g2 = g * g;
-            let before = (ta < -w).then(|| ((-w).mul_add(ta, g2), g * (-w - ta)));
-            let after = (tb > w).then(|| (w.mul_add(tb, g2), g * (tb - w)));
-            let angle = match (before, after) {
-                (None, None) => return triangle,
-                (Some((re, im)), None) | (None, Some((re, im))) => im.atan2(re),
-                (Some((re1, im1)), Some((re2, im2))) => {
-                    let re = difference_of_products(re1, re2, im1, im2);
-                    let im = sum_of_products(re1, im2, im1, re2);
-                    im.atan2(re)
-                }
+            let before = ta < -w;
+            let after = tb > w;
+            if !(before || after) {
+                return triangle;
+            }
+            let (re1, im1) = if before {
+                (-w * ta + g2, g * (-w - ta))
+            } else {
+                (1.0, 0.0)
             };
-            triangle + 0.5 * r2 * angle
+            let (re2, im2) = if after {
+                (w * tb + g2, g * (tb - w))
+            } else {
+                (1.0, 0.0)
+            };
+            let re = re1 * re2 - im1 * im2;
+            let im = re1 * im2 + im1 * re2;
+            triangle + 0.5 * r2 * im.atan2(re)
         }
 
         /// Signed area of the polygon `vertices` intersected with the disk of
@@ -391,14 +388,14 @@ macro_rules! disk_kernels {
             }
             // The complex product (d + i·w1)(d + i·w0) has argument θ.
             let c = d * length;
-            let q = difference_of_products(d, d, w0, w1);
+            let q = d * d - w0 * w1;
             let theta = c.atan2(q);
             let abs_theta = theta.abs();
             // θ − ρ sin θ with c = ρ sin θ: split as (θ − sin θ) + (1 − ρ) sin θ
             // when θ is small and both terms are small; directly otherwise.
             let value = if abs_theta < 1.0 {
-                let r0 = d.mul_add(d, w0 * w0);
-                let r1 = d.mul_add(d, w1 * w1);
+                let r0 = d * d + w0 * w0;
+                let r1 = d * d + w1 * w1;
                 // 1 − ρ² = a0 + a1 − a0 a1, with a = 1 − |p|² = s² − w²
                 // = (s − w)(s + w): no cancellation near the circle.
                 let a0 = (s - w0.abs()) * (s + w0.abs());

@@ -17,6 +17,7 @@
 
 pub mod disk;
 pub mod distortion;
+mod eft;
 pub mod falloff;
 pub mod linear_light;
 pub mod predicate;

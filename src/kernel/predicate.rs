@@ -14,7 +14,7 @@
 //! `o3derrboundA = (7 + 56ε)ε`, `ε = 2⁻⁵³`) answers almost every call with
 //! one rounded evaluation; when the rounded determinant is within the bound
 //! of zero, the determinant is re-evaluated exactly as a floating-point
-//! expansion (error-free `two_sum` / FMA `two_prod` transformations). The
+//! expansion (error-free `two_sum` / `two_prod` transformations). The
 //! exact path allocates nothing (fixed stack arrays).
 //!
 //! Non-finite input (NaN or ±∞ in any coordinate) has no meaningful side: the
@@ -133,12 +133,7 @@ fn two_sum(a: f64, b: f64) -> (f64, f64) {
     (s, (a - av) + (b - bv))
 }
 
-/// `a · b = p + e` exactly (FMA).
-#[inline]
-fn two_prod(a: f64, b: f64) -> (f64, f64) {
-    let p = a * b;
-    (p, a.mul_add(b, -p))
-}
+use crate::kernel::eft::f64::two_prod;
 
 /// A floating-point expansion: an exact sum of non-overlapping components of
 /// increasing magnitude, held in a fixed array.
@@ -268,7 +263,10 @@ mod tests {
     fn orient3d_matches_normal_convention() {
         let (a, b, c) = (DVec3::ZERO, DVec3::X, DVec3::Y); // normal +z
         assert_eq!(orient3d(a, b, c, DVec3::new(0.2, 0.2, 1.0)), Sign::Negative);
-        assert_eq!(orient3d(a, b, c, DVec3::new(0.2, 0.2, -1.0)), Sign::Positive);
+        assert_eq!(
+            orient3d(a, b, c, DVec3::new(0.2, 0.2, -1.0)),
+            Sign::Positive
+        );
         assert_eq!(orient3d(a, b, c, DVec3::new(5.0, -3.0, 0.0)), Sign::Zero);
     }
 
@@ -280,7 +278,11 @@ mod tests {
         for d in [DVec3::new(0.3, 0.3, 2.0), DVec3::new(0.3, 0.3, -2.0)] {
             assert_eq!(orient3d_exact(a, b, c, d), orient3d(a, b, c, d));
         }
-        let (p, q, r) = (DVec2::new(0.1, 0.7), DVec2::new(2.3, -1.1), DVec2::new(0.0, 0.0));
+        let (p, q, r) = (
+            DVec2::new(0.1, 0.7),
+            DVec2::new(2.3, -1.1),
+            DVec2::new(0.0, 0.0),
+        );
         assert_eq!(orient2d_exact(p, q, r), orient2d(p, q, r));
         assert_eq!(orient2d_exact(q, p, r), orient2d(q, p, r));
     }
