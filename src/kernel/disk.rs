@@ -51,6 +51,7 @@ macro_rules! disk_kernels {
         const SAFE_LO: $T = $SAFE_LO;
         const SAFE_HI: $T = $SAFE_HI;
 
+        use crate::kernel::angle::$T::atan2;
         use crate::kernel::eft::$T::two_prod;
 
         /// The 2D cross product `p × q`, accurate to about one ulp even
@@ -178,7 +179,7 @@ macro_rules! disk_kernels {
             let abs_g = g.abs();
             if abs_g >= r {
                 // The whole edge lies outside: one circular sector.
-                return 0.5 * r2 * ab_cross.atan2(dot(a, b));
+                return 0.5 * r2 * atan2(ab_cross, dot(a, b));
             }
             // Positions along the edge's direction, measured from the foot of
             // the perpendicular from the centre; the disk spans [−w, w].
@@ -186,7 +187,7 @@ macro_rules! disk_kernels {
             let tb = dot(b, d) * inv_len;
             let w = ((r - abs_g) * (r + abs_g)).sqrt();
             if tb <= -w || ta >= w {
-                return 0.5 * r2 * ab_cross.atan2(dot(a, b));
+                return 0.5 * r2 * atan2(ab_cross, dot(a, b));
             }
             // The piece inside the disk is a triangle of height g.
             let triangle = 0.5 * g * (tb.min(w) - ta.max(-w));
@@ -212,7 +213,7 @@ macro_rules! disk_kernels {
             };
             let re = re1 * re2 - im1 * im2;
             let im = re1 * im2 + im1 * re2;
-            triangle + 0.5 * r2 * im.atan2(re)
+            triangle + 0.5 * r2 * atan2(im, re)
         }
 
         /// Signed area of the polygon `vertices` intersected with the disk of
@@ -389,7 +390,7 @@ macro_rules! disk_kernels {
             // The complex product (d + i·w1)(d + i·w0) has argument θ.
             let c = d * length;
             let q = d * d - w0 * w1;
-            let theta = c.atan2(q);
+            let theta = atan2(c, q);
             let abs_theta = theta.abs();
             // θ − ρ sin θ with c = ρ sin θ: split as (θ − sin θ) + (1 − ρ) sin θ
             // when θ is small and both terms are small; directly otherwise.

@@ -5,6 +5,7 @@
 //! | module | what |
 //! |---|---|
 //! | [`predicate`] | exact `orient2d` / `orient3d` for every side decision |
+//! | [`angle`] | a portable, platform-independent `atan2` (1.5 ulp) |
 //! | [`silhouette`] | mesh topology, silhouette edges from a point, conservative silhouettes for a sphere light |
 //! | [`wedge`] | penumbra wedges and the light-image-plane penumbra quad (SISM's coarse test) |
 //! | [`disk`] | area of a polygon ∩ a disk, signed circle-segment occlusion (SISM eq. 3) |
@@ -15,6 +16,7 @@
 //! Scalar kernels exist in `f32` and `f64` as submodules generated from one
 //! body (`disk::f32`, `disk::f64`, …).
 
+pub mod angle;
 pub mod disk;
 pub mod distortion;
 mod eft;
