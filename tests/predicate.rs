@@ -24,7 +24,11 @@ fn shewchuk2(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 }
 
 fn shewchuk3(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
-    let p = |v: DVec3| Coord3D { x: v.x, y: v.y, z: v.z };
+    let p = |v: DVec3| Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
     sign_of(robust::orient3d(p(a), p(b), p(c), p(d)))
 }
 
@@ -34,7 +38,11 @@ fn point2(rng: &mut Rng, scale: f64) -> DVec2 {
 }
 
 fn point3(rng: &mut Rng, scale: f64) -> DVec3 {
-    DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * scale
+    DVec3::new(
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-1.0, 1.0),
+        rng.uniform(-1.0, 1.0),
+    ) * scale
 }
 
 /// Three points on a line (to rounding), then nudged by a few ulps.
@@ -107,7 +115,11 @@ fn exactly_collinear_and_coplanar_points_are_zero() {
         let (a, b) = (DVec2::new(i(), i()), DVec2::new(i(), i()));
         let k = i();
         assert_eq!(orient2d(a, b, a + (b - a) * k), Sign::Zero);
-        let (p, q, r) = (DVec3::new(i(), i(), i()), DVec3::new(i(), i(), i()), DVec3::new(i(), i(), i()));
+        let (p, q, r) = (
+            DVec3::new(i(), i(), i()),
+            DVec3::new(i(), i(), i()),
+            DVec3::new(i(), i(), i()),
+        );
         let (s, t) = (i(), i());
         assert_eq!(orient3d(p, q, r, p + (q - p) * s + (r - p) * t), Sign::Zero);
     }
