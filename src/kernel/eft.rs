@@ -21,7 +21,7 @@ macro_rules! eft {
             #[cfg(not(target_feature = "fma"))]
             {
                 // Veltkamp's split: x = hi + lo with half-width halves.
-                const SPLIT: $T = ((1u64 << ((<$T>::MANTISSA_DIGITS + 1) / 2)) + 1) as $T;
+                const SPLIT: $T = ((1u64 << <$T>::MANTISSA_DIGITS.div_ceil(2)) + 1) as $T;
                 let split = |x: $T| {
                     let c = SPLIT * x;
                     let hi = c - (c - x);

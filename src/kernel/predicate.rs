@@ -2,11 +2,17 @@
 //!
 //! Which side of a line or a plane a point lies on is a topological decision:
 //! it must never be made by comparing a rounded value with an epsilon. These
-//! predicates return the sign of the orientation determinant *exactly* for
-//! every finite `f64` input whose intermediate products neither overflow nor
-//! underflow (coordinates between about `1e-140` and `1e140` in magnitude, or
-//! zero). `f32` callers promote their inputs; the promotion is exact, so the
-//! answer is exact for them too.
+//! predicates return the sign of the orientation determinant *exactly* as
+//! long as no intermediate product, nor the rounding error of one, leaves the
+//! normal floating-point range. A sufficient condition: every nonzero input
+//! coordinate has magnitude in `[1e-140, 1e150]` for [`orient2d`] (products
+//! of two differences) and in `[1e-90, 1e90]` for [`orient3d`] (products of
+//! three). Exact zeros are always fine. Outside that range the answer may be
+//! wrong (for instance a `z` of `1e-300` next to coordinates near 100 makes
+//! the error terms of triple products underflow). `f32` callers promote their
+//! inputs; the promotion is exact, and every finite `f32` (`1.4e-45` to
+//! `3.4e38`) lies inside both ranges, so for `f32` input the predicates are
+//! exact without condition.
 //!
 //! Method: a floating-point filter with Shewchuk's static error bounds
 //! ("Adaptive Precision Floating-Point Arithmetic and Fast Robust Geometric
@@ -76,8 +82,8 @@ const O3D_ERR_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
 /// The sign of `(a − c) × (b − c)`: [`Sign::Positive`] when `a, b, c` turn
 /// counter-clockwise, [`Sign::Negative`] clockwise, [`Sign::Zero`] collinear.
 ///
-/// Exact (see the module docs for the domain); [`Sign::Zero`] for non-finite
-/// input.
+/// Exact for every nonzero coordinate in `[1e-140, 1e150]` in magnitude (see
+/// the module docs); [`Sign::Zero`] for non-finite input.
 #[must_use]
 pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
@@ -99,8 +105,9 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
 /// counter-clockwise; [`Sign::Zero`] when the four points are coplanar.
 ///
 /// In other words, with the face normal `n = (b − a) × (c − a)`,
-/// `orient3d(a, b, c, d)` is the sign of `−n · (d − a)`. Exact (see the module
-/// docs for the domain); [`Sign::Zero`] for non-finite input.
+/// `orient3d(a, b, c, d)` is the sign of `−n · (d − a)`. Exact for every
+/// nonzero coordinate in `[1e-90, 1e90]` in magnitude (see the module docs);
+/// [`Sign::Zero`] for non-finite input.
 #[must_use]
 pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite() && d.is_finite()) {
@@ -225,7 +232,9 @@ fn orient3d_exact(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     let cd = [diff(c.x, d.x), diff(c.y, d.y), diff(c.z, d.z)];
     // det = Σ over the 6 permutations of sign · u_x · v_y · w_z, each factor a
     // 2-term difference: 6 · 8 triple products, 4 doubles each.
-    let terms: [(&[[f64; 2]; 3], &[[f64; 2]; 3], &[[f64; 2]; 3], bool); 6] = [
+    // Rows of exact differences, each coordinate a (hi, lo) pair.
+    type Row<'a> = &'a [[f64; 2]; 3];
+    let terms: [(Row, Row, Row, bool); 6] = [
         (&ad, &bd, &cd, false), // ad.z · bd.x · cd.y
         (&ad, &cd, &bd, true),  // − ad.z · cd.x · bd.y
         (&bd, &cd, &ad, false), // bd.z · cd.x · ad.y
