@@ -29,7 +29,7 @@ const BUDGET_SEGMENT: f64 = 3.0;
 const BUDGET_POLYGON: f64 = 4.0;
 const BUDGET_CIRCLE_SEGMENT: f64 = 1.0;
 /// Relative error budget of thin full-chord slivers, in units of `ε`.
-const BUDGET_SLIVER_RELATIVE: f64 = 6.0;
+const BUDGET_SLIVER_RELATIVE: f64 = 9.0;
 
 fn samples(default: usize) -> usize {
     if std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some() {

@@ -5,7 +5,8 @@
 //! the last bit of an angle (and of every area built on it) would depend on
 //! the operating system, and glibc's version costs about three ray–triangle
 //! tests. This one is the same arithmetic everywhere, about twice as fast,
-//! and within 1.5 ulp (measured, `tests/angle.rs`).
+//! and within 1.5 ulp (measured maximum over 10⁶ stiff cases: 1.13 ulp in
+//! `f64`, 1.38 ulp in `f32`; `tests/angle.rs`).
 //!
 //! Method: with `t = min(|x|, |y|) / max(|x|, |y|) ∈ [0, 1]`, pick one of the
 //! angles `φ ∈ {0, π/8, π/4}` and write `atan t = atan c + atan u`,
@@ -62,9 +63,9 @@ macro_rules! angle_kernels {
         /// same special values as the IEEE `atan2` for signed zeros
         /// (`atan2(±0, +0) = ±0`, `atan2(±0, −0) = ±π`).
         ///
-        /// **Accuracy**: within 1.5 ulp of the true angle over all finite
-        /// input (measured against a 256-bit evaluation in
-        /// `tests/angle.rs`); the result for small angles (`|y| ≪ x`) keeps
+        /// **Accuracy**: within 1.5 ulp of the true angle (measured maximum
+        /// over 10⁶ stiff cases against a 256-bit evaluation, 1.13 ulp in
+        /// `f64`, 1.38 in `f32`: `tests/angle.rs`); the result for small angles (`|y| ≪ x`) keeps
         /// full relative accuracy, which thin circular segments rely on.
         /// Exactly odd: `atan2(−y, x) = −atan2(y, x)` bit for bit.
         ///

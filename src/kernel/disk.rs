@@ -133,9 +133,10 @@ macro_rules! disk_kernels {
         ///
         /// Reversing the edge negates the result exactly (bit for bit).
         ///
-        /// **Accuracy**: absolute error within a few ulps of
-        /// `max(r², |a × b|) / 2`; see `docs/accuracy/kernels.md` for the
-        /// measured bound against a 256-bit evaluation.
+        /// **Accuracy**: absolute error at most `3 ε r²` (the tested
+        /// budget; measured maximum against a 256-bit evaluation of a
+        /// different formulation over 1.5·10⁵ stiff edges: `1.96 ε r²` in
+        /// `f64`, `1.70 ε r²` in `f32`; `docs/accuracy/kernels.md`).
         ///
         /// **Source**: the standard decomposition into a triangle inside the
         /// disk and circular sectors outside it, in the edge's own frame.
@@ -238,7 +239,9 @@ macro_rules! disk_kernels {
         /// ±∞ or a finite value, never NaN.
         ///
         /// **Accuracy**: each edge as [`segment_disk_area`]; the compensated
-        /// sum adds no error growing with the number of edges.
+        /// sum adds no error growing with the number of edges. Tested budget
+        /// `4 ε r²` (measured maximum over 2·10⁴ stiff polygons of 3–12
+        /// vertices: `3.88 ε r²` in `f64`, `3.43 ε r²` in `f32`).
         #[must_use]
         pub fn polygon_disk_area(r: $T, vertices: &[$V2]) -> $T {
             if vertices.len() < 3 || !(r > 0.0 && r.is_finite()) {
@@ -356,7 +359,10 @@ macro_rules! disk_kernels {
         /// `acos`; for thin segments `θ − sin θ` comes from its series and
         /// the remainder `(1 − ρ) sin θ`, `ρ = |p0||p1|`, is computed without
         /// cancellation, so slivers keep their relative accuracy. Measured
-        /// bounds in `docs/accuracy/kernels.md`.
+        /// against a 256-bit evaluation of the endpoint-angle form: absolute
+        /// error ≤ `0.56 ε` over 1.5·10⁵ stiff edges (budget `1 ε`); relative
+        /// error of thin full-chord segments down to `h = 1 − 10⁻¹⁵`
+        /// ≤ `8 ε` (budget `9 ε`), both precisions.
         #[must_use]
         pub fn circle_segment_occlusion(d: $T, w0: $T, w1: $T) -> $T {
             if !(d.is_finite() && w0.is_finite() && w1.is_finite()) {
