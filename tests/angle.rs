@@ -35,15 +35,20 @@ fn ulp32(x: f64) -> f64 {
 }
 
 /// A point whose angle is stiff: near an axis, a diagonal, or a reduction
-/// boundary (tan(π/16), tan(3π/16)), at any magnitude, any quadrant.
+/// boundary, at any magnitude, any quadrant.
 fn stiff_point(rng: &mut Rng) -> (f64, f64) {
     let t = match rng.below(7) {
         0 => rng.log_uniform(-20.0, 0.0),
-        1 => rng.nudge(0.198_912_367_379_658, 4),
-        2 => rng.nudge(0.668_178_637_919_298_9, 4),
+        // The reduction boundaries (tan ¼ and (√10 − 1)/3), the reduction
+        // centres (½ and 1), and tan(π/8).
+        1 => rng.nudge(0.255_341_921_221_036_27, 4),
+        2 => rng.nudge(0.720_759_220_056_126_5, 4),
         3 => rng.nudge(1.0, 4),
         4 => 0.0,
-        5 => rng.nudge(0.414_213_562_373_095, 4),
+        5 => {
+            let centre = [0.5, 0.414_213_562_373_095][rng.below(2) as usize];
+            rng.nudge(centre, 4)
+        }
         _ => rng.unit(),
     };
     let m = rng.log_uniform(-100.0, 100.0);

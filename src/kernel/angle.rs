@@ -3,27 +3,29 @@
 //!
 //! Why not `f64::atan2`: the standard library calls the platform's libm, so
 //! the last bit of an angle (and of every area built on it) would depend on
-//! the operating system, and glibc's version costs about three ray–triangle
-//! tests. This one is the same arithmetic everywhere, about twice as fast,
-//! and within 1.5 ulp (measured maximum over 10⁶ stiff cases: 1.13 ulp in
-//! `f64`, 1.38 ulp in `f32`; `tests/angle.rs`).
+//! the operating system and its version. This one is the same arithmetic
+//! everywhere, so the references built on it give bit-identical answers on
+//! every platform. It is within 1.5 ulp (measured maximum over 10⁶ stiff
+//! cases: 1.37 ulp in `f64`, 1.41 ulp in `f32`; `tests/angle.rs`), and costs
+//! about 1.3× glibc's `atan2` (13.7 ns against 10.6 ns per call in one run on
+//! the benchmark machine, `benches/README.md`).
 //!
-//! Method: with `t = min(|x|, |y|) / max(|x|, |y|) ∈ [0, 1]`, pick one of the
-//! angles `φ ∈ {0, π/8, π/4}` and write `atan t = atan c + atan u`,
-//! `c = tan φ` (as rounded), with `u = (num − c·den) / (den + c·num)` (one
-//! division, `c·den` formed exactly), so that `|u| ≤ tan(1/4)`. `atan u` is
+//! Method: with `t = min(|x|, |y|) / max(|x|, |y|) ∈ [0, 1]`, pick one of
+//! `c ∈ {0, ½, 1}` and write `atan t = atan c + atan u` with
+//! `u = (num − c·den) / (den + c·num)` (one division; `c·den` and the
+//! difference are exact for these `c`), so that `|u| ≤ tan(1/4)`. `atan u` is
 //! its Taylor series, truncated where the next term is far below half an ulp
-//! (14 terms in `f64`, 7 in `f32`). The
-//! reduction angles are double-word constants, `atan c` for the *rounded*
-//! `c` (so the identity is exact), and the octant and quadrant are restored
-//! by `π/2 − ·` and `π − ·` with double-word `π`.
+//! (14 terms in `f64`, 7 in `f32`). `atan ½`, `π/4`, `π/2` and `π` are
+//! double-word constants, and the octant and quadrant are restored by
+//! `π/2 − ·` and `π − ·` on the unevaluated sum.
 
 macro_rules! angle_kernels {
-    ($T:ident, $TERMS:expr, $SMALL:expr, $LARGE:expr, $BIG:expr, $T0:expr, $T1:expr, $C1:expr, $PHI1:expr, $PI4:expr, $PI2:expr, $PI:expr) => {
-        /// `tan(1/4)` and `tan(3π/16)`: the boundaries between the three
-        /// reduction intervals. (The first is not `tan(π/16)` so that the
-        /// middle interval's angles all lie at or above 1/4, in a binade
-        /// whose ulp absorbs the reduction's rounding.)
+    ($T:ident, $TERMS:expr, $SMALL:expr, $LARGE:expr, $BIG:expr, $T0:expr, $T1:expr, $PHI1:expr, $PI4:expr, $PI2:expr, $PI:expr) => {
+        /// `tan(1/4)` and `(√10 − 1)/3`: the boundaries between the three
+        /// reduction intervals, around `c = 0`, `½` and `1`. The first keeps
+        /// the middle interval's angles at or above ¼, in a binade whose ulp
+        /// absorbs the reduction's rounding; the second balances `|u|`
+        /// between the last two.
         const T0: $T = $T0;
         /// Below `SMALL` `den` and `num` are scaled up by the power of two
         /// `BIG`, above `LARGE` down by it.
@@ -31,8 +33,7 @@ macro_rules! angle_kernels {
         const LARGE: $T = $LARGE;
         const BIG: $T = $BIG;
         const T1: $T = $T1;
-        /// `tan(π/8)`, rounded; `PHI1` is `atan` of exactly this value.
-        const C1: $T = $C1;
+        /// `atan(½)` as a double-word constant.
         const PHI1: ($T, $T) = $PHI1;
         const PI4: ($T, $T) = $PI4;
         const PI2: ($T, $T) = $PI2;
@@ -64,9 +65,10 @@ macro_rules! angle_kernels {
         /// (`atan2(±0, +0) = ±0`, `atan2(±0, −0) = ±π`).
         ///
         /// **Accuracy**: within 1.5 ulp of the true angle (measured maximum
-        /// over 10⁶ stiff cases against a 256-bit evaluation, 1.13 ulp in
-        /// `f64`, 1.38 in `f32`: `tests/angle.rs`); the result for small angles (`|y| ≪ x`) keeps
-        /// full relative accuracy, which thin circular segments rely on.
+        /// over 10⁶ stiff cases against a 256-bit evaluation, 1.37 ulp in
+        /// `f64`, 1.41 in `f32`: `tests/angle.rs`); the result for small
+        /// angles (`|y| ≪ x`) keeps full relative accuracy, which thin
+        /// circular segments rely on.
         /// Exactly odd: `atan2(−y, x) = −atan2(y, x)` bit for bit.
         ///
         /// **Edge of the domain**: NaN input gives NaN; infinite input is
@@ -90,36 +92,19 @@ macro_rules! angle_kernels {
                 num *= BIG;
                 den *= BIG;
             } else if den > LARGE {
-                // Keep den + num and the exact product's split finite.
+                // Keep den + num finite.
                 num /= BIG;
                 den /= BIG;
             }
             let (beyond0, beyond1) = (num > T0 * den, num > T1 * den);
-            let c = if beyond1 {
-                1.0
-            } else if beyond0 {
-                C1
-            } else {
-                0.0
+            let (c, phi) = match (beyond0, beyond1) {
+                (_, true) => (1.0, PI4),
+                (true, false) => (0.5, PHI1),
+                (false, false) => (0.0, (0.0, 0.0)),
             };
-            let phi_hi = if beyond1 {
-                PI4.0
-            } else if beyond0 {
-                PHI1.0
-            } else {
-                0.0
-            };
-            let phi_lo = if beyond1 {
-                PI4.1
-            } else if beyond0 {
-                PHI1.1
-            } else {
-                0.0
-            };
-            // c·den exactly: its rounding, about ε·den, would be more than an
-            // ulp of a small angle.
-            let (p, e) = crate::kernel::eft::$T::two_prod(c, den);
-            let u = ((num - p) - e) / (den + c * num);
+            // c ∈ {0, ½, 1}: c·den is exact, and so is num − c·den (Sterbenz:
+            // num lies within a factor 2 of c·den on each interval).
+            let u = (num - c * den) / (den + c * num);
             let z = u * u;
             // atan u = u (1 − z/3 + z²/5 − …): the series in z by Estrin's
             // scheme (a shallow tree instead of Horner's long chain).
@@ -139,7 +124,7 @@ macro_rules! angle_kernels {
             let atan_u = u + u * (z * t[0]);
             // The angle as an unevaluated sum hi + lo, so that the octant and
             // quadrant steps below add no rounding of their own.
-            let (hi, lo) = (phi_hi, atan_u + phi_lo);
+            let (hi, lo) = (phi.0, atan_u + phi.1);
             let (s, e) = two_diff(PI2.0, hi);
             let (hi, lo) = if swap {
                 (s, e + (PI2.1 - lo))
@@ -166,9 +151,8 @@ pub mod f64 {
         1e299,
         (1u128 << 110) as f64,
         0.255_341_921_221_036_27,
-        0.668_178_637_919_298_9,
-        0.41421356237309503,
-        (core::f64::consts::FRAC_PI_8, 3.060132146563891e-18),
+        0.720_759_220_056_126_5,
+        (0.463_647_609_000_806_1, 2.269_877_745_296_168_7e-17),
         (core::f64::consts::FRAC_PI_4, 3.061616997868383e-17),
         (core::f64::consts::FRAC_PI_2, 6.123233995736766e-17),
         (core::f64::consts::PI, 1.2246467991473532e-16)
@@ -184,9 +168,8 @@ pub mod f32 {
         1e34,
         (1u64 << 52) as f32,
         0.255_341_92,
-        0.668_178_6,
-        0.414_213_57,
-        (core::f32::consts::FRAC_PI_8, -6.148_727e-9),
+        0.720_759_2,
+        (0.463_647_6, 5.012_158_7e-9),
         (core::f32::consts::FRAC_PI_4, -2.185_569_4e-8),
         (core::f32::consts::FRAC_PI_2, -4.371_139e-8),
         (core::f32::consts::PI, -8.742_278e-8)
