@@ -87,26 +87,34 @@ macro_rules! disk_kernels {
             (x.log2().floor() as i32).clamp(-limit, limit)
         }
 
-        /// `θ − sin θ` for `θ ≥ 0`, with full relative accuracy: the Taylor
-        /// series `Σ (−1)^(k+1) θ^(2k+1)/(2k+1)!` below 1 (the first omitted
-        /// term, `θ²¹/21!`, is below 2⁻⁶⁵ of the sum there), the plain
-        /// difference above (where it cancels no more than 2.7 bits).
+        /// `1 / (n (n + 1))` for `n = 4, 6, …, 18`: the ratios of successive
+        /// terms of the sine series, `θ^(n+1)/(n+1)! = θ^(n−1)/(n−1)! ·
+        /// θ²/(n (n + 1))`.
+        const SINE_RATIOS: [$T; 8] = {
+            let mut c = [0.0; 8];
+            let mut j = 0;
+            while j < 8 {
+                let n = (2 * j + 4) as $T;
+                c[j] = 1.0 / (n * (n + 1.0));
+                j += 1;
+            }
+            c
+        };
+
+        /// `θ − sin θ` for `0 ≤ θ < 1`, with full relative accuracy, from the
+        /// Taylor series `θ³/3! − θ⁵/5! + …` in nested form,
+        /// `θ³/6 · (1 − θ²/(4·5) (1 − θ²/(6·7) (1 − …)))`, up to `θ¹⁹/19!`;
+        /// the first omitted term, `θ²¹/21!`, is below 2⁻⁶⁵ of the sum on
+        /// that interval. (No libm `sin`: the result is the same on every
+        /// platform.)
         #[inline]
         fn theta_minus_sin(theta: $T) -> $T {
-            if theta < 1.0 {
-                let x2 = theta * theta;
-                // Horner in θ²: θ³/3! · (1 − θ²/(4·5)(1 − θ²/(6·7)(1 − …))).
-                let mut s: $T = 1.0;
-                let mut k: i32 = 9;
-                while k >= 2 {
-                    let n = (2 * k) as $T;
-                    s = 1.0 - x2 / (n * (n + 1.0)) * s;
-                    k -= 1;
-                }
-                theta * x2 / 6.0 * s
-            } else {
-                theta - theta.sin()
+            let x2 = theta * theta;
+            let mut s: $T = 1.0;
+            for &c in SINE_RATIOS.iter().rev() {
+                s = 1.0 - x2 * c * s;
             }
+            theta * x2 / 6.0 * s
         }
 
         /// Signed area of the triangle `(0, a, b)` intersected with the disk
