@@ -13,7 +13,10 @@ use softshadow::kernel::wedge::{f32 as w32, f64 as w64};
 
 const CASES: usize = 1024;
 
-fn inputs() -> (Vec<WedgeCase>, Vec<DVec3>, Vec<(DVec3, DVec3, f64, f64)>) {
+/// A light-frame edge `(e0, e1)` with the light radius and `z_max`.
+type QuadCase = (DVec3, DVec3, f64, f64);
+
+fn inputs() -> (Vec<WedgeCase>, Vec<DVec3>, Vec<QuadCase>) {
     let mut rng = Rng::new(0x3ed9e);
     let mut cases = Vec::with_capacity(CASES);
     while cases.len() < CASES {

@@ -14,7 +14,7 @@
 //! - [`f64::circle_segment_occlusion`]: Johnson et al.'s eq. 3 (SISM), the
 //!   signed normalised area of the circular segment cut by one clipped edge.
 //!
-//! All three exist in `f32` and `f64` ([`f32`], [`f64`]) from one body.
+//! All three exist in `f32` and `f64` ([`mod@f32`], [`mod@f64`]) from one body.
 //!
 //! ## Numerics
 //!

@@ -25,7 +25,7 @@
 //! `t* = (1 − √(1 − 64/(9π²)))/2`. `tests/falloff.rs` finds the maximiser
 //! independently (golden-section search) and checks both numbers.
 //!
-//! Both curves are in [`f32`] and [`f64`] from one body. Measured accuracy:
+//! Both curves are in [`f32`](mod@f32) and [`f64`](mod@f64) from one body. Measured accuracy:
 //! see the function docs and `docs/accuracy/kernels.md`.
 
 /// Which curve maps the normalised penumbra position `t` to a lit fraction.
@@ -47,12 +47,18 @@ pub enum Falloff {
 }
 
 macro_rules! falloff_kernels {
-    ($T:ident, $SERIES_TERMS:expr) => {
+    ($T:ident, $SERIES_TERMS:expr, $FRAC_1_PI_LO:expr, $C_LO:expr, $TINY_EXP:expr, $SCALE_EXP:expr) => {
         use super::Falloff;
+        use crate::kernel::angle::$T::atan2;
+        use crate::kernel::eft::$T::two_prod;
 
-        /// `16/(3π)`: the leading coefficient of `F(t)` at `t → 0`.
-        const SIXTEEN_OVER_THREE_PI: $T = 1.697_652_726_313_550_248_201_426_809_306_82;
+        /// `16/(3π) = C_HI + C_LO`: the leading coefficient of `F(t)` at
+        /// `t → 0`, to twice the working precision.
+        const C_HI: $T = 1.697_652_726_313_550_248_201_426_809_306_82;
+        const C_LO: $T = $C_LO;
+        /// `1/π = FRAC_1_PI + FRAC_1_PI_LO` to twice the working precision.
         const FRAC_1_PI: $T = core::$T::consts::FRAC_1_PI;
+        const FRAC_1_PI_LO: $T = $FRAC_1_PI_LO;
 
         /// Series coefficients `c_k = (3/2)·a_k/(k + 3/2)` with
         /// `a_k = (−1)^k·C(1/2, k)`, so that
@@ -60,9 +66,15 @@ macro_rules! falloff_kernels {
         /// `F(t) = (8/π)∫₀ᵗ √s·√(1 − s) ds` term by term after expanding
         /// `√(1 − s)` binomially. All `c_k`, `k ≥ 1`, are negative and
         /// `|c_k| t^k` decreases; the tail after `K` terms is below
-        /// `|c_K| t^K / (1 − t)`. For `t ≤ 1/4` that is below 0.03 ulp of the
-        /// sum with 23 terms in `f64` and 10 terms in `f32`.
-        const SERIES: [$T; 23] = [
+        /// `|c_K| t^K / (1 − t)`. For `t ≤ SERIES_MAX = 0.3` that is below
+        /// 0.05 ulp of the sum with 26 terms in `f64` (0.043 ulp) and 12 terms
+        /// in `f32` (0.011 ulp).
+        ///
+        /// The series covers `t ≤ 0.3` rather than `t ≤ 1/4` so that the
+        /// centre form below only sees `F > 0.2523`: `F` crosses `1/4` at
+        /// `t = 0.29801`, and below that the centre form's `1/2 − G` would
+        /// halve the ulp of the result while `G` keeps its error.
+        const SERIES: [$T; 26] = [
             1.0,
             -3.0 / 10.0,
             -3.0 / 56.0,
@@ -86,9 +98,32 @@ macro_rules! falloff_kernels {
             -2650894785.0 / 11819749998592.0,
             -109402007.0 / 549755813888.0,
             -18349700265.0 / 103354093010944.0,
+            -34305961365.0 / 215504279044096.0,
+            -171529806825.0 / 1196268651020288.0,
+            -967428110493.0 / 7459086882832384.0,
         ];
-        /// Terms of [`SERIES`] this precision needs on `t ≤ 1/4`.
+        /// Terms of [`SERIES`] this precision needs on `t ≤ SERIES_MAX`.
         const SERIES_TERMS: usize = $SERIES_TERMS;
+        const SERIES_MAX: $T = 0.3;
+
+        /// `2^e`, exactly (`e` within the normal range).
+        const fn pow2(e: i32) -> $T {
+            let mut x: $T = 1.0;
+            let mut i = 0;
+            while i < e.abs() {
+                x = if e > 0 { x * 2.0 } else { x * 0.5 };
+                i += 1;
+            }
+            x
+        }
+
+        /// Below `TINY`, `t²` or `t^(3/2)` could be subnormal while the
+        /// result is still normal: `t` is scaled by `2^SCALE_EXP` (exactly)
+        /// first and the result scaled back with one rounding. There the
+        /// dropped higher-order terms (relative size below `TINY`) are far
+        /// below an ulp.
+        const TINY: $T = pow2($TINY_EXP);
+        const SCALE_EXP: i32 = $SCALE_EXP;
 
         /// The Bernstein smoothstep `3t² − 2t³` (SSOC, Mo, Popescu, Wyman,
         /// §3.2.2: "the Bernstein interpolant s = 3t² − 2t³").
@@ -97,13 +132,22 @@ macro_rules! falloff_kernels {
         /// `1` (clamped). NaN gives `0`. Never NaN.
         ///
         /// **Properties**: `bernstein(0) = 0`, `bernstein(1/2) = 1/2`,
-        /// `bernstein(1) = 1` exactly; `t > 1/2` is evaluated as
-        /// `1 − bernstein(1 − t)` with `1 − t` exact, so the symmetry
-        /// `bernstein(t) + bernstein(1 − t) = 1` holds to half an ulp of 1.
+        /// `bernstein(1) = 1` exactly; non-decreasing (checked at adjacent
+        /// floats, and for every `f32` in `[0, 1]`); `t > 1/2` is evaluated
+        /// as `1 − bernstein(1 − t)` with `1 − t` exact, so
+        /// `bernstein(t) + bernstein(1 − t) = 1` to about an ulp.
         ///
-        /// **Accuracy**: within 1.5 ulp of the exact cubic on `[0, 1]`
-        /// (measured against a double-double evaluation, `tests/falloff.rs`;
-        /// table in `docs/accuracy/kernels.md`).
+        /// **Numerics**: `t²(3 − 2t)` with the rounding errors of the square,
+        /// the difference and the product carried along (error-free
+        /// transformations: exact products with or without hardware FMA)
+        /// and one final rounding; below `TINY`
+        /// (`2⁻⁴⁰⁰` in `f64`, `2⁻⁴⁰` in `f32`) `3t²` at an exact power-of-two
+        /// scale, so no intermediate is subnormal while the result is normal.
+        ///
+        /// **Accuracy**: measured against a double-double evaluation over the
+        /// stiff generator (`tests/falloff.rs`): max 0.50 ulp (`f64` and
+        /// `f32`) for normal results, 0.75 ulp for subnormal results (two
+        /// roundings); table in `docs/accuracy/kernels.md`.
         #[must_use]
         #[inline]
         pub fn bernstein(t: $T) -> $T {
@@ -113,13 +157,44 @@ macro_rules! falloff_kernels {
             if t >= 1.0 {
                 return 1.0;
             }
-            if t <= 0.5 {
-                t * t * (3.0 - 2.0 * t)
+            if t < TINY {
+                // 3t², computed at scale 2^(2·SCALE_EXP).
+                let ts = t * pow2(SCALE_EXP);
+                let (t2, t2_err) = two_prod(ts, ts);
+                let (b, b_err) = two_prod(3.0, t2);
+                let b_err = b_err + 3.0 * t2_err;
+                (b + b_err) * pow2(-2 * SCALE_EXP)
+            } else if t <= 0.5 {
+                let (b, b_err) = bernstein_low(t);
+                b + b_err
             } else {
                 // 1 − t is exact for t ≥ 1/2 (Sterbenz).
-                let s = 1.0 - t;
-                1.0 - s * s * (3.0 - 2.0 * s)
+                let (b, b_err) = bernstein_low(1.0 - t);
+                one_minus(b, b_err)
             }
+        }
+
+        /// `t²(3 − 2t) = hi + lo` for `0 < t ≤ 1/2`, the rounding errors of
+        /// the square, the difference and the product carried along
+        /// (error-free transformations), so `hi + lo` is within about 0.5 ulp.
+        #[inline]
+        fn bernstein_low(t: $T) -> ($T, $T) {
+            let (t2, t2_err) = two_prod(t, t);
+            // 2t is exact; 3 ≥ 2t, so Fast2Sum recovers the error of 3 − 2t.
+            let m = 3.0 - 2.0 * t;
+            let m_err = (3.0 - m) - 2.0 * t;
+            let (b, b_err) = two_prod(t2, m);
+            let b_err = b_err + (t2_err * m + t2 * m_err);
+            (b, b_err)
+        }
+
+        /// `1 − (hi + lo)` with one final rounding (TwoSum on `1 − hi`).
+        #[inline]
+        fn one_minus(hi: $T, lo: $T) -> $T {
+            let r = 1.0 - hi;
+            let hv = 1.0 - r;
+            let r_err = (1.0 - (r + hv)) + (hv - hi);
+            r + (r_err - lo)
         }
 
         /// The exact fraction of a uniform disk on the lit side of a straight
@@ -132,25 +207,33 @@ macro_rules! falloff_kernels {
         /// over `π`.
         ///
         /// **Domain**: `[0, 1]`; below `0` the result is `0`, above `1` it is
-        /// `1`, NaN gives `0`. Never NaN. Non-decreasing; `F(0) = 0`,
-        /// `F(1/2) = 1/2` and `F(1) = 1` exactly.
+        /// `1`, NaN gives `0`. Never NaN. `F(0) = 0`, `F(1/2) = 1/2` and
+        /// `F(1) = 1` exactly; non-decreasing (checked at adjacent floats
+        /// across every branch point, and for every `f32` in `[0, 1]`);
+        /// `F(t) + F(1 − t) = 1` to about an ulp.
         ///
         /// **Numerics**: the formula as written takes `acos` near `±1` and
         /// cancels catastrophically for thin slivers. Instead:
-        /// - `t ≤ 1/4`: the series `F = (16/(3π)) t^(3/2) Σ c_k t^k` (see
-        ///   `SERIES` in the source: truncation below 0.03 ulp), full relative
-        ///   accuracy down to the smallest `t` whose `t^(3/2)` is normal;
-        /// - `1/4 < t < 3/4`: with `h = 1 − 2t` (exact there, Sterbenz),
-        ///   `F = 1/2 − (asin h + h√(1 − h²))/π`: `asin` of an exact argument
-        ///   `|h| ≤ 1/2`, a sum of like-signed terms, and a final subtraction
-        ///   that at worst halves the result (no cancellation beyond one bit);
-        /// - `t ≥ 3/4`: `1 − F(1 − t)`, with `1 − t` exact, so the symmetry
-        ///   `F(t) + F(1 − t) = 1` holds to about an ulp of 1.
+        /// - `t ≤ 0.3`: the series `F = (16/(3π)) t^(3/2) Σ c_k t^k` (see
+        ///   `SERIES` in the source: truncation below 0.05 ulp), its roundings
+        ///   carried along by error-free transformations; below `TINY`
+        ///   (`2⁻⁴⁰⁰`, `f32`: `2⁻⁴⁰`) `t^(3/2)` at an exact power-of-two scale,
+        ///   so the relative accuracy holds for every normal result;
+        /// - `0.3 < t < 0.7`: with `h = 1 − 2t` (exact there, Sterbenz),
+        ///   `F = 1/2 − (asin h + h√(1 − h²))/π`: `asin h` of an exact
+        ///   argument `|h| < 0.4`, as `atan2(h, √(1 − h²))` by the crate's
+        ///   portable [`atan2`](crate::kernel::angle::f64::atan2) (so the
+        ///   result has the same bits on every platform; the sum is
+        ///   stationary in the root's error), a sum of like-signed terms,
+        ///   the sum and the product by `1/π` compensated, and a final
+        ///   subtraction that stays in the result's binade (`F > 0.2523`);
+        /// - `t ≥ 0.7`: `1 − F(1 − t)`, `1 − t` exact, one final rounding.
         ///
-        /// **Accuracy**: within 2 ulp (`f64`) and 2 ulp (`f32`) of the exact
-        /// value over the stiff generators (measured against a
-        /// double-double series evaluation, `tests/falloff.rs`; table in
-        /// `docs/accuracy/kernels.md`).
+        /// **Accuracy**: measured against a double-double series evaluation
+        /// (`tests/falloff.rs`; 4·10⁶ samples of the stiff generator, 8·10⁶
+        /// uniform): max 0.95 ulp (`f64`) and 0.96 ulp (`f32`), in the centre
+        /// form, from `atan2`'s error; below 0.75 ulp for `t ≤ 0.3` and
+        /// `t ≥ 0.7`. Table in `docs/accuracy/kernels.md`.
         ///
         /// **Source**: circular-segment area; DESIGN.md §3.
         #[must_use]
@@ -162,32 +245,100 @@ macro_rules! falloff_kernels {
             if t >= 1.0 {
                 return 1.0;
             }
-            if t <= 0.25 {
-                thin_sliver(t)
-            } else if t >= 0.75 {
+            if t < TINY {
+                // (16/(3π)) t^(3/2), computed at scale 2^(3·SCALE_EXP/2).
+                let (p, p_err) = three_halves(t * pow2(SCALE_EXP));
+                let (cp, cp_err) = two_prod(C_HI, p);
+                let cp_err = cp_err + (C_HI * p_err + C_LO * p);
+                (cp + cp_err) * pow2(-3 * SCALE_EXP / 2)
+            } else if t <= SERIES_MAX {
+                let (f, f_err) = thin_sliver(t);
+                f + f_err
+            } else if t >= 1.0 - SERIES_MAX {
                 // 1 − t is exact for t ≥ 1/2 (Sterbenz).
-                1.0 - thin_sliver(1.0 - t)
+                let (f, f_err) = thin_sliver(1.0 - t);
+                one_minus(f, f_err)
             } else {
-                // h = 1 − 2t is exact for 1/4 ≤ t ≤ 1 (Sterbenz), |h| ≤ 1/2.
-                let h = 1.0 - 2.0 * t;
-                let w = (-h).mul_add(h, 1.0).sqrt();
-                0.5 - (h.asin() + h * w) * FRAC_1_PI
+                centre(t)
             }
         }
 
-        /// `F(t)` for `0 < t ≤ 1/4` by the series (see [`SERIES`]).
+        /// `F(t)` for `0.3 < t < 0.7`: `1/2 − (asin h + h√(1 − h²))/π`,
+        /// `h = 1 − 2t`. The final subtraction cancels up to one bit
+        /// (`F(0.3) ≈ 0.2523` from `1/2 − 0.2477`), so the sum and the
+        /// product by `1/π` carry their rounding errors along (error-free
+        /// transformations) and only `atan2`, the square root and one final
+        /// rounding contribute.
         #[inline]
-        fn thin_sliver(t: $T) -> $T {
-            // Horner from the highest kept term; the leading 1 is added last,
-            // so the rounding of the tail is damped by |c₁|t ≤ 0.075.
-            let mut tail: $T = SERIES[SERIES_TERMS - 1];
-            let mut k = SERIES_TERMS - 1;
-            while k > 1 {
-                k -= 1;
-                tail = tail * t + SERIES[k];
+        fn centre(t: $T) -> $T {
+            // h = 1 − 2t is exact for 1/4 ≤ t ≤ 1 (Sterbenz), |h| < 0.4.
+            let h = 1.0 - 2.0 * t;
+            // 1 − h² = (1 − h)(1 + h) with 1 − h = 2t exact: two roundings.
+            let w = (2.0 * t * (1.0 + h)).sqrt();
+            let (hw, hw_err) = two_prod(h, w);
+            // asin h, by the portable atan2 (the same bits on every platform).
+            let a = atan2(h, w);
+            // |asin h| ≥ |h·w| with the same sign: Fast2Sum is exact.
+            let sum = a + hw;
+            let sum_err = (hw - (sum - a)) + hw_err;
+            let (g, g_err) = two_prod(sum, FRAC_1_PI);
+            let g_err = g_err + (sum_err * FRAC_1_PI + sum * FRAC_1_PI_LO);
+            // 1/2 − g with its rounding error (TwoSum), then one rounding.
+            let r = 0.5 - g;
+            let gv = 0.5 - r;
+            let r_err = (0.5 - (r + gv)) + (gv - g);
+            r + (r_err - g_err)
+        }
+
+        /// `F(t) = hi + lo` for `0 < t ≤ 0.3` by the series (see [`SERIES`]).
+        ///
+        /// The sum is formed by Horner's rule (two chains, even and odd
+        /// powers) from the highest kept term; the leading 1 is added last,
+        /// so the rounding of the tail is damped by `|c₁|t ≤ 0.09`. The
+        /// remaining roundings (the square root, `t·√t`, `1 + t·tail`, the
+        /// constant and the two products) are carried along by error-free
+        /// transformations, so `hi + lo` rounds to within 0.75 ulp of `F`
+        /// (measured).
+        #[inline]
+        fn thin_sliver(t: $T) -> ($T, $T) {
+            // tail = Σ_{k≥1} c_k t^(k−1), as two interleaved Horner chains in
+            // t² (even and odd powers) to halve the dependency chain.
+            let t2 = t * t;
+            let (mut even, mut odd): ($T, $T) = (0.0, 0.0);
+            let mut m = SERIES_TERMS - 1;
+            while m > 0 {
+                m -= 1;
+                if m % 2 == 0 {
+                    even = even * t2 + SERIES[m + 1];
+                } else {
+                    odd = odd * t2 + SERIES[m + 1];
+                }
             }
-            let sum = 1.0 + t * tail;
-            SIXTEEN_OVER_THREE_PI * (t * t.sqrt()) * sum
+            let tail = even + t * odd;
+            let (x, x_err) = two_prod(t, tail);
+            // 1 ≥ |x|: Fast2Sum.
+            let sum = 1.0 + x;
+            let sum_err = ((1.0 - sum) + x) + x_err;
+            let (p, p_err) = three_halves(t);
+            let (cp, cp_err) = two_prod(C_HI, p);
+            let cp_err = cp_err + (C_HI * p_err + C_LO * p);
+            let (f, f_err) = two_prod(cp, sum);
+            let f_err = f_err + (cp * sum_err + cp_err * sum);
+            (f, f_err)
+        }
+
+        /// `t^(3/2) = hi + lo` for normal `t > 0`: with `s = fl(√t)`,
+        /// `√t = s + (t − s²)/(2s)` to first order, so
+        /// `t·√t = t·s + (s/2)(t − s²)·(t/s²)`, and `t/s² = 1 + O(u)` makes the
+        /// last factor negligible (no division needed).
+        #[inline]
+        fn three_halves(t: $T) -> ($T, $T) {
+            let s = t.sqrt();
+            // t − s² exactly: s² = q + e, and t − q is exact (Sterbenz).
+            let (q, e) = two_prod(s, s);
+            let residual = (t - q) - e;
+            let (p, p_err) = two_prod(t, s);
+            (p, p_err + 0.5 * s * residual)
         }
 
         /// The chosen falloff curve at `t` (see [`Falloff`]): `t` clamped to
@@ -269,10 +420,17 @@ macro_rules! falloff_kernels {
 
 /// `f64` versions.
 pub mod f64 {
-    falloff_kernels!(f64, 23);
+    falloff_kernels!(
+        f64,
+        26,
+        -1.967_867_667_518_248_6e-17,
+        -1.049_529_422_676_399_3e-16,
+        -400,
+        100
+    );
 }
 
 /// `f32` versions.
 pub mod f32 {
-    falloff_kernels!(f32, 10);
+    falloff_kernels!(f32, 12, 1.284_127_7e-8, 2.875_037_8e-8, -40, 40);
 }
