@@ -7,22 +7,14 @@
 //! multiplies the sample count by 50.
 
 mod support;
+use support::{printing, samples, Big, Ctx};
 
 use proptest::prelude::*;
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::angle::{f32 as a32, f64 as a64};
-use support::{Big, Ctx};
 
 /// Measured maximum over the exhaustive run, rounded up (ulps).
 const BUDGET_ULPS: f64 = 1.5;
-
-fn samples(default: usize) -> usize {
-    if std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some() {
-        default * 50
-    } else {
-        default
-    }
-}
 
 fn ulp64(x: f64) -> f64 {
     let a = x.abs();
@@ -95,7 +87,7 @@ fn atan2_accuracy() {
             }
         }
     }
-    if std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some() {
+    if printing() {
         println!("| angle::atan2 | f64 | {worst64:.2} ulp | stiff_point | {n} |");
         println!("| angle::atan2 | f32 | {worst32:.2} ulp | stiff_point | {n} |");
         println!("worst: atan2{case64:?} / atan2{case32:?}");

@@ -8,6 +8,7 @@
 //! `SOFTSHADOW_EXHAUSTIVE=1` multiplies the sample counts by 50.
 
 mod support;
+use support::{normal_two_sided_quantile, printing, samples, sidak, Big, Ctx};
 
 use glam::{DVec2, Vec2};
 use proptest::prelude::*;
@@ -16,7 +17,6 @@ use softshadow::arbitrary::Rng;
 use softshadow::kernel::disk::{f32 as k32, f64 as k64};
 use softshadow::kernel::predicate::{orient2d, Sign};
 use std::f64::consts::PI;
-use support::{normal_two_sided_quantile, sidak, Big, Ctx};
 
 const EPS64: f64 = f64::EPSILON;
 const EPS32: f64 = f32::EPSILON as f64;
@@ -30,18 +30,6 @@ const BUDGET_POLYGON: f64 = 4.0;
 const BUDGET_CIRCLE_SEGMENT: f64 = 1.0;
 /// Relative error budget of thin full-chord slivers, in units of `ε`.
 const BUDGET_SLIVER_RELATIVE: f64 = 9.0;
-
-fn samples(default: usize) -> usize {
-    if std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some() {
-        default * 50
-    } else {
-        default
-    }
-}
-
-fn printing() -> bool {
-    std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some()
-}
 
 // ---------------------------------------------------------------------------
 // The 256-bit references.

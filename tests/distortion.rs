@@ -9,71 +9,16 @@
 //! prints the accuracy table rows; `SOFTSHADOW_EXHAUSTIVE=1` runs more
 //! samples.
 
+mod support;
+use support::{exhaustive, printing};
+
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{distortion_case, DistortionCase};
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::distortion;
 use softshadow::kernel::falloff::{self, Falloff};
 
-/// Double-double arithmetic (Dekker; Hida, Li, Bailey): what the references
-/// need, ≈ 106 bits.
-#[derive(Clone, Copy, Debug)]
-struct Dd {
-    hi: f64,
-    lo: f64,
-}
-
-fn two_sum(a: f64, b: f64) -> Dd {
-    let s = a + b;
-    let bv = s - a;
-    let av = s - bv;
-    Dd {
-        hi: s,
-        lo: (a - av) + (b - bv),
-    }
-}
-
-fn two_prod(a: f64, b: f64) -> Dd {
-    let p = a * b;
-    Dd {
-        hi: p,
-        lo: a.mul_add(b, -p),
-    }
-}
-
-impl Dd {
-    fn new(x: f64) -> Dd {
-        Dd { hi: x, lo: 0.0 }
-    }
-    fn renorm(hi: f64, lo: f64) -> Dd {
-        let s = hi + lo;
-        Dd {
-            hi: s,
-            lo: lo - (s - hi),
-        }
-    }
-    fn mul(self, o: Dd) -> Dd {
-        let p = two_prod(self.hi, o.hi);
-        Dd::renorm(p.hi, p.lo + (self.hi * o.lo + self.lo * o.hi))
-    }
-    fn sub(self, o: Dd) -> Dd {
-        let s = two_sum(self.hi, -o.hi);
-        Dd::renorm(s.hi, s.lo + (self.lo - o.lo))
-    }
-    fn div(self, o: Dd) -> Dd {
-        let q1 = self.hi / o.hi;
-        let r = self.sub(o.mul(Dd::new(q1)));
-        let q2 = r.hi / o.hi;
-        let r = r.sub(o.mul(Dd::new(q2)));
-        let q3 = r.hi / o.hi;
-        let q = Dd::renorm(q1, q2);
-        let s = two_sum(q.hi, q3);
-        Dd::renorm(s.hi, s.lo + q.lo)
-    }
-    fn to_f64(self) -> f64 {
-        self.hi + self.lo
-    }
-}
+use support::dd::{two_prod, two_sum, Dd};
 
 /// The exact `dmax` in double-double (the domain conventions as the kernel).
 fn exact_dmax(r: f64, zn: f64, zp: f64) -> Dd {
@@ -111,14 +56,6 @@ fn ulp_at(x: f64, digits: i32, min_exp: i32) -> f64 {
 
 fn ulps(got: f64, exact: Dd, digits: i32, min_exp: i32) -> f64 {
     ((got - exact.hi) - exact.lo).abs() / ulp_at(exact.to_f64(), digits, min_exp)
-}
-
-fn exhaustive() -> bool {
-    std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some_and(|v| v == "1")
-}
-
-fn print_accuracy() -> bool {
-    std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some_and(|v| v == "1")
 }
 
 /// A case in `f32`: the `f64` case rounded, and half the time the receiver
@@ -200,7 +137,7 @@ fn accuracy_budget() {
             }
         }
     }
-    if print_accuracy() {
+    if printing() {
         for (name, precision, e) in [
             ("max_distortion", "f64", dmax64),
             ("max_distortion", "f32", dmax32),
@@ -250,7 +187,7 @@ fn f32_intensity_agrees_with_f64() {
             max_abs = max_abs.max((i32v - i64v).abs());
         }
     }
-    if print_accuracy() {
+    if printing() {
         println!("| distortion::intensity (f32 vs f64, all falloffs) | f32 | {max_abs:.2e} | abs | `distortion_case` | {n} |");
     }
 }

@@ -12,98 +12,15 @@
 //! prints the accuracy table rows; `SOFTSHADOW_EXHAUSTIVE=1` walks every
 //! `f32` in `[0, 1]` for monotonicity and runs more samples.
 
+mod support;
+use support::{exhaustive, printing};
+
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{falloff_t, falloff_t_f32};
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::falloff::{self, Falloff};
 
-/// Double-double arithmetic: an unevaluated sum `hi + lo`, `|lo| ≤ ulp(hi)/2`,
-/// about 106 bits (Dekker; Hida, Li, Bailey's QD algorithms).
-mod dd {
-    #[derive(Clone, Copy, Debug, PartialEq)]
-    pub struct Dd {
-        pub hi: f64,
-        pub lo: f64,
-    }
-
-    fn two_sum(a: f64, b: f64) -> Dd {
-        let s = a + b;
-        let bv = s - a;
-        let av = s - bv;
-        Dd {
-            hi: s,
-            lo: (a - av) + (b - bv),
-        }
-    }
-
-    fn quick_two_sum(a: f64, b: f64) -> Dd {
-        let s = a + b;
-        Dd {
-            hi: s,
-            lo: b - (s - a),
-        }
-    }
-
-    fn two_prod(a: f64, b: f64) -> Dd {
-        let p = a * b;
-        Dd {
-            hi: p,
-            lo: a.mul_add(b, -p),
-        }
-    }
-
-    impl Dd {
-        pub const fn new(x: f64) -> Dd {
-            Dd { hi: x, lo: 0.0 }
-        }
-        /// π to double-double precision.
-        pub const PI: Dd = Dd {
-            hi: core::f64::consts::PI,
-            lo: 1.224_646_799_147_353_2e-16,
-        };
-        pub fn add(self, o: Dd) -> Dd {
-            let s = two_sum(self.hi, o.hi);
-            let t = two_sum(self.lo, o.lo);
-            let s = quick_two_sum(s.hi, s.lo + t.hi);
-            quick_two_sum(s.hi, s.lo + t.lo)
-        }
-        pub fn neg(self) -> Dd {
-            Dd {
-                hi: -self.hi,
-                lo: -self.lo,
-            }
-        }
-        pub fn sub(self, o: Dd) -> Dd {
-            self.add(o.neg())
-        }
-        pub fn mul(self, o: Dd) -> Dd {
-            let p = two_prod(self.hi, o.hi);
-            quick_two_sum(p.hi, p.lo + (self.hi * o.lo + self.lo * o.hi))
-        }
-        pub fn div(self, o: Dd) -> Dd {
-            // Long division: two correction steps.
-            let q1 = self.hi / o.hi;
-            let r = self.sub(o.mul(Dd::new(q1)));
-            let q2 = r.hi / o.hi;
-            let r = r.sub(o.mul(Dd::new(q2)));
-            let q3 = r.hi / o.hi;
-            quick_two_sum(q1, q2).add(Dd::new(q3))
-        }
-        pub fn sqrt(self) -> Dd {
-            if self.hi <= 0.0 {
-                return Dd::new(0.0);
-            }
-            // One Newton step from the f64 root doubles the digits.
-            let x = self.hi.sqrt();
-            let r = self.sub(two_prod(x, x));
-            quick_two_sum(x, r.hi / (2.0 * x))
-        }
-        pub fn to_f64(self) -> f64 {
-            self.hi + self.lo
-        }
-    }
-}
-use dd::Dd;
+use support::dd::Dd;
 
 /// An exact value `value · 2^-scale`: the references scale tiny arguments
 /// up, so that no double-double product loses its low part to underflow.
@@ -210,14 +127,6 @@ fn ulps(got: f64, exact: Scaled, digits: i32, min_exp: i32) -> f64 {
     let diff = (got * up - exact.value.hi) - exact.value.lo;
     let true_value = exact.value.to_f64() * pow2(-exact.scale);
     diff.abs() / (ulp_at(true_value, digits, min_exp) * up)
-}
-
-fn exhaustive() -> bool {
-    std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some_and(|v| v == "1")
-}
-
-fn print_accuracy() -> bool {
-    std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some_and(|v| v == "1")
 }
 
 /// The reference itself, against closed forms: `F(1/2) = 1/2`,
@@ -400,7 +309,7 @@ fn accuracy_budget() {
         ),
     ];
     for (m, normal_budget, budget) in &rows {
-        if print_accuracy() {
+        if printing() {
             println!("{}", m.row());
         }
         assert!(

@@ -17,6 +17,9 @@
 //! prints the accuracy table rows; `SOFTSHADOW_EXHAUSTIVE=1` runs more
 //! samples.
 
+mod support;
+use support::{exhaustive, printing};
+
 use glam::{DVec2, DVec3, Vec2, Vec3};
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{
@@ -27,14 +30,6 @@ use softshadow::kernel::linear_light::{self, OccluderSide};
 
 const U64: f64 = f64::EPSILON / 2.0;
 const U32: f64 = f32::EPSILON as f64 / 2.0;
-
-fn exhaustive() -> bool {
-    std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some_and(|v| v == "1")
-}
-
-fn print_accuracy() -> bool {
-    std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some_and(|v| v == "1")
-}
 
 /// Exact arithmetic on floating-point expansions, and a double-double
 /// rounding of the result.
@@ -321,7 +316,7 @@ fn accuracy_budget() {
             abs32 = abs32.max((got.end as f64 - s).abs());
         }
     }
-    if print_accuracy() {
+    if printing() {
         println!("| linear_light::visible_part (s, error / derived bound) | f64 | {ratio64:.3} | ratio | `linear_light_case` | {n} |");
         println!("| linear_light::visible_part (s, error / derived bound) | f32 | {ratio32:.3} | ratio | `linear_light_case` | {n} |");
         println!("| linear_light::visible_part (s) | f64 | {abs64:.2e} | abs | `linear_light_well_conditioned` | {n} |");
@@ -506,7 +501,7 @@ fn law_of_sines_agrees_with_stable_construction() {
             worst32 = worst32.max((i - s).abs());
         }
     }
-    if print_accuracy() {
+    if printing() {
         println!("| linear_light::law_of_sines_fraction | f64 | {worst64:.2e} | abs | `linear_light_well_conditioned` | {n} |");
         println!("| linear_light::law_of_sines_fraction | f32 | {worst32:.2e} | abs | `linear_light_well_conditioned` | {n} |");
         println!("| linear_light::law_of_sines_fraction − visible_part (diff / derived tolerance) | f64 | {ratio:.3} | ratio | `linear_light_well_conditioned` | {n} |");
@@ -545,7 +540,7 @@ fn law_of_sines_weak_spots() {
             ));
         }
     }
-    if print_accuracy() {
+    if printing() {
         for row in rows {
             println!("weak spot: {row}");
         }
@@ -796,7 +791,7 @@ fn three_d_agrees_with_two_d() {
             tol32 + U32,
         ));
     }
-    if print_accuracy() {
+    if printing() {
         println!("| linear_light::visible_part_3d (vs exact 2D s, error / derived tolerance) | f64 | {:.3} | ratio | `linear_light_well_conditioned` + `embed_3d` | 20000 |", worst.0);
         println!("| linear_light::visible_part_3d (vs exact 2D s, error / derived tolerance) | f32 | {:.3} | ratio | `linear_light_well_conditioned` + `embed_3d` | 20000 |", worst.1);
     }

@@ -9,6 +9,9 @@
 //! prints the accuracy rows; `SOFTSHADOW_EXHAUSTIVE=1` multiplies the sample
 //! counts by 50.
 
+mod support;
+use support::{printing, samples};
+
 use std::collections::{BTreeMap, HashMap};
 
 use glam::{DMat3, DVec3, Vec3};
@@ -22,18 +25,6 @@ use softshadow::arbitrary::Rng;
 use softshadow::kernel::silhouette::{
     EdgeKind, MeshTopology, SilhouetteEdge, SilhouetteError, TopologyError, MAX_VERTICES,
 };
-
-fn samples(default: usize) -> usize {
-    if std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some() {
-        default * 50
-    } else {
-        default
-    }
-}
-
-fn printing() -> bool {
-    std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some()
-}
 
 fn c3(p: DVec3) -> Coord3D<f64> {
     Coord3D {

@@ -10,6 +10,7 @@
 //! counts by 50.
 
 mod support;
+use support::{printing, samples, Big};
 
 use glam::{DVec2, DVec3, Vec3};
 use proptest::prelude::*;
@@ -18,7 +19,6 @@ use softshadow::arbitrary::mesh::{
 };
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::wedge::{f32 as w32, f64 as w64, WedgeError};
-use support::Big;
 
 /// Budget for the angle between an `f32` wedge plane and the `f64` plane of
 /// the same input, in units of the `f32` ε, over well-conditioned
@@ -31,18 +31,6 @@ const BUDGET_NORMAL_F32: f64 = 512.0;
 /// Budget for the relative difference of the `f32` and `f64` quad radius,
 /// in units of the `f32` ε (measured max, rounded up).
 const BUDGET_QUAD_RADIUS_F32: f64 = 16.0;
-
-fn samples(default: usize) -> usize {
-    if std::env::var_os("SOFTSHADOW_EXHAUSTIVE").is_some() {
-        default * 50
-    } else {
-        default
-    }
-}
-
-fn printing() -> bool {
-    std::env::var_os("SOFTSHADOW_PRINT_ACCURACY").is_some()
-}
 
 // ---------------------------------------------------------------------------
 // The independent partial-occlusion test.

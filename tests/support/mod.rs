@@ -2,7 +2,33 @@
 //! statistics. Included with `mod support;` by the test files that need it.
 #![allow(dead_code)]
 
+pub mod dd;
+
 use astro_float::{BigFloat, Consts, RoundingMode, Sign};
+
+/// `true` when the environment variable is set to anything but `0` or empty.
+fn flag(name: &str) -> bool {
+    std::env::var_os(name).is_some_and(|v| !v.is_empty() && v != "0")
+}
+
+/// `SOFTSHADOW_EXHAUSTIVE`: the long, opt-in runs.
+pub fn exhaustive() -> bool {
+    flag("SOFTSHADOW_EXHAUSTIVE")
+}
+
+/// `SOFTSHADOW_PRINT_ACCURACY`: print the rows of `docs/accuracy/kernels.md`.
+pub fn printing() -> bool {
+    flag("SOFTSHADOW_PRINT_ACCURACY")
+}
+
+/// A sample count: `default`, or 50 times it in exhaustive runs.
+pub fn samples(default: usize) -> usize {
+    if exhaustive() {
+        default * 50
+    } else {
+        default
+    }
+}
 
 /// Working precision of the references, in bits.
 pub const P: usize = 256;
