@@ -189,6 +189,18 @@ struct Measured {
 }
 
 impl Measured {
+    fn new(kernel: &'static str, precision: &'static str, samples: usize) -> Measured {
+        Measured {
+            kernel,
+            precision,
+            max_ulps: 0.0,
+            worst_t: 0.0,
+            max_ulps_normal: 0.0,
+            worst_t_normal: 0.0,
+            samples,
+        }
+    }
+
     fn record(&mut self, err: f64, t: f64, normal: bool) {
         if err > self.max_ulps {
             self.max_ulps = err;
@@ -222,15 +234,7 @@ fn measure_f64(
     n: usize,
 ) -> Measured {
     let mut rng = Rng::new(0x0FA1_10FF);
-    let mut m = Measured {
-        kernel,
-        precision: "f64",
-        max_ulps: 0.0,
-        worst_t: 0.0,
-        max_ulps_normal: 0.0,
-        worst_t_normal: 0.0,
-        samples: n,
-    };
+    let mut m = Measured::new(kernel, "f64", n);
     for _ in 0..n {
         let t = falloff_t(&mut rng);
         let x = exact(t);
@@ -247,15 +251,7 @@ fn measure_f32(
     n: usize,
 ) -> Measured {
     let mut rng = Rng::new(0x0FA1_10FF);
-    let mut m = Measured {
-        kernel,
-        precision: "f32",
-        max_ulps: 0.0,
-        worst_t: 0.0,
-        max_ulps_normal: 0.0,
-        worst_t_normal: 0.0,
-        samples: n,
-    };
+    let mut m = Measured::new(kernel, "f32", n);
     for _ in 0..n {
         let t = falloff_t_f32(&mut rng);
         let x = exact(t as f64);
