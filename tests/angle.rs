@@ -123,8 +123,10 @@ fn special_values_match_ieee() {
             "atan2({y}, {x}) = {got}, IEEE {want}"
         );
     }
-    assert!(a64::atan2(f64::NAN, 1.0).is_nan());
-    assert!(a32::atan2(1.0, f32::NAN).is_nan());
+    // NaN in, the documented total answer out.
+    assert_eq!(a64::atan2(f64::NAN, 1.0), 0.0);
+    assert_eq!(a32::atan2(1.0, f32::NAN), 0.0);
+    assert_eq!(a64::atan2(f64::NAN, f64::INFINITY), 0.0);
 }
 
 proptest! {
@@ -141,7 +143,18 @@ proptest! {
         if x > 0.0 {
             prop_assert!(a.abs() <= std::f64::consts::FRAC_PI_2);
         }
+        prop_assert!(!a.is_nan());
         let b = a32::atan2(y as f32, x as f32);
         prop_assert_eq!(a32::atan2(-(y as f32), x as f32), -b);
+    }
+}
+
+proptest! {
+    #[test]
+    fn total_on_any_bits(y in any::<u64>(), x in any::<u64>()) {
+        let a = a64::atan2(f64::from_bits(y), f64::from_bits(x));
+        prop_assert!(!a.is_nan() && a.abs() <= std::f64::consts::PI);
+        let b = a32::atan2(f32::from_bits(y as u32), f32::from_bits(x as u32));
+        prop_assert!(!b.is_nan() && b.abs() <= std::f32::consts::PI);
     }
 }

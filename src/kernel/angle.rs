@@ -71,7 +71,8 @@ macro_rules! angle_kernels {
         /// circular segments rely on.
         /// Exactly odd: `atan2(−y, x) = −atan2(y, x)` bit for bit.
         ///
-        /// **Edge of the domain**: NaN input gives NaN; infinite input is
+        /// **Edge of the domain**: NaN input gives `0` (no kernel returns NaN;
+        /// this is the documented total answer); infinite input is
         /// passed to the platform's `atan2` (its standard special values).
         #[must_use]
         #[inline]
@@ -83,7 +84,11 @@ macro_rules! angle_kernels {
             let swap = ay > ax;
             let (mut num, mut den) = if swap { (ax, ay) } else { (ay, ax) };
             if !(den > 0.0 && den.is_finite() && num >= 0.0) {
-                // Both zero, an infinity, or NaN: the standard special values.
+                if x.is_nan() || y.is_nan() {
+                    // No NaN leaves a kernel: the documented total answer.
+                    return 0.0;
+                }
+                // Both zero, or an infinity: the standard special values.
                 return y.atan2(x);
             }
             if den < SMALL {
