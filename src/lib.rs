@@ -16,6 +16,24 @@
 //!   the exact orientation predicates they decide topology with. Depends on
 //!   `glam` alone.
 //!
+//! ## Example
+//!
+//! The visibility of a disk light of radius ½ past one occluding triangle,
+//! already projected onto the light's plane from the receiver (the receiver
+//! view of `DESIGN.md` §2): `V = 1 − area(triangle ∩ disk) / πr²`.
+//!
+//! ```
+//! use glam::DVec2;
+//! use softshadow::kernel::disk::f64::polygon_disk_area;
+//!
+//! let r = 0.5;
+//! // A triangle covering exactly the half y ≥ 0 of the light (and more).
+//! let triangle = [DVec2::new(-10.0, 0.0), DVec2::new(10.0, 0.0), DVec2::new(0.0, 10.0)];
+//! let covered = polygon_disk_area(r, &triangle);
+//! let visibility = 1.0 - covered / (std::f64::consts::PI * r * r);
+//! assert!((visibility - 0.5).abs() < 1e-15);
+//! ```
+//!
 //! ## Precision
 //!
 //! Scalar kernels come in both `f32` and `f64`, generated from one body:

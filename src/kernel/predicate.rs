@@ -84,6 +84,17 @@ const O3D_ERR_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
 ///
 /// Exact for every nonzero coordinate in `[1e-140, 1e150]` in magnitude (see
 /// the module docs); [`Sign::Zero`] for non-finite input.
+///
+/// ```
+/// use glam::DVec2;
+/// use softshadow::kernel::predicate::{orient2d, Sign};
+///
+/// // A point a few ulps off the line y = x, where the rounded determinant
+/// // is unreliable: the exact answer is still "left of the line".
+/// let p = DVec2::new(0.5, 0.5 + f64::EPSILON);
+/// let (b, c) = (DVec2::new(12.0, 12.0), DVec2::new(24.0, 24.0));
+/// assert_eq!(orient2d(p, b, c), Sign::Positive);
+/// ```
 #[must_use]
 pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
