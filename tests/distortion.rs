@@ -10,7 +10,7 @@
 //! samples.
 
 mod support;
-use support::{exhaustive, printing};
+use support::{exhaustive, printing, ulp_at};
 
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{distortion_case, DistortionCase};
@@ -35,23 +35,6 @@ fn exact_dmax(r: f64, zn: f64, zp: f64) -> Dd {
 /// The exact `(dmax − d)/dmax` for `0 < d < dmax` (finite).
 fn exact_position(d: f64, dmax: f64) -> Dd {
     two_sum(dmax, -d).div(Dd::new(dmax))
-}
-
-/// The spacing of a type with `digits` significand bits and smallest normal
-/// exponent `min_exp` at `x`.
-fn ulp_at(x: f64, digits: i32, min_exp: i32) -> f64 {
-    let x = x.abs();
-    let e = if x == 0.0 {
-        min_exp
-    } else {
-        (((x.to_bits() >> 52) & 0x7ff) as i32 - 1022).max(min_exp)
-    };
-    let k = e - digits;
-    if k >= -1022 {
-        f64::from_bits(((k + 1023) as u64) << 52)
-    } else {
-        f64::from_bits(1u64 << (k + 1074))
-    }
 }
 
 fn ulps(got: f64, exact: Dd, digits: i32, min_exp: i32) -> f64 {

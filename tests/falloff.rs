@@ -13,7 +13,7 @@
 //! `f32` in `[0, 1]` for monotonicity and runs more samples.
 
 mod support;
-use support::{exhaustive, printing};
+use support::{exhaustive, pow2, printing, ulp_at};
 
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{falloff_t, falloff_t_f32};
@@ -95,28 +95,6 @@ fn exact_bernstein(t: f64) -> Scaled {
     Scaled {
         value: ts.mul(ts).mul(Dd::new(3.0).sub(Dd::new(2.0).mul(tt))),
         scale,
-    }
-}
-
-/// The spacing of the floating-point type with `digits` significand bits and
-/// smallest normal exponent `min_exp` at `x` (an ulp of the exact value).
-fn ulp_at(x: f64, digits: i32, min_exp: i32) -> f64 {
-    let x = x.abs();
-    let e = if x == 0.0 {
-        min_exp
-    } else {
-        (((x.to_bits() >> 52) & 0x7ff) as i32 - 1022).max(min_exp)
-    };
-    pow2(e - digits)
-}
-
-/// `2^k` for `-1074 ≤ k ≤ 1023`, exactly (`powi` would overflow in its
-/// reciprocal for very negative `k`).
-fn pow2(k: i32) -> f64 {
-    if k >= -1022 {
-        f64::from_bits(((k + 1023) as u64) << 52)
-    } else {
-        f64::from_bits(1u64 << (k + 1074))
     }
 }
 

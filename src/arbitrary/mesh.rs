@@ -146,18 +146,9 @@ pub fn torus(major: u32, minor: u32, ring: f64, tube: f64) -> Mesh {
             positions.push(DVec3::new(rr * u.cos(), rr * u.sin(), tube * v.sin()));
         }
     }
-    let id = |i: u32, j: u32| (i % major) * minor + (j % minor);
-    let mut triangles = Vec::with_capacity((2 * major * minor) as usize);
-    for i in 0..major {
-        for j in 0..minor {
-            let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
-            triangles.push([a, b, c]);
-            triangles.push([a, c, d]);
-        }
-    }
     Mesh {
         positions,
-        triangles,
+        triangles: quad_grid(major, minor, |i, j| (i % major) * minor + (j % minor)),
     }
 }
 
@@ -213,19 +204,24 @@ pub fn grid(n: u32, height: impl Fn(f64, f64) -> f64) -> Mesh {
             positions.push(DVec3::new(x, y, height(x, y)));
         }
     }
-    let id = |i: u32, j: u32| i * (n + 1) + j;
-    let mut triangles = Vec::new();
-    for i in 0..n {
-        for j in 0..n {
+    Mesh {
+        positions,
+        triangles: quad_grid(n, n, |i, j| i * (n + 1) + j),
+    }
+}
+
+/// Two triangles for each of the `rows × cols` quads whose corners
+/// `(i, j)…(i + 1, j + 1)` the index map `id` numbers (wrapping or not).
+fn quad_grid(rows: u32, cols: u32, id: impl Fn(u32, u32) -> u32) -> Vec<[u32; 3]> {
+    let mut triangles = Vec::with_capacity((2 * rows * cols) as usize);
+    for i in 0..rows {
+        for j in 0..cols {
             let (a, b, c, d) = (id(i, j), id(i + 1, j), id(i + 1, j + 1), id(i, j + 1));
             triangles.push([a, b, c]);
             triangles.push([a, c, d]);
         }
     }
-    Mesh {
-        positions,
-        triangles,
-    }
+    triangles
 }
 
 /// A random closed edge-manifold mesh (every edge has exactly two faces):

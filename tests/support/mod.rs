@@ -99,6 +99,29 @@ impl Big {
     }
 }
 
+/// `2^k` for `-1074 ≤ k ≤ 1023`, exactly (`powi` would overflow in its
+/// reciprocal for very negative `k`).
+pub fn pow2(k: i32) -> f64 {
+    if k >= -1022 {
+        f64::from_bits(((k + 1023) as u64) << 52)
+    } else {
+        f64::from_bits(1u64 << (k + 1074))
+    }
+}
+
+/// The spacing of the floating-point type with `digits` significand bits and
+/// smallest normal exponent `min_exp` at `x` (an ulp of the exact value):
+/// `(53, -1021)` for `f64`, `(24, -125)` for `f32`.
+pub fn ulp_at(x: f64, digits: i32, min_exp: i32) -> f64 {
+    let x = x.abs();
+    let e = if x == 0.0 {
+        min_exp
+    } else {
+        (((x.to_bits() >> 52) & 0x7ff) as i32 - 1022).max(min_exp)
+    };
+    pow2(e - digits)
+}
+
 /// Constants cache for π and the transcendental functions.
 pub struct Ctx(pub Consts);
 
