@@ -8,19 +8,9 @@ use robust::{Coord, Coord3D};
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::predicate::{orient2d, orient3d, Sign};
 
-fn sign_of(x: f64) -> Sign {
-    if x > 0.0 {
-        Sign::Positive
-    } else if x < 0.0 {
-        Sign::Negative
-    } else {
-        Sign::Zero
-    }
-}
-
 fn shewchuk2(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     let p = |v: DVec2| Coord { x: v.x, y: v.y };
-    sign_of(robust::orient2d(p(a), p(b), p(c)))
+    Sign::of(robust::orient2d(p(a), p(b), p(c)))
 }
 
 fn shewchuk3(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
@@ -29,7 +19,7 @@ fn shewchuk3(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
         y: v.y,
         z: v.z,
     };
-    sign_of(robust::orient3d(p(a), p(b), p(c), p(d)))
+    Sign::of(robust::orient3d(p(a), p(b), p(c), p(d)))
 }
 
 /// A point at a log-uniform scale (1e-40 … 1e40) around a random centre.
@@ -141,7 +131,7 @@ fn classic_rounding_failure_is_decided_exactly() {
             let truth = shewchuk2(a, b, c);
             assert_eq!(orient2d(a, b, c), truth, "{a:?}");
             let naive = (a.x - c.x) * (b.y - c.y) - (a.y - c.y) * (b.x - c.x);
-            disagreements_of_naive += (sign_of(naive) != truth) as usize;
+            disagreements_of_naive += (Sign::of(naive) != truth) as usize;
         }
     }
     // The grid does defeat the rounded evaluation (so the test has teeth).

@@ -126,10 +126,9 @@ fn predicate_rows(rows: &mut Vec<Row>) {
             );
             // p − c is exact here, and the line is y = x, so the true side is
             // the sign of p.y − p.x (exact: the two are within a factor 2).
-            let truth = (p.y - p.x).partial_cmp(&0.0).map(|o| o as i32).unwrap_or(0);
-            let exact = predicate::orient2d(p, b, c).to_i32();
-            let naive = (p.x - c.x) * (b.y - c.y) - (p.y - c.y) * (b.x - c.x);
-            let naive = naive.partial_cmp(&0.0).map(|o| o as i32).unwrap_or(0);
+            let truth = predicate::Sign::of(p.y - p.x);
+            let exact = predicate::orient2d(p, b, c);
+            let naive = predicate::Sign::of((p.x - c.x) * (b.y - c.y) - (p.y - c.y) * (b.x - c.x));
             wrong_exact += (exact != truth) as usize;
             wrong_naive += (naive != truth) as usize;
         }

@@ -63,8 +63,10 @@ impl Sign {
         }
     }
 
+    /// The sign of `x` (`Zero` for ±0 and NaN).
+    #[must_use]
     #[inline]
-    fn of(x: f64) -> Sign {
+    pub fn of(x: f64) -> Sign {
         if x > 0.0 {
             Sign::Positive
         } else if x < 0.0 {
