@@ -3,9 +3,11 @@
 //!
 //! `cargo run --example kernels`
 
-use glam::DVec2;
+use glam::{DVec2, DVec3};
 use softshadow::kernel::disk::f64::{circle_segment_occlusion, polygon_disk_area};
 use softshadow::kernel::predicate::{orient2d, Sign};
+use softshadow::kernel::silhouette::MeshTopology;
+use softshadow::kernel::wedge::f64::{penumbra_quad, QuadBound};
 use std::f64::consts::PI;
 
 fn main() {
@@ -40,5 +42,56 @@ fn main() {
         let half_chord = (1.0f64 - d * d).sqrt();
         let occlusion = circle_segment_occlusion(d, half_chord, half_chord);
         println!("edge at d = {d:+.1}: signed occlusion {occlusion:+.6}");
+    }
+
+    // The edges those views start from: the silhouette of a mesh seen from
+    // the light's centre, each oriented with its front face on the left.
+    let positions = [
+        DVec3::X,
+        DVec3::NEG_X,
+        DVec3::Y,
+        DVec3::NEG_Y,
+        DVec3::new(0.0, 0.0, 3.0),
+        DVec3::new(0.0, 0.0, -1.0),
+    ];
+    let faces = [
+        [0, 2, 4],
+        [2, 1, 4],
+        [1, 3, 4],
+        [3, 0, 4],
+        [2, 0, 5],
+        [1, 2, 5],
+        [3, 1, 5],
+        [0, 3, 5],
+    ];
+    let light = DVec3::new(0.0, 0.0, -4.0);
+    match MeshTopology::new(&faces, positions.len())
+        .map_err(|e| e.to_string())
+        .and_then(|mesh| {
+            mesh.silhouettes_from_point(&positions, light)
+                .map_err(|e| e.to_string())
+        }) {
+        Ok(edges) => {
+            for e in &edges {
+                println!(
+                    "silhouette edge {} -> {} (multiplicity {})",
+                    e.from, e.to, e.multiplicity
+                );
+            }
+        }
+        Err(e) => println!("no silhouettes: {e}"),
+    }
+
+    // SISM's coarse test for one of them: the light-image-plane rectangle
+    // holding every receiver (down to depth 12) whose view of a light of
+    // radius 0.3 the edge can cross. Coordinates are in the light frame
+    // (origin at the light's centre, +z toward the scene).
+    let (e0, e1) = (positions[0] - light, positions[2] - light);
+    match penumbra_quad(e0, e1, 0.3, 12.0) {
+        Ok(QuadBound::Quad(q)) => println!(
+            "penumbra quad: half-width {:.4} around the projected edge, bound {:?} – {:?}",
+            q.half_width, q.min, q.max
+        ),
+        other => println!("penumbra quad: {other:?}"),
     }
 }
