@@ -735,3 +735,117 @@ proptest! {
         prop_assert!(!k32::circle_segment_occlusion(g(r), g(ax), g(ay)).is_nan());
     }
 }
+
+// ---------------------------------------------------------------------------
+// Regressions: inputs a numerics review found wrong (exact inputs kept).
+
+/// Long slanted edges pass inside the disk while their endpoints are far:
+/// the "no edge touches" fast path once measured the distance from a foot
+/// point off by `ε |b − a|` and answered an exact 0.
+#[test]
+fn regression_long_edges_grazing_the_disk() {
+    // The line y = x + 1 is at distance 1/√2: the cap beyond it is π/4 − ½.
+    let p = [
+        DVec2::new(-3e15, -3e15 + 1.0),
+        DVec2::new(5e15, 5e15 + 1.0),
+        DVec2::new(-4e15, 4e15),
+    ];
+    assert_close(
+        k64::polygon_disk_area(1.0, &p),
+        PI / 4.0 - 0.5,
+        1.0,
+        BUDGET_POLYGON,
+        "y = x + 1",
+    );
+    let mut ctx = Ctx::new();
+    let s = [
+        DVec2::new(-1297605.1561524784, 568770.9522962695),
+        DVec2::new(1292155.8800703941, -566384.5851406781),
+        DVec2::new(-396644.3796997313, -904910.4954396713),
+    ];
+    let exact = reference_polygon(&mut ctx, 1.0, &s).to_f64();
+    assert_close(
+        k64::polygon_disk_area(1.0, &s),
+        exact,
+        1.0,
+        BUDGET_POLYGON,
+        "1.3e6-long edges",
+    );
+    let q = [
+        Vec2::new(463845.88, 555936.2),
+        Vec2::new(-685459.8, -821544.9),
+        Vec2::new(-563174.75, 469886.66),
+    ];
+    let q64: Vec<DVec2> = q.iter().map(|v| v.as_dvec2()).collect();
+    let exact = reference_polygon(&mut ctx, 1.0, &q64).to_f64();
+    let got = k32::polygon_disk_area(1.0, &q) as f64;
+    assert!(
+        (got - exact).abs() <= BUDGET_POLYGON * EPS32,
+        "f32: {got} vs {exact}"
+    );
+}
+
+/// Coordinates near 1e165 with a disk of radius 1e50 (no rescaling by the
+/// radius alone): `|b − a|²` overflowed in the edge test.
+#[test]
+fn regression_huge_polygon_small_disk() {
+    let p = [
+        DVec2::new(-1e165, 0.5e50),
+        DVec2::new(1e165, 0.5e50),
+        DVec2::new(0.0, 1e166),
+    ];
+    let r: f64 = 1e50;
+    // The cap beyond the chord at distance r/2: r²(π/3 − √3/4).
+    let exact = r * r * (PI / 3.0 - 3f64.sqrt() / 4.0);
+    let got = k64::polygon_disk_area(r, &p);
+    assert!(
+        (got - exact).abs() <= 2.0 * BUDGET_POLYGON * EPS64 * r * r,
+        "{got:e} vs {exact:e}"
+    );
+}
+
+/// A non-finite vertex removes its two edges, fast path or not.
+#[test]
+fn regression_non_finite_vertex_drops_its_edges() {
+    let p = [
+        DVec2::new(-10.0, -10.0),
+        DVec2::new(10.0, -10.0),
+        DVec2::new(10.0, 10.0),
+        DVec2::new(f64::NAN, f64::NAN),
+    ];
+    let finite_edges =
+        k64::segment_disk_area(1.0, p[0], p[1]) + k64::segment_disk_area(1.0, p[1], p[2]);
+    assert_eq!(k64::polygon_disk_area(1.0, &p), finite_edges);
+}
+
+/// The documented ratio limit of `segment_disk_area`: at r = 1e-100 ·
+/// max|coordinate| the accuracy still holds.
+#[test]
+fn regression_tiny_disk_long_edge_at_the_domain_limit() {
+    let mut ctx = Ctx::new();
+    let r = 1e-100;
+    let (a, b) = (DVec2::new(-2.0 * r, 0.5 * r), DVec2::new(1.0, 0.5 * r));
+    let exact = reference_segment(&mut ctx, r, a, b).to_f64();
+    let got = k64::segment_disk_area(r, a, b);
+    assert!(
+        (got - exact).abs() <= BUDGET_SEGMENT * EPS64 * r * r,
+        "{got:e} vs {exact:e}"
+    );
+}
+
+/// Tiny d and w: c and q underflowed together and θ came out 0.
+#[test]
+fn regression_circle_segment_at_tiny_scale() {
+    // The centre on the edge's line, endpoints a right angle apart: ¼.
+    assert_eq!(k64::circle_segment_occlusion(1e-200, 1e-200, 1e-200), 0.25);
+    assert_eq!(k32::circle_segment_occlusion(1e-30, 1e-30, 1e-30), 0.25);
+    // The limit d → 0⁺ of an edge from the centre: ¼, continuous at d = 0.
+    assert_eq!(k64::circle_segment_occlusion(5e-324, 0.0, 0.5), 0.25);
+    let mut ctx = Ctx::new();
+    let exact = reference_circle_segment(&mut ctx, 1e-160, 2e-160, 1e-161).to_f64();
+    let got = k64::circle_segment_occlusion(1e-160, 2e-160, 1e-161);
+    assert!(
+        (got - exact).abs() <= BUDGET_CIRCLE_SEGMENT * EPS64,
+        "{got} vs {exact}"
+    );
+}

@@ -129,9 +129,12 @@ macro_rules! disk_kernels {
         /// **Domain**: all finite `a`, `b` and `r ≥ 0`. The result depends
         /// only on the shape, and inputs are rescaled by an exact power of two
         /// when needed, so the accuracy below holds at any magnitude provided
-        /// `r ≥ 10⁻¹²⁰ · max|coordinate|` (`f64`; `10⁻¹²` for `f32`). Beyond
-        /// that ratio the disk is below the resolution of the coordinates and
-        /// the area, of order `r²`, may flush toward zero.
+        /// `r ≥ 10⁻¹⁰⁰ · max|coordinate|` (`f64`; `10⁻¹²` for `f32`). Beyond
+        /// that ratio the sector angles' intermediate products underflow and
+        /// the area, of order `r²`, is lost (measured: 456 ε r² at a ratio of
+        /// `10⁻¹⁰⁴`, the sectors dropped entirely below `10⁻¹⁰⁸`). Where the
+        /// area itself is subnormal (`r ≲ 10⁻¹⁵⁴`, `f32`: `10⁻¹⁹`) its error
+        /// is that of the subnormal spacing, not a multiple of `ε r²`.
         ///
         /// **Edge of the domain**: `r = 0`, a zero-length edge, or `0, a, b`
         /// collinear give `0`. Endpoints on the circle, the line tangent to
@@ -255,32 +258,36 @@ macro_rules! disk_kernels {
             if vertices.len() < 3 || !(r > 0.0 && r.is_finite()) {
                 return 0.0;
             }
-            if !vertices.iter().any(|&v| v.is_finite()) {
-                return 0.0;
-            }
-            // Scale a huge disk down (exactly) so that no edge's area
-            // overflows and the sum can never meet ∞ − ∞.
-            let (s, back) = if r > SAFE_HI {
-                let e = rescale_exponent(r);
-                (pow2(-e), pow2(e))
-            } else {
+            // Rescale by an exact power of two when the disk or the polygon
+            // leaves the safe range: no product in the edge tests overflows,
+            // no edge's area overflows, and the sum never meets ∞ − ∞.
+            let m = vertices
+                .iter()
+                .filter(|v| v.is_finite())
+                .fold(r, |m, v| m.max(v.abs().max_element()));
+            let (s, back) = if m <= SAFE_HI && r >= SAFE_LO {
                 (1.0, 1.0)
+            } else {
+                let e = rescale_exponent(m);
+                (pow2(-e), pow2(e))
             };
             let rs = r * s;
             let r2 = rs * rs;
-            let mut touches = false;
-            let mut winding: i64 = 0;
-            let mut prev = vertices[vertices.len() - 1] * s;
-            for &v in vertices {
-                let v = v * s;
-                if prev.is_finite() && v.is_finite() {
-                    touches = touches || segment_distance_squared(prev, v) < r2;
+            // The exact answer when no edge comes within r of the centre (a
+            // closed polygon: every vertex finite).
+            if vertices.iter().all(|v| v.is_finite()) {
+                let mut touches = false;
+                let mut winding: i64 = 0;
+                let mut prev = vertices[vertices.len() - 1] * s;
+                for &v in vertices {
+                    let v = v * s;
+                    touches = touches || edge_meets_disk(prev, v, r2);
                     winding += crossing(prev, v);
+                    prev = v;
                 }
-                prev = v;
-            }
-            if !touches {
-                return winding as $T * PI * r2 * back * back;
+                if !touches {
+                    return winding as $T * PI * r2 * back * back;
+                }
             }
             let mut sum: $T = 0.0;
             let mut comp: $T = 0.0;
@@ -300,19 +307,22 @@ macro_rules! disk_kernels {
             (sum + comp) * back * back
         }
 
-        /// Squared distance from the origin to the segment `a b` (rounded;
-        /// used only to choose between two exact-to-rounding answers).
+        /// Whether the segment `a b` comes within `√r2` of the centre. The
+        /// distance of the line is `|a × b| / |b − a|` from the accurate
+        /// cross product (a foot point `a + t (b − a)` would be off by
+        /// `ε |b − a|`, far more than `r` for long edges); the decision can
+        /// err only within a few ulps of tangency, where the overlap it
+        /// would miss is far below the kernel's error.
         #[inline]
-        fn segment_distance_squared(a: $V2, b: $V2) -> $T {
+        fn edge_meets_disk(a: $V2, b: $V2, r2: $T) -> bool {
+            if dot(a, a) < r2 || dot(b, b) < r2 {
+                return true;
+            }
             let d = b - a;
-            let len2 = dot(d, d);
-            let t = if len2 > 0.0 {
-                (-dot(a, d) / len2).clamp(0.0, 1.0)
-            } else {
-                0.0
-            };
-            let p = a + d * t;
-            dot(p, p)
+            // The foot of the perpendicular lies inside the segment.
+            let interior = dot(a, d) < 0.0 && dot(b, d) > 0.0;
+            let c = cross(a, b);
+            interior && c * c < r2 * dot(d, d)
         }
 
         /// This edge's contribution to the winding number of the origin
@@ -401,10 +411,24 @@ macro_rules! disk_kernels {
                 };
                 return sign * (half_turns(w0) + half_turns(w1)) * 0.5;
             }
-            // The complex product (d + i·w1)(d + i·w0) has argument θ.
+            // The complex product (d + i·w1)(d + i·w0) has argument θ. θ is
+            // scale-invariant: tiny inputs are scaled up (exactly) first, so
+            // that its parts do not underflow.
             let c = d * length;
-            let q = d * d - w0 * w1;
-            let theta = atan2(c, q);
+            let big = d.max(w0.abs()).max(w1.abs());
+            let k = if big < SAFE_LO {
+                pow2(-rescale_exponent(big))
+            } else {
+                1.0
+            };
+            let (dk, w0k, w1k) = (d * k, w0 * k, w1 * k);
+            let theta = if dk >= SAFE_LO {
+                atan2(dk * (w0k + w1k), dk * dk - w0k * w1k)
+            } else {
+                // d far below the endpoints' distances: the products would
+                // underflow, so add the endpoints' angles instead.
+                atan2(w1k, dk) + atan2(w0k, dk)
+            };
             let abs_theta = theta.abs();
             // θ − ρ sin θ with c = ρ sin θ: split as (θ − sin θ) + (1 − ρ) sin θ
             // when θ is small and both terms are small; directly otherwise.
