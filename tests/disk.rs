@@ -26,7 +26,7 @@ const EPS32: f64 = f32::EPSILON as f64;
 /// over the stiff generators (`SOFTSHADOW_EXHAUSTIVE=1`), rounded up; see
 /// `docs/accuracy/kernels.md`.
 const BUDGET_SEGMENT: f64 = 3.0;
-const BUDGET_POLYGON: f64 = 4.0;
+const BUDGET_POLYGON: f64 = 5.0;
 const BUDGET_CIRCLE_SEGMENT: f64 = 1.0;
 /// Relative error budget of thin full-chord slivers, in units of `ε`.
 const BUDGET_SLIVER_RELATIVE: f64 = 9.0;

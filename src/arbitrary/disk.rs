@@ -119,8 +119,12 @@ pub fn disk_edge(rng: &mut Rng) -> DiskEdge {
 /// A simple polygon (counter-clockwise) relative to a disk of radius `r`:
 /// convex or star-shaped, 3 to 12 vertices, centred anywhere from the disk
 /// centre to a few radii away, of any size from a hundredth of the disk to a
-/// hundred times it; sometimes with vertices on the circle (to rounding).
+/// hundred times it; sometimes with vertices on the circle (to rounding);
+/// sometimes a [`grazing_triangle`].
 pub fn polygon(rng: &mut Rng, r: f64) -> Vec<DVec2> {
+    if rng.chance(0.15) {
+        return grazing_triangle(rng, r);
+    }
     let n = 3 + rng.below(10) as usize;
     // Vertices snapped onto the circle: then the polygon is star-shaped
     // around the disk centre itself, so snapping keeps it simple.
@@ -152,6 +156,33 @@ pub fn polygon(rng: &mut Rng, r: f64) -> Vec<DVec2> {
             centre + DVec2::new(phi.cos(), phi.sin()) * radial
         })
         .collect()
+}
+
+/// A counter-clockwise triangle with one edge `10²` to `10⁹` radii long
+/// whose line passes at a distance from the centre a few ulps from `r`,
+/// inside or outside it, or anywhere up to `r`: the endpoints are far from
+/// the disk while the edge grazes it.
+pub fn grazing_triangle(rng: &mut Rng, r: f64) -> Vec<DVec2> {
+    let h = match rng.below(3) {
+        0 => rng.nudge(r, 16),
+        1 => r * (1.0 - rng.log_uniform(-12.0, -1.0)),
+        _ => r * rng.unit(),
+    };
+    let u = direction(rng);
+    let n = u.perp();
+    let half = r * rng.log_uniform(2.0, 9.0);
+    let (t0, t1) = (-half * rng.uniform(0.5, 1.0), half * rng.uniform(0.5, 1.0));
+    // The third vertex on the far side of the centre, so the triangle holds
+    // it (or, half the time, on the near side, so it does not).
+    let away = if rng.chance(0.5) { -1.0 } else { 1.0 } * half;
+    let a = u * t0 + n * h;
+    let b = u * t1 + n * h;
+    let c = u * rng.uniform(-half, half) + n * (h + away);
+    if (b - a).perp_dot(c - a) > 0.0 {
+        vec![a, b, c]
+    } else {
+        vec![a, c, b]
+    }
 }
 
 /// A clipped edge for
