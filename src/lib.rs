@@ -11,6 +11,8 @@
 //!
 //! ## Modules
 //!
+//! - [`scene`]: lights (for now), validated at construction, and the
+//!   emitting measure each presents to a receiver.
 //! - [`kernel`]: the pure geometry kernels (silhouettes, penumbra wedges,
 //!   disk occlusion, falloff, SSOC distortion, the linear-light kernel) and
 //!   the exact orientation predicates they decide topology with. Depends on
@@ -56,3 +58,4 @@
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;
 pub mod kernel;
+pub mod scene;

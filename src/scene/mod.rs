@@ -1,0 +1,9 @@
+//! The scene: lights (and, with the references issue, meshes, cameras and
+//! the scene file). Depends on `glam` alone.
+//!
+//! - [`light`]: the five light kinds of DESIGN.md §1, validated, and the
+//!   emitting measure each presents to a receiver.
+
+pub mod light;
+
+pub use light::{Emitter, Light, LightError, ReceiverError};
