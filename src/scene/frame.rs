@@ -1,0 +1,163 @@
+//! The light frame and the light image plane (DESIGN.md §2).
+//!
+//! Origin at the light's centre, `+z` toward the scene (the centre of the
+//! scene's bounding box unless the scene says otherwise), `x` and `y`
+//! completing a right-handed orthonormal frame. The light image plane is
+//! `z = 1`: a point at light-frame `(x, y, z)`, `z > 0`, projects to
+//! `(x/z, y/z)`.
+
+use glam::{DVec2, DVec3};
+use std::fmt;
+
+/// Why a light frame could not be built.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum FrameError {
+    /// The origin or the target is not finite.
+    NonFinite,
+    /// The target coincides with the origin: no direction toward the scene.
+    NoDirection,
+}
+
+impl fmt::Display for FrameError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FrameError::NonFinite => write!(f, "light frame origin or target is not finite"),
+            FrameError::NoDirection => write!(f, "light frame target coincides with its origin"),
+        }
+    }
+}
+
+impl std::error::Error for FrameError {}
+
+/// A right-handed orthonormal frame at the light's centre, `+z` toward the
+/// scene.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct LightFrame {
+    origin: DVec3,
+    x: DVec3,
+    y: DVec3,
+    z: DVec3,
+}
+
+impl LightFrame {
+    /// The frame at `origin` whose `+z` points at `target`. `x` and `y` are
+    /// glam's `any_orthonormal_pair` of `z` (Duff et al. 2017), so the frame
+    /// is a deterministic function of the direction.
+    ///
+    /// # Errors
+    /// [`FrameError::NonFinite`], [`FrameError::NoDirection`].
+    pub fn toward(origin: DVec3, target: DVec3) -> Result<LightFrame, FrameError> {
+        if !(origin.is_finite() && target.is_finite()) {
+            return Err(FrameError::NonFinite);
+        }
+        // Halved so that the difference cannot overflow.
+        let z = (target * 0.5 - origin * 0.5)
+            .try_normalize()
+            .ok_or(FrameError::NoDirection)?;
+        let (x, y) = z.any_orthonormal_pair();
+        Ok(LightFrame { origin, x, y, z })
+    }
+
+    /// The frame's origin (the light's centre).
+    #[must_use]
+    pub fn origin(&self) -> DVec3 {
+        self.origin
+    }
+
+    /// The axes `x`, `y`, `z` in world coordinates.
+    #[must_use]
+    pub fn axes(&self) -> [DVec3; 3] {
+        [self.x, self.y, self.z]
+    }
+
+    /// World point to light-frame coordinates.
+    #[must_use]
+    pub fn to_light(&self, p: DVec3) -> DVec3 {
+        let d = p - self.origin;
+        DVec3::new(d.dot(self.x), d.dot(self.y), d.dot(self.z))
+    }
+
+    /// Light-frame coordinates to a world point.
+    #[must_use]
+    pub fn to_world(&self, q: DVec3) -> DVec3 {
+        self.origin + self.x * q.x + self.y * q.y + self.z * q.z
+    }
+
+    /// The light-image-plane projection `(x/z, y/z)` of a world point, with
+    /// its light-frame depth `z`; `None` when `z ≤ 0` (at or behind the
+    /// light's centre plane) or the point is not finite.
+    #[must_use]
+    pub fn project(&self, p: DVec3) -> Option<Projected> {
+        let q = self.to_light(p);
+        (q.z > 0.0 && q.is_finite()).then(|| Projected {
+            point: DVec2::new(q.x / q.z, q.y / q.z),
+            depth: q.z,
+        })
+    }
+}
+
+/// A point on the light image plane and the depth it came from.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Projected {
+    /// `(x/z, y/z)`.
+    pub point: DVec2,
+    /// The light-frame depth `z > 0`.
+    pub depth: f64,
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arbitrary::Rng;
+
+    #[test]
+    fn frames_are_right_handed_and_orthonormal() {
+        let mut rng = Rng::new(5);
+        for _ in 0..10_000 {
+            let mut v = || {
+                DVec3::new(
+                    rng.uniform(-1.0, 1.0),
+                    rng.uniform(-1.0, 1.0),
+                    rng.uniform(-1.0, 1.0),
+                )
+            };
+            let (o, t) = (v() * 10.0, v() * 10.0);
+            let Ok(f) = LightFrame::toward(o, t) else {
+                continue;
+            };
+            let [x, y, z] = f.axes();
+            for (a, b) in [(x, y), (y, z), (z, x)] {
+                assert!(a.dot(b).abs() < 4.0 * f64::EPSILON);
+            }
+            for a in [x, y, z] {
+                assert!((a.length() - 1.0).abs() < 4.0 * f64::EPSILON);
+            }
+            assert!((x.cross(y) - z).length() < 8.0 * f64::EPSILON);
+            // +z toward the target: the target projects to the image centre.
+            let p = f.project(t).expect("the target is in front");
+            assert!(p.point.length() < 1e-12 && (p.depth - (t - o).length()).abs() < 1e-12);
+            // Round trip.
+            let w = v();
+            assert!((f.to_world(f.to_light(w)) - w).length() < 1e-13);
+        }
+    }
+
+    #[test]
+    fn behind_the_light_does_not_project() {
+        let f = LightFrame::toward(DVec3::new(0.0, 5.0, 0.0), DVec3::ZERO).unwrap();
+        assert!(f.project(DVec3::new(0.0, 6.0, 0.0)).is_none());
+        assert!(f.project(DVec3::new(3.0, 5.0, 0.0)).is_none());
+        let below = f.project(DVec3::new(1.0, 3.0, 0.0)).unwrap();
+        assert_eq!(below.depth, 2.0);
+        assert!((below.point.length() - 0.5).abs() < 1e-15);
+        assert_eq!(
+            LightFrame::toward(DVec3::ONE, DVec3::ONE),
+            Err(FrameError::NoDirection)
+        );
+        assert_eq!(
+            LightFrame::toward(DVec3::ONE, DVec3::new(f64::NAN, 0.0, 0.0)),
+            Err(FrameError::NonFinite)
+        );
+    }
+}
