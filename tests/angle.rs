@@ -103,6 +103,15 @@ fn atan2_accuracy() {
 }
 
 #[test]
+fn reference_converts_subnormals_exactly() {
+    // 2⁻¹⁰⁷⁴ · 2¹⁰⁷⁴ = 1 and 3·2⁻¹⁰⁷⁴ · 2¹⁰⁷⁴ = 3, computed in 256 bits.
+    let scale = Big::new(2f64.powi(1000)).mul(&Big::new(2f64.powi(74)));
+    assert_eq!(Big::new(f64::from_bits(1)).mul(&scale).to_f64(), 1.0);
+    assert_eq!(Big::new(f64::from_bits(3)).mul(&scale).to_f64(), 3.0);
+    assert_eq!(Big::new(-f64::from_bits(3)).mul(&scale).to_f64(), -3.0);
+}
+
+#[test]
 fn special_values_match_ieee() {
     for (y, x) in [
         (0.0, 0.0),

@@ -40,6 +40,12 @@ pub struct Big(pub BigFloat);
 
 impl Big {
     pub fn new(x: f64) -> Big {
+        if x != 0.0 && x.abs() < f64::MIN_POSITIVE {
+            // astro-float converts subnormals wrongly: scale into the normal
+            // range (exactly), convert, and scale back in 256 bits.
+            let scaled = Big(BigFloat::from_f64(x * 2f64.powi(128), P));
+            return scaled.div(&Big(BigFloat::from_f64(2f64.powi(128), P)));
+        }
         Big(BigFloat::from_f64(x, P))
     }
     pub fn zero() -> Big {
