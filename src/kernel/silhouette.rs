@@ -471,17 +471,15 @@ impl MeshTopology {
             return Err(SilhouetteError::NonFinitePoint);
         }
         for (edge, &[v0, v1]) in self.edges.iter().enumerate() {
-            let mut m: i64 = 0;
-            for &incidence in self.incidence_slice(edge) {
-                let t = self.triangles[(incidence >> 1) as usize];
-                let [a, b, c] = t.map(|i| positions[i as usize].into());
-                let w = if orient3d(a, b, c, x) == Sign::Negative {
-                    1
-                } else {
-                    -1
-                };
-                m += if incidence & 1 == 0 { w } else { -w };
-            }
+            let m = self
+                .multiplicity(edge, positions, |[a, b, c]| {
+                    Some(if orient3d(a, b, c, x) == Sign::Negative {
+                        1
+                    } else {
+                        -1
+                    })
+                })
+                .unwrap_or(0);
             if m != 0 {
                 let (from, to) = if m > 0 { (v0, v1) } else { (v1, v0) };
                 out.push(SilhouetteEdge {
@@ -565,22 +563,15 @@ impl MeshTopology {
             return Err(SilhouetteError::InvalidSphere);
         }
         for edge in 0..self.edges.len() {
-            let mut m: i64 = 0;
-            let mut uncertain = false;
-            for &incidence in self.incidence_slice(edge) {
-                let t = self.triangles[(incidence >> 1) as usize];
-                let [a, b, c] = t.map(|i| positions[i as usize].into());
-                let w = match classify_face(a, b, c, center, radius) {
-                    BallFacing::Front => 1,
-                    BallFacing::Back => -1,
-                    BallFacing::Uncertain => {
-                        uncertain = true;
-                        break;
-                    }
-                };
-                m += if incidence & 1 == 0 { w } else { -w };
-            }
-            if uncertain || m != 0 {
+            let m = self.multiplicity(edge, positions, |[a, b, c]| {
+                match classify_face(a, b, c, center, radius) {
+                    BallFacing::Front => Some(1),
+                    BallFacing::Back => Some(-1),
+                    BallFacing::Uncertain => None,
+                }
+            });
+            // Uncertain (None) or a contour for every point of the ball.
+            if m != Some(0) {
                 out.push(edge as u32);
             }
         }
@@ -606,6 +597,24 @@ impl MeshTopology {
         let mut out = Vec::new();
         self.potential_silhouettes_into(positions, center, radius, &mut out)?;
         Ok(out)
+    }
+
+    /// The edge's multiplicity `m(e) = Σ w(f) · dir(f, e)` (module docs)
+    /// for the face weights `weight` gives (`±1`); `None` as soon as a face
+    /// has no certain weight.
+    fn multiplicity<P: Copy + Into<DVec3>>(
+        &self,
+        edge: usize,
+        positions: &[P],
+        mut weight: impl FnMut([DVec3; 3]) -> Option<i64>,
+    ) -> Option<i64> {
+        let mut m = 0;
+        for &incidence in self.incidence_slice(edge) {
+            let t = self.triangles[(incidence >> 1) as usize];
+            let w = weight(t.map(|i| positions[i as usize].into()))?;
+            m += if incidence & 1 == 0 { w } else { -w };
+        }
+        Some(m)
     }
 
     fn incidence_slice(&self, edge: usize) -> &[u32] {
