@@ -58,4 +58,6 @@
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;
 pub mod kernel;
+#[cfg(feature = "reference")]
+pub mod reference;
 pub mod scene;
