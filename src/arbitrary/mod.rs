@@ -12,6 +12,7 @@
 pub mod disk;
 pub mod light;
 pub mod mesh;
+pub mod scene;
 
 /// SplitMix64 (Steele, Lea, Flood 2014): a tiny, fast, well-mixed 64-bit
 /// generator; deterministic for a seed.
