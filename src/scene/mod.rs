@@ -15,6 +15,10 @@
 //! - `builtin` (feature `scene-file`): the built-in scenes of §5, embedded
 //!   (the Stanford bunny included), by name.
 
+#[cfg(feature = "scene-file")]
+pub mod builtin;
+#[cfg(feature = "scene-file")]
+pub mod file;
 pub mod frame;
 pub mod light;
 pub mod mesh;
@@ -22,6 +26,10 @@ pub mod primitive;
 #[allow(clippy::module_inception)]
 pub mod scene;
 
+#[cfg(feature = "scene-file")]
+pub use builtin::{builtin, BUILTIN_NAMES};
+#[cfg(feature = "scene-file")]
+pub use file::{FileError, Place, Receiver};
 pub use frame::{FrameError, LightFrame, Projected};
 pub use light::{Emitter, Light, LightError, ReceiverError};
 pub use mesh::{Mesh, MeshError};
