@@ -113,7 +113,7 @@ fn overlapping_penumbrae() -> Built {
             quad(v(-0.3, 0.6, 0.0), DVec3::X * 0.4, -DVec3::Z * 0.4)?,
         )
         .with_mesh("high ball", ball(v(0.4, 1.6, 0.0), 0.35)?)
-        .with_camera(camera(v(0.0, 2.5, 3.5), v(0.2, 0.2, 0.0))?))
+        .with_camera(camera(v(0.0, 2.2, 4.2), v(0.1, 0.6, 0.0))?))
 }
 
 fn contact() -> Built {
