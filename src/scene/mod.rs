@@ -1,20 +1,37 @@
-//! The scene: lights, the light frame, meshes (and, with the references
-//! issue, the camera, the built-in scenes and the scene file). Depends on
-//! `glam` alone.
+//! The scene: lights, the light frame, meshes, mesh generators, the camera,
+//! and (feature `scene-file`) the scene and points files and the built-in
+//! scenes. Without `scene-file` it depends on `glam` alone.
 //!
 //! - [`light`]: the five light kinds of DESIGN.md §1, validated, and the
 //!   emitting measure each presents to a receiver.
 //! - [`frame`]: the light frame and the light image plane of §2.
 //! - [`mesh`]: occluder meshes, validated.
+//! - [`primitive`]: closed, outward sphere and box meshes, quads, merging,
+//!   and the similarity transform of the scene file.
 //! - [`scene`](mod@scene): the whole scene (meshes, light, camera).
+//! - `file` (feature `scene-file`): the JSON scene file and points file of
+//!   §8, with OBJ meshes; one-line errors naming the file, the place and
+//!   the field.
+//! - `builtin` (feature `scene-file`): the built-in scenes of §5, embedded
+//!   (the Stanford bunny included), by name.
 
+#[cfg(feature = "scene-file")]
+pub mod builtin;
+#[cfg(feature = "scene-file")]
+pub mod file;
 pub mod frame;
 pub mod light;
 pub mod mesh;
+pub mod primitive;
 #[allow(clippy::module_inception)]
 pub mod scene;
 
+#[cfg(feature = "scene-file")]
+pub use builtin::{builtin, BUILTIN_NAMES};
+#[cfg(feature = "scene-file")]
+pub use file::{FileError, Place, Receiver};
 pub use frame::{FrameError, LightFrame, Projected};
 pub use light::{Emitter, Light, LightError, ReceiverError};
 pub use mesh::{Mesh, MeshError};
+pub use primitive::{PrimitiveError, Transform};
 pub use scene::{Camera, CameraError, Scene};

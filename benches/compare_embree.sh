@@ -1,0 +1,81 @@
+#!/usr/bin/env bash
+# Opt-in (not in CI): occlusion-ray throughput of our exact f64
+# `reference::bvh::Bvh::segment_unoccluded` against Intel Embree 4
+# (`rtcOccluded1` through PyPI embreex), same rays, same machine, same run:
+#
+#     bash benches/compare_embree.sh [outdir]
+#
+# Needs a venv with embreex and numpy (override its path with VENV=...):
+#
+#     python3 -m venv /work/venv-embree
+#     /work/venv-embree/bin/pip install embreex numpy
+#
+# Steps: `examples/ray_corpus.rs` writes the two corpora (100k-triangle soup,
+# 100,820-triangle closed geodesic sphere; 1M floor-to-area-light rays each;
+# format in that file) to outdir (default target/ray_corpus), times ours on
+# 2 threads and writes our per-ray answers; then `benches/embree_compare.py`
+# times Embree on the same rays (2 threads; default and robust scene flags)
+# and compares per-ray answers. Both report the median of 7 repetitions after
+# a warm-up. Environment: RAYS (rays per scene, default 1000000), SEED
+# (default 2026), REPS (Embree repetitions, default 7), plus the usual
+# CARGO_TARGET_DIR.
+set -euo pipefail
+
+cd "$(dirname "$0")/.."
+VENV=${VENV:-/work/venv-embree}
+OUTDIR=${1:-target/ray_corpus}
+RAYS=${RAYS:-1000000}
+SEED=${SEED:-2026}
+REPS=${REPS:-7}
+LOG=$(mktemp -d)
+trap 'rm -rf "$LOG"' EXIT
+
+if [[ ! -x "$VENV/bin/python" ]] || ! "$VENV/bin/python" -c 'import embreex, numpy' 2>/dev/null; then
+    echo "no embreex in $VENV: python3 -m venv $VENV && $VENV/bin/pip install embreex numpy" >&2
+    exit 1
+fi
+
+echo "== machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
+echo "== ours: cargo run --release --example ray_corpus --features reference -- $OUTDIR $RAYS $SEED"
+cargo build --quiet --release --example ray_corpus --features reference
+cargo run --quiet --release --example ray_corpus --features reference -- "$OUTDIR" "$RAYS" "$SEED" |
+    tee "$LOG/ours.txt"
+echo "== Embree: $VENV/bin/python benches/embree_compare.py $OUTDIR --reps $REPS --threads 2"
+"$VENV/bin/python" benches/embree_compare.py "$OUTDIR" --reps "$REPS" --threads 2 | tee "$LOG/embree.txt"
+echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"
+
+echo
+echo "Embree $(awk '/^EMBREE_VERSION/ {print $2}' "$LOG/embree.txt"); 2 threads each; rays/s from the median of the repetitions"
+echo
+awk '
+    function field(line, key,    n, i, kv, parts) {
+        n = split(line, parts, " ")
+        for (i = 1; i <= n; i++) {
+            split(parts[i], kv, "=")
+            if (kv[1] == key) return kv[2]
+        }
+        return ""
+    }
+    FNR == 1 { file++ }
+    /^RESULT/ {
+        scene = field($0, "scene")
+        if (file == 1) {
+            ours[scene] = field($0, "rays_per_s"); ourhits[scene] = field($0, "hits")
+        } else {
+            row++
+            rs[row] = scene; mode[row] = field($0, "mode")
+            emb[row] = field($0, "rays_per_s"); embhits[row] = field($0, "hits")
+            dis[row] = field($0, "disagree")
+        }
+    }
+    END {
+        printf "| scene | Embree scene flags | ours Mrays/s | Embree Mrays/s | Embree ÷ ours | occluded (ours) | occluded (Embree) | disagreeing rays |\n"
+        printf "|---|---|---|---|---|---|---|---|\n"
+        for (i = 1; i <= row; i++) {
+            s = rs[i]
+            o = ours[s] + 0
+            printf "| %s | %s | %.3f | %.3f | %s | %s | %s | %s |\n", s, mode[i], o / 1e6, emb[i] / 1e6,
+                (o > 0 ? sprintf("%.2f", emb[i] / o) : "-"), ourhits[s], embhits[i], (dis[i] == "" ? "-" : dis[i])
+        }
+    }
+' "$LOG/ours.txt" "$LOG/embree.txt"

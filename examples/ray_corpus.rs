@@ -1,0 +1,340 @@
+//! Occlusion-ray corpus and throughput of [`Bvh::segment_unoccluded`]: the
+//! Rust half of the opt-in comparison with Intel Embree 4
+//! (`benches/compare_embree.sh` runs both halves; not part of CI).
+//!
+//! `cargo run --release --example ray_corpus --features reference -- [outdir] [rays] [seed]`
+//!
+//! (defaults: `target/ray_corpus`, 1,000,000 rays per scene, seed 2026).
+//!
+//! For each of two scenes, deterministically from the seed:
+//!
+//! - `soup`: 100,000 random triangles of moderate size (corners within
+//!   ±0.03 of a centre drawn uniformly in `[-1, 1]² × [0.1, 0.9]`);
+//! - `sphere`: a closed geodesic sphere (icosahedron, every face split into
+//!   71² triangles: 100,820 triangles, shared corners bit-identical) of
+//!   radius 0.45 centred at `(0, 0, 0.5)`;
+//!
+//! and one batch of occlusion rays: origins uniform on the floor square
+//! `[-1.5, 1.5]² × {-0.5}`, ends uniform on the area light `[-0.5, 0.5]² ×
+//! {1.5}`; the query is whether the open segment `(p, x)` meets a triangle.
+//! Neither endpoint plane meets the geometry, so the open/closed distinction
+//! is moot for this corpus.
+//!
+//! Every coordinate (triangle corners, ray origins and ends) is rounded to
+//! `f32` before use and stored as the exactly equal `f64`, so an `f32` engine
+//! sees the very same triangles and endpoints; the only differences left are
+//! its arithmetic (and the `f32` rounding of the direction `x - p`).
+//!
+//! # Files written to `outdir`
+//!
+//! `<scene>.rays` (little-endian throughout):
+//!
+//! | offset | type | content |
+//! |---|---|---|
+//! | 0 | `[u8; 8]` | magic `b"SSRAYC1\0"` |
+//! | 8 | `u32` | format version, 1 |
+//! | 12 | `u32` | reserved, 0 |
+//! | 16 | `u64` | seed |
+//! | 24 | `u64` | number of triangles `T` |
+//! | 32 | `u64` | number of rays `R` |
+//! | 40 | `[u8; 8]` | reserved, 0 |
+//! | 48 | `[u8; 16]` | scene name, ASCII, NUL-padded |
+//! | 64 | `[[[f64; 3]; 3]; T]` | triangle corners (triangle, corner, xyz) |
+//! | 64 + 72 T | `[[f64; 3]; R]` | ray origins `p` |
+//! | 64 + 72 T + 24 R | `[[f64; 3]; R]` | ray ends `x` |
+//!
+//! `<scene>.ours.occluded`: `R` bytes, 1 where the open segment is occluded
+//! (`segment_unoccluded` returned `false`), 0 where it is not.
+//!
+//! # Timing
+//!
+//! The BVH is built once (its build time is printed); then, on a rayon pool
+//! of exactly 2 threads, `segment_unoccluded` runs over all rays
+//! (`par_chunks` of 4096 rays, one result byte written per ray) once to warm
+//! up and 7 more times; the median wall time gives rays/s. One line per
+//! scene starting with `RESULT` is meant for scripts.
+
+use glam::DVec3;
+use rayon::prelude::*;
+use softshadow::reference::bvh::Bvh;
+use softshadow::reference::Occluders;
+use std::fs::{self, File};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+const SOUP_TRIANGLES: usize = 100_000;
+const SOUP_HALF_SIZE: f64 = 0.01;
+const SPHERE_FREQUENCY: usize = 71;
+const SPHERE_CENTRE: DVec3 = DVec3::new(0.0, 0.0, 0.5);
+const SPHERE_RADIUS: f64 = 0.45;
+const FLOOR_HALF: f64 = 1.5;
+const FLOOR_Z: f64 = -0.5;
+const LIGHT_HALF: f64 = 0.5;
+const LIGHT_Z: f64 = 1.5;
+const THREADS: usize = 2;
+const CHUNK: usize = 4096;
+const WARMUPS: usize = 1;
+const REPETITIONS: usize = 7;
+const MAGIC: &[u8; 8] = b"SSRAYC1\0";
+const VERSION: u32 = 1;
+
+/// SplitMix64: small, seedable, the same stream on every platform.
+struct Rng(u64);
+
+impl Rng {
+    fn next_u64(&mut self) -> u64 {
+        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
+        let mut z = self.0;
+        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
+        z ^ (z >> 31)
+    }
+
+    /// Uniform in `[0, 1)` with 53 random bits.
+    fn unit(&mut self) -> f64 {
+        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
+    }
+
+    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * self.unit()
+    }
+}
+
+/// The nearest `f32` value, as an `f64` (exactly representable in both).
+fn to_f32(v: DVec3) -> DVec3 {
+    DVec3::new(
+        f64::from(v.x as f32),
+        f64::from(v.y as f32),
+        f64::from(v.z as f32),
+    )
+}
+
+fn soup(rng: &mut Rng) -> Vec<[DVec3; 3]> {
+    (0..SOUP_TRIANGLES)
+        .map(|_| {
+            let c = DVec3::new(
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(0.1, 0.9),
+            );
+            let mut corner = || {
+                let h = SOUP_HALF_SIZE;
+                to_f32(c + DVec3::new(rng.uniform(-h, h), rng.uniform(-h, h), rng.uniform(-h, h)))
+            };
+            [corner(), corner(), corner()]
+        })
+        .collect()
+}
+
+/// A geodesic sphere: each icosahedron face split into `n²` triangles. A
+/// grid point is the normalised weighted sum of its face's corners with the
+/// non-zero weights taken in global corner order, so a point on an edge or
+/// corner shared by two faces comes out bit-identical in both: the mesh is
+/// closed (no cracks) after rounding too.
+fn geodesic_sphere(n: usize) -> Vec<[DVec3; 3]> {
+    let t = (1.0 + 5f64.sqrt()) / 2.0;
+    let corners = [
+        DVec3::new(-1.0, t, 0.0),
+        DVec3::new(1.0, t, 0.0),
+        DVec3::new(-1.0, -t, 0.0),
+        DVec3::new(1.0, -t, 0.0),
+        DVec3::new(0.0, -1.0, t),
+        DVec3::new(0.0, 1.0, t),
+        DVec3::new(0.0, -1.0, -t),
+        DVec3::new(0.0, 1.0, -t),
+        DVec3::new(t, 0.0, -1.0),
+        DVec3::new(t, 0.0, 1.0),
+        DVec3::new(-t, 0.0, -1.0),
+        DVec3::new(-t, 0.0, 1.0),
+    ];
+    let faces: [[usize; 3]; 20] = [
+        [0, 11, 5],
+        [0, 5, 1],
+        [0, 1, 7],
+        [0, 7, 10],
+        [0, 10, 11],
+        [1, 5, 9],
+        [5, 11, 4],
+        [11, 10, 2],
+        [10, 7, 6],
+        [7, 1, 8],
+        [3, 9, 4],
+        [3, 4, 2],
+        [3, 2, 6],
+        [3, 6, 8],
+        [3, 8, 9],
+        [4, 9, 5],
+        [2, 4, 11],
+        [6, 2, 10],
+        [8, 6, 7],
+        [9, 8, 1],
+    ];
+    // Grid point with integer weights `w` on face corners `f`.
+    let point = |f: [usize; 3], w: [usize; 3]| {
+        let mut terms: Vec<(usize, usize)> = (0..3)
+            .filter(|&k| w[k] != 0)
+            .map(|k| (f[k], w[k]))
+            .collect();
+        terms.sort_unstable();
+        let mut s = DVec3::ZERO;
+        for (v, wv) in terms {
+            s += corners[v] * wv as f64;
+        }
+        to_f32(SPHERE_CENTRE + s.normalize() * SPHERE_RADIUS)
+    };
+    let mut out = Vec::with_capacity(20 * n * n);
+    for f in faces {
+        // Point (i, j): weight i on corner 1, j on corner 2, n - i - j on 0.
+        let p = |i: usize, j: usize| point(f, [n - i - j, i, j]);
+        for i in 0..n {
+            for j in 0..n - i {
+                out.push([p(i, j), p(i + 1, j), p(i, j + 1)]);
+                if i + j + 1 < n {
+                    out.push([p(i + 1, j), p(i + 1, j + 1), p(i, j + 1)]);
+                }
+            }
+        }
+    }
+    out
+}
+
+fn rays(rng: &mut Rng, count: usize) -> (Vec<DVec3>, Vec<DVec3>) {
+    let mut origins = Vec::with_capacity(count);
+    let mut ends = Vec::with_capacity(count);
+    for _ in 0..count {
+        origins.push(to_f32(DVec3::new(
+            rng.uniform(-FLOOR_HALF, FLOOR_HALF),
+            rng.uniform(-FLOOR_HALF, FLOOR_HALF),
+            FLOOR_Z,
+        )));
+        ends.push(to_f32(DVec3::new(
+            rng.uniform(-LIGHT_HALF, LIGHT_HALF),
+            rng.uniform(-LIGHT_HALF, LIGHT_HALF),
+            LIGHT_Z,
+        )));
+    }
+    (origins, ends)
+}
+
+fn write_corpus(
+    path: &Path,
+    name: &str,
+    seed: u64,
+    triangles: &[[DVec3; 3]],
+    origins: &[DVec3],
+    ends: &[DVec3],
+) -> std::io::Result<()> {
+    let mut w = BufWriter::new(File::create(path)?);
+    w.write_all(MAGIC)?;
+    w.write_all(&VERSION.to_le_bytes())?;
+    w.write_all(&0u32.to_le_bytes())?;
+    w.write_all(&seed.to_le_bytes())?;
+    w.write_all(&(triangles.len() as u64).to_le_bytes())?;
+    w.write_all(&(origins.len() as u64).to_le_bytes())?;
+    w.write_all(&[0u8; 8])?;
+    let mut label = [0u8; 16];
+    label[..name.len()].copy_from_slice(name.as_bytes());
+    w.write_all(&label)?;
+    let mut put = |v: DVec3| -> std::io::Result<()> {
+        for c in v.to_array() {
+            w.write_all(&c.to_le_bytes())?;
+        }
+        Ok(())
+    };
+    for t in triangles {
+        for &v in t {
+            put(v)?;
+        }
+    }
+    for &v in origins.iter().chain(ends) {
+        put(v)?;
+    }
+    w.flush()
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let mut args = std::env::args().skip(1);
+    let outdir = PathBuf::from(args.next().unwrap_or_else(|| "target/ray_corpus".into()));
+    let count: usize = args.next().map_or(1_000_000, |s| s.parse().expect("rays"));
+    let seed: u64 = args.next().map_or(2026, |s| s.parse().expect("seed"));
+    fs::create_dir_all(&outdir).expect("create outdir");
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(THREADS)
+        .build()
+        .expect("thread pool");
+
+    // Write every corpus first, then time: the files do not depend on the BVH.
+    let mut scenes = Vec::new();
+    for (index, name) in ["soup", "sphere"].into_iter().enumerate() {
+        // One independent stream per scene, so either can change alone.
+        let mut rng = Rng(seed ^ (0xA076_1D64_78BD_642F_u64.wrapping_mul(index as u64 + 1)));
+        let triangles = match name {
+            "soup" => soup(&mut rng),
+            _ => geodesic_sphere(SPHERE_FREQUENCY),
+        };
+        let (origins, ends) = rays(&mut rng, count);
+        let corpus = outdir.join(format!("{name}.rays"));
+        write_corpus(&corpus, name, seed, &triangles, &origins, &ends).expect("write corpus");
+        println!(
+            "{name}: {} triangles, {} rays -> {}",
+            triangles.len(),
+            count,
+            corpus.display()
+        );
+        scenes.push((name, triangles, origins, ends));
+    }
+
+    for (name, triangles, origins, ends) in scenes {
+        let start = Instant::now();
+        let bvh = Bvh::new(Occluders::from_triangles(triangles));
+        println!(
+            "{name}: BVH built in {:.1} ms",
+            start.elapsed().as_secs_f64() * 1e3
+        );
+
+        let segments: Vec<(DVec3, DVec3)> = origins.into_iter().zip(ends).collect();
+        let mut occluded = vec![0u8; count];
+        let run = |occluded: &mut [u8]| {
+            let start = Instant::now();
+            pool.install(|| {
+                occluded
+                    .par_chunks_mut(CHUNK)
+                    .zip(segments.par_chunks(CHUNK))
+                    .for_each(|(out, segs)| {
+                        for (o, &(p, x)) in out.iter_mut().zip(segs) {
+                            *o = u8::from(!bvh.segment_unoccluded(p, x));
+                        }
+                    });
+            });
+            start.elapsed().as_secs_f64()
+        };
+        for _ in 0..WARMUPS {
+            run(&mut occluded);
+        }
+        let times: Vec<f64> = (0..REPETITIONS).map(|_| run(&mut occluded)).collect();
+        let hits = occluded.iter().filter(|&&o| o == 1).count();
+        let secs = median(times.clone());
+        let rate = count as f64 / secs;
+        fs::write(outdir.join(format!("{name}.ours.occluded")), &occluded).expect("write results");
+        println!(
+            "{name}: occluded {hits} of {count} ({:.2}%), median {:.1} ms over {REPETITIONS} \
+             (min {:.1}, max {:.1}) on {THREADS} threads: {:.3} Mrays/s",
+            100.0 * hits as f64 / count as f64,
+            secs * 1e3,
+            times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
+            times.iter().copied().fold(0.0, f64::max) * 1e3,
+            rate / 1e6
+        );
+        println!(
+            "RESULT scene={name} triangles={} rays={count} hits={hits} median_s={secs:.6} \
+             rays_per_s={rate:.0} threads={THREADS}",
+            bvh.occluders().len()
+        );
+    }
+}

@@ -1,0 +1,1009 @@
+//! The scene file and the points file of DESIGN.md §8 (JSON), with OBJ
+//! meshes.
+//!
+//! # Scene file
+//!
+//! ```json
+//! {
+//!   "camera": {"eye": [0,3,6], "target": [0,0,0], "up": [0,1,0],
+//!              "fov_y_deg": 45, "width": 512, "height": 512},
+//!   "light":  {"type": "sphere", "center": [0,5,0], "radius": 0.5},
+//!   "meshes": [
+//!     {"name": "floor", "positions": [[-3,0,3],[3,0,3],[3,0,-3]], "triangles": [[0,1,2]]},
+//!     {"name": "bunny", "obj": "bunny.obj",
+//!      "transform": {"scale": 1.0, "rotate_y_deg": 0, "translate": [0,0,0]}},
+//!     {"name": "ball",  "primitive": {"type": "sphere", "center": [0,1,0],
+//!                                      "radius": 1, "segments": 32}}
+//!   ]
+//! }
+//! ```
+//!
+//! - `light` (required): `{"type": "sphere", "center", "radius"}`,
+//!   `{"type": "disk", "center", "normal", "radius"}`,
+//!   `{"type": "rect", "center", "u", "v"}` (half-axes),
+//!   `{"type": "segment", "a", "b"}` or `{"type": "point", "position"}`,
+//!   validated by the [`Light`] constructors.
+//! - `meshes` (required, may be empty): object id = index in the list. Each
+//!   has an optional `name` (default `mesh<i>`), exactly one source —
+//!   `positions` with `triangles` (0-based indices), `obj` (a path relative
+//!   to the scene file's directory; every object and group of the file
+//!   merged into one mesh, polygons fan-triangulated), or `primitive`
+//!   (`{"type": "sphere", "center", "radius", "segments"}` with `segments`
+//!   defaulting to 32, `{"type": "box", "min", "max"}`,
+//!   `{"type": "quad", "center", "u", "v"}`; see [`primitive`])
+//!   — and an optional `transform` `{"scale", "rotate_y_deg", "translate"}`
+//!   (defaults 1, 0, `[0,0,0]`; see [`Transform`]). A mesh must have at
+//!   least one triangle.
+//! - `camera` (optional): `eye` and `target` required; `up` defaults to
+//!   `[0,1,0]`, `fov_y_deg` to 45, `width` and `height` to 512 (at most
+//!   [`MAX_IMAGE_SIDE`]).
+//!
+//! # Points file
+//!
+//! `{"points": [{"p": [x,y,z], "object": 0, "normal": [0,1,0]}, …]}` →
+//! [`Receiver`]s. `object` and `normal` are optional; `object` must be the
+//! index of one of the scene's meshes, `normal` non-zero (it is
+//! normalised). An empty list is allowed and gives no receivers. Whether a
+//! receiver lies inside the light is the query's business
+//! ([`Light::emitter`](super::Light::emitter)), not the file's.
+//!
+//! # Errors
+//!
+//! Every problem is a [`FileError`], displayed on one line as
+//! `FILE: PLACE: MESSAGE`, where PLACE is the JSON path of the offending
+//! field (`meshes[2].triangles[5][1]`), or `FILE:LINE:COLUMN: MESSAGE` for
+//! a syntax error, or `FILE: MESSAGE` for the file as a whole (missing,
+//! empty, not UTF-8). For example
+//! `scene.json: meshes[1].primitive.radius: must be positive, got -1`.
+//! Unknown keys and duplicate keys are errors (a misspelt optional key
+//! would otherwise be silently ignored). JSON cannot hold NaN or infinity,
+//! and a literal too large for an `f64` (`1e999`) is a syntax error, so
+//! every number read is finite; values that overflow later (a transform
+//! moving a vertex past `f64::MAX`) are reported at the field that did it.
+
+use super::primitive::{self, axis_name, PrimitiveError, Transform};
+use super::{Camera, CameraError, Light, LightError, Mesh, MeshError, Scene};
+use glam::DVec3;
+use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
+use std::borrow::Cow;
+use std::fmt;
+use std::path::Path;
+
+/// The largest camera `width` or `height` a scene file may ask for.
+pub const MAX_IMAGE_SIDE: u32 = 16384;
+
+/// The number of longitudes of a sphere primitive without `segments`.
+pub const DEFAULT_SEGMENTS: u32 = 32;
+
+/// A receiver point of the points file.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Receiver {
+    /// The point, finite.
+    pub p: DVec3,
+    /// The object id (mesh index) the point lies on, when given; always
+    /// less than the scene's mesh count.
+    pub object: Option<u32>,
+    /// The unit surface normal, when given.
+    pub normal: Option<DVec3>,
+}
+
+/// Where in a file a [`FileError`] is.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum Place {
+    /// The file as a whole (missing, empty, not UTF-8, not an OBJ mesh).
+    Whole,
+    /// A syntax error at a 1-based line and column.
+    Position {
+        /// Line, from 1.
+        line: usize,
+        /// Column, from 1 (0 at the very start of an empty line).
+        column: usize,
+    },
+    /// A JSON path to the offending field, such as
+    /// `meshes[2].triangles[5][1]`.
+    Path(String),
+}
+
+/// A scene, points or OBJ file that could not be loaded.
+///
+/// Displayed on one line (control characters escaped) as
+/// `FILE: PATH: MESSAGE`, `FILE:LINE:COLUMN: MESSAGE` or `FILE: MESSAGE`,
+/// following [`Place`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct FileError {
+    file: String,
+    place: Place,
+    message: String,
+}
+
+impl FileError {
+    /// The file's name as given.
+    #[must_use]
+    pub fn file(&self) -> &str {
+        &self.file
+    }
+
+    /// Where in the file.
+    #[must_use]
+    pub fn place(&self) -> &Place {
+        &self.place
+    }
+
+    /// What is wrong, without the file and the place.
+    #[must_use]
+    pub fn message(&self) -> &str {
+        &self.message
+    }
+}
+
+/// `s` with control characters (newlines included) escaped, so that a
+/// message stays on one line whatever a file name or key holds.
+fn one_line(s: &str) -> Cow<'_, str> {
+    if s.chars().any(char::is_control) {
+        Cow::Owned(
+            s.chars()
+                .map(|c| {
+                    if c.is_control() {
+                        c.escape_default().to_string()
+                    } else {
+                        c.to_string()
+                    }
+                })
+                .collect(),
+        )
+    } else {
+        Cow::Borrowed(s)
+    }
+}
+
+impl fmt::Display for FileError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        let (file, message) = (one_line(&self.file), one_line(&self.message));
+        match &self.place {
+            Place::Whole => write!(f, "{file}: {message}"),
+            Place::Position { line, column } => write!(f, "{file}:{line}:{column}: {message}"),
+            Place::Path(path) => write!(f, "{file}: {}: {message}", one_line(path)),
+        }
+    }
+}
+
+impl std::error::Error for FileError {}
+
+/// Loads a scene file; `obj` paths are relative to its directory.
+///
+/// # Errors
+/// [`FileError`] for a missing or unreadable file and for every problem of
+/// [`scene_from_str`].
+pub fn load_scene(path: &Path) -> Result<Scene, FileError> {
+    let name = path.display().to_string();
+    let text = read_text(&name, path)?;
+    let base = path.parent().unwrap_or(Path::new(""));
+    scene_from_str(&name, &text, base)
+}
+
+/// Parses a scene file's text; `name` is used in error messages only, and
+/// `obj` paths are relative to `base_dir`.
+///
+/// # Errors
+/// [`FileError`] (see the module documentation) for malformed JSON, an
+/// empty text, unknown or duplicate keys, a missing required field, a
+/// value of the wrong kind or arity, an index out of range, a degenerate
+/// light, primitive, transform or camera, a missing or malformed OBJ file,
+/// and a mesh without triangles.
+pub fn scene_from_str(name: &str, text: &str, base_dir: &Path) -> Result<Scene, FileError> {
+    let cx = Cx { file: name };
+    let root = cx.parse(text)?;
+    let top = At::ROOT;
+    let f = cx.object(&root, &top, &["camera", "light", "meshes"])?;
+    let camera = match f.get("camera") {
+        Some(v) => Some(cx.camera(v, &top.key("camera"))?),
+        None => None,
+    };
+    let light = cx.light(cx.required(&f, &top, "light")?, &top.key("light"))?;
+    let mut scene = Scene::new(light);
+    if let Some(camera) = camera {
+        scene = scene.with_camera(camera);
+    }
+    let at = top.key("meshes");
+    for (i, m) in cx
+        .array(cx.required(&f, &top, "meshes")?, &at)?
+        .iter()
+        .enumerate()
+    {
+        let (name, mesh) = cx.mesh(m, &at.index(i), i, base_dir)?;
+        scene = scene.with_mesh(name, mesh);
+    }
+    Ok(scene)
+}
+
+/// Loads a points file for a scene of `mesh_count` meshes (the bound on
+/// each receiver's `object`).
+///
+/// # Errors
+/// [`FileError`] for a missing or unreadable file and for every problem of
+/// [`points_from_str`].
+pub fn load_points(path: &Path, mesh_count: usize) -> Result<Vec<Receiver>, FileError> {
+    let name = path.display().to_string();
+    let text = read_text(&name, path)?;
+    points_from_str(&name, &text, mesh_count)
+}
+
+/// Parses a points file's text for a scene of `mesh_count` meshes; `name`
+/// is used in error messages only. An empty `points` list gives an empty
+/// vector.
+///
+/// # Errors
+/// [`FileError`] for malformed JSON, an empty text, unknown or duplicate
+/// keys, a missing `points` or `p`, a value of the wrong kind or arity, an
+/// `object` not below `mesh_count`, a zero `normal`.
+pub fn points_from_str(
+    name: &str,
+    text: &str,
+    mesh_count: usize,
+) -> Result<Vec<Receiver>, FileError> {
+    let cx = Cx { file: name };
+    let root = cx.parse(text)?;
+    let top = At::ROOT;
+    let f = cx.object(&root, &top, &["points"])?;
+    let at = top.key("points");
+    let points = cx.array(cx.required(&f, &top, "points")?, &at)?;
+    let mut out = Vec::with_capacity(points.len());
+    for (i, v) in points.iter().enumerate() {
+        let at = at.index(i);
+        let f = cx.object(v, &at, &["p", "object", "normal"])?;
+        let p = cx.vec3(cx.required(&f, &at, "p")?, &at.key("p"))?;
+        let object = match f.get("object") {
+            None => None,
+            Some(v) => {
+                let at = at.key("object");
+                let id = cx.uint(v, &at)?;
+                match u32::try_from(id) {
+                    Ok(id) if (id as usize) < mesh_count => Some(id),
+                    _ => {
+                        return Err(cx.err(
+                            &at,
+                            format!(
+                                "{id} is out of range (the scene has {mesh_count} mesh{})",
+                                if mesh_count == 1 { "" } else { "es" }
+                            ),
+                        ))
+                    }
+                }
+            }
+        };
+        let normal = match f.get("normal") {
+            None => None,
+            Some(v) => {
+                let at = at.key("normal");
+                let n = cx.vec3(v, &at)?;
+                Some(
+                    n.try_normalize()
+                        .ok_or_else(|| cx.err(&at, "has zero length"))?,
+                )
+            }
+        };
+        out.push(Receiver { p, object, normal });
+    }
+    Ok(out)
+}
+
+/// Parses an OBJ file's bytes into one mesh: every object and group merged,
+/// polygons fan-triangulated, points and lines ignored, materials ignored.
+/// `name` is used in error messages only.
+///
+/// # Errors
+/// [`FileError`] (place [`Place::Whole`]) for an OBJ syntax error (tobj's
+/// message: it gives no line), a vertex that is not finite as `f32`, and a
+/// file without faces.
+pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
+    obj_mesh(bytes).map_err(|message| FileError {
+        file: name.to_owned(),
+        place: Place::Whole,
+        message,
+    })
+}
+
+fn read_text(name: &str, path: &Path) -> Result<String, FileError> {
+    let whole = |message: String| FileError {
+        file: name.to_owned(),
+        place: Place::Whole,
+        message,
+    };
+    let bytes = std::fs::read(path).map_err(|e| whole(format!("cannot read: {e}")))?;
+    String::from_utf8(bytes).map_err(|e| {
+        whole(format!(
+            "not valid UTF-8 (byte {})",
+            e.utf8_error().valid_up_to()
+        ))
+    })
+}
+
+fn obj_mesh(bytes: &[u8]) -> Result<Mesh, String> {
+    // The struct update keeps this compiling when another crate enables
+    // tobj's `merging` or `reordering` features (more fields, all false).
+    #[allow(clippy::needless_update)]
+    let options = tobj::LoadOptions {
+        triangulate: true,
+        single_index: true,
+        ignore_points: true,
+        ignore_lines: true,
+        ..Default::default()
+    };
+    let (models, _) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
+        Err(tobj::LoadError::OpenFileFailed)
+    })
+    .map_err(|e| format!("OBJ: {e}"))?;
+    let mut positions = Vec::new();
+    let mut triangles = Vec::new();
+    for model in &models {
+        let base = u32::try_from(positions.len()).map_err(|_| "too many vertices".to_owned())?;
+        positions.extend(
+            model
+                .mesh
+                .positions
+                .chunks_exact(3)
+                .map(|c| DVec3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]))),
+        );
+        for t in model.mesh.indices.chunks_exact(3) {
+            let shifted = [t[0], t[1], t[2]].map(|i| i.checked_add(base));
+            match shifted {
+                [Some(a), Some(b), Some(c)] => triangles.push([a, b, c]),
+                _ => return Err("too many vertices".to_owned()),
+            }
+        }
+    }
+    if triangles.is_empty() {
+        return Err("has no faces".to_owned());
+    }
+    Mesh::new(positions, triangles).map_err(|e| match e {
+        MeshError::NonFinitePosition { vertex } => {
+            format!("vertex {vertex} (after merging objects) is not finite as f32")
+        }
+        e => e.to_string(),
+    })
+}
+
+/// A parsed JSON value that keeps integers apart from other numbers and
+/// object keys in file order (duplicates rejected while parsing, with their
+/// line and column).
+#[derive(Debug)]
+enum Json {
+    Null,
+    Bool(bool),
+    UInt(u64),
+    Int(i64),
+    Float(f64),
+    Str(String),
+    Array(Vec<Json>),
+    Object(Vec<(String, Json)>),
+}
+
+impl Json {
+    fn describe(&self) -> String {
+        match self {
+            Json::Null => "null".to_owned(),
+            Json::Bool(b) => b.to_string(),
+            Json::UInt(_) | Json::Int(_) | Json::Float(_) => "a number".to_owned(),
+            Json::Str(s) => format!("the string {s:?}"),
+            Json::Array(a) => format!("an array of {}", a.len()),
+            Json::Object(_) => "an object".to_owned(),
+        }
+    }
+}
+
+impl<'de> Deserialize<'de> for Json {
+    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Json, D::Error> {
+        d.deserialize_any(JsonVisitor)
+    }
+}
+
+struct JsonVisitor;
+
+impl<'de> Visitor<'de> for JsonVisitor {
+    type Value = Json;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_unit<E>(self) -> Result<Json, E> {
+        Ok(Json::Null)
+    }
+
+    fn visit_bool<E>(self, b: bool) -> Result<Json, E> {
+        Ok(Json::Bool(b))
+    }
+
+    fn visit_u64<E>(self, v: u64) -> Result<Json, E> {
+        Ok(Json::UInt(v))
+    }
+
+    fn visit_i64<E>(self, v: i64) -> Result<Json, E> {
+        Ok(u64::try_from(v).map_or(Json::Int(v), Json::UInt))
+    }
+
+    fn visit_f64<E>(self, v: f64) -> Result<Json, E> {
+        Ok(Json::Float(v))
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<Json, E> {
+        Ok(Json::Str(v.to_owned()))
+    }
+
+    fn visit_string<E>(self, v: String) -> Result<Json, E> {
+        Ok(Json::Str(v))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Json, A::Error> {
+        let mut items = Vec::new();
+        while let Some(v) = seq.next_element()? {
+            items.push(v);
+        }
+        Ok(Json::Array(items))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Json, A::Error> {
+        let mut entries: Vec<(String, Json)> = Vec::new();
+        // Linear search for the usual few keys, a set past that.
+        let mut seen: Option<std::collections::HashSet<String>> = None;
+        while let Some(key) = map.next_key::<String>()? {
+            let duplicate = match &mut seen {
+                Some(set) => !set.insert(key.clone()),
+                None if entries.len() < 16 => entries.iter().any(|(k, _)| *k == key),
+                None => {
+                    let mut set: std::collections::HashSet<String> =
+                        entries.iter().map(|(k, _)| k.clone()).collect();
+                    let dup = !set.insert(key.clone());
+                    seen = Some(set);
+                    dup
+                }
+            };
+            if duplicate {
+                return Err(de::Error::custom(format!("duplicate key {key:?}")));
+            }
+            let value = map.next_value()?;
+            entries.push((key, value));
+        }
+        Ok(Json::Object(entries))
+    }
+}
+
+/// A path into the JSON tree, rendered only when an error needs it.
+#[derive(Clone, Copy)]
+struct At<'a> {
+    parent: Option<&'a At<'a>>,
+    seg: Seg<'a>,
+}
+
+#[derive(Clone, Copy)]
+enum Seg<'a> {
+    Root,
+    Key(&'a str),
+    Index(usize),
+}
+
+impl<'a> At<'a> {
+    const ROOT: At<'static> = At {
+        parent: None,
+        seg: Seg::Root,
+    };
+
+    fn key(&'a self, key: &'a str) -> At<'a> {
+        At {
+            parent: Some(self),
+            seg: Seg::Key(key),
+        }
+    }
+
+    fn index(&'a self, i: usize) -> At<'a> {
+        At {
+            parent: Some(self),
+            seg: Seg::Index(i),
+        }
+    }
+
+    fn place(&self) -> Place {
+        let mut segs = Vec::new();
+        let mut at = Some(self);
+        while let Some(a) = at {
+            segs.push(a.seg);
+            at = a.parent;
+        }
+        let mut s = String::new();
+        for seg in segs.iter().rev() {
+            match *seg {
+                Seg::Root => {}
+                Seg::Key(k) if is_identifier(k) => {
+                    if !s.is_empty() {
+                        s.push('.');
+                    }
+                    s.push_str(k);
+                }
+                Seg::Key(k) => s.push_str(&format!("[{k:?}]")),
+                Seg::Index(i) => s.push_str(&format!("[{i}]")),
+            }
+        }
+        if s.is_empty() {
+            Place::Whole
+        } else {
+            Place::Path(s)
+        }
+    }
+}
+
+fn is_identifier(k: &str) -> bool {
+    !k.is_empty() && k.chars().all(|c| c.is_ascii_alphanumeric() || c == '_')
+}
+
+/// An object's fields, every key checked against the allowed list.
+struct Fields<'v>(&'v [(String, Json)]);
+
+impl<'v> Fields<'v> {
+    fn get(&self, key: &str) -> Option<&'v Json> {
+        self.0.iter().find(|(k, _)| k == key).map(|(_, v)| v)
+    }
+}
+
+/// The walk over one file: every error names the file and the place.
+struct Cx<'a> {
+    file: &'a str,
+}
+
+impl Cx<'_> {
+    fn err(&self, at: &At, message: impl Into<String>) -> FileError {
+        FileError {
+            file: self.file.to_owned(),
+            place: at.place(),
+            message: message.into(),
+        }
+    }
+
+    fn parse(&self, text: &str) -> Result<Json, FileError> {
+        if text.trim().is_empty() {
+            return Err(FileError {
+                file: self.file.to_owned(),
+                place: Place::Whole,
+                message: "file is empty".to_owned(),
+            });
+        }
+        serde_json::from_str(text).map_err(|e| {
+            let full = e.to_string();
+            let suffix = format!(" at line {} column {}", e.line(), e.column());
+            let mut message = full.strip_suffix(&suffix).unwrap_or(&full).to_owned();
+            if message == "number out of range" {
+                message.push_str(" (not a finite f64)");
+            }
+            FileError {
+                file: self.file.to_owned(),
+                place: Place::Position {
+                    line: e.line(),
+                    column: e.column(),
+                },
+                message,
+            }
+        })
+    }
+
+    fn object<'v>(&self, v: &'v Json, at: &At, allowed: &[&str]) -> Result<Fields<'v>, FileError> {
+        let Json::Object(entries) = v else {
+            return Err(self.err(at, format!("expected an object, got {}", v.describe())));
+        };
+        if let Some((k, _)) = entries.iter().find(|(k, _)| !allowed.contains(&k.as_str())) {
+            return Err(self.err(
+                &at.key(k),
+                format!("unknown key (expected one of: {})", allowed.join(", ")),
+            ));
+        }
+        Ok(Fields(entries))
+    }
+
+    fn required<'v>(&self, f: &Fields<'v>, at: &At, key: &str) -> Result<&'v Json, FileError> {
+        f.get(key)
+            .ok_or_else(|| self.err(&at.key(key), "required but missing"))
+    }
+
+    fn array<'v>(&self, v: &'v Json, at: &At) -> Result<&'v [Json], FileError> {
+        match v {
+            Json::Array(items) => Ok(items),
+            _ => Err(self.err(at, format!("expected an array, got {}", v.describe()))),
+        }
+    }
+
+    fn string<'v>(&self, v: &'v Json, at: &At) -> Result<&'v str, FileError> {
+        match v {
+            Json::Str(s) => Ok(s),
+            _ => Err(self.err(at, format!("expected a string, got {}", v.describe()))),
+        }
+    }
+
+    fn number(&self, v: &Json, at: &At) -> Result<f64, FileError> {
+        let x = match *v {
+            Json::UInt(u) => u as f64,
+            Json::Int(i) => i as f64,
+            Json::Float(x) => x,
+            _ => return Err(self.err(at, format!("expected a number, got {}", v.describe()))),
+        };
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(self.err(at, format!("must be finite, got {x}")))
+        }
+    }
+
+    fn uint(&self, v: &Json, at: &At) -> Result<u64, FileError> {
+        match *v {
+            Json::UInt(u) => Ok(u),
+            Json::Int(i) => Err(self.err(at, format!("must be a non-negative integer, got {i}"))),
+            Json::Float(x) => Err(self.err(at, format!("must be an integer, got {x:?}"))),
+            _ => Err(self.err(
+                at,
+                format!("expected a non-negative integer, got {}", v.describe()),
+            )),
+        }
+    }
+
+    fn vec3(&self, v: &Json, at: &At) -> Result<DVec3, FileError> {
+        match v {
+            Json::Array(items) if items.len() == 3 => Ok(DVec3::new(
+                self.number(&items[0], &at.index(0))?,
+                self.number(&items[1], &at.index(1))?,
+                self.number(&items[2], &at.index(2))?,
+            )),
+            _ => Err(self.err(at, format!("expected [x, y, z], got {}", v.describe()))),
+        }
+    }
+
+    fn optional_vec3(
+        &self,
+        f: &Fields,
+        at: &At,
+        key: &str,
+        default: DVec3,
+    ) -> Result<DVec3, FileError> {
+        f.get(key)
+            .map_or(Ok(default), |v| self.vec3(v, &at.key(key)))
+    }
+
+    fn camera(&self, v: &Json, at: &At) -> Result<Camera, FileError> {
+        let f = self.object(
+            v,
+            at,
+            &["eye", "target", "up", "fov_y_deg", "width", "height"],
+        )?;
+        let eye = self.vec3(self.required(&f, at, "eye")?, &at.key("eye"))?;
+        let target = self.vec3(self.required(&f, at, "target")?, &at.key("target"))?;
+        let up = self.optional_vec3(&f, at, "up", DVec3::Y)?;
+        let fov = match f.get("fov_y_deg") {
+            Some(v) => self.number(v, &at.key("fov_y_deg"))?,
+            None => 45.0,
+        };
+        let side = |key: &'static str| -> Result<u32, FileError> {
+            let Some(v) = f.get(key) else { return Ok(512) };
+            let at = at.key(key);
+            let n = self.uint(v, &at)?;
+            match u32::try_from(n) {
+                Ok(n) if (1..=MAX_IMAGE_SIDE).contains(&n) => Ok(n),
+                _ => Err(self.err(&at, format!("must be in 1..={MAX_IMAGE_SIDE}, got {n}"))),
+            }
+        };
+        let (width, height) = (side("width")?, side("height")?);
+        Camera::new(eye, target, up, fov, width, height).map_err(|e| match e {
+            CameraError::NonFinite { field } => self.err(&at.key(field), "not finite"),
+            CameraError::FieldOfView { degrees } => self.err(
+                &at.key("fov_y_deg"),
+                format!("must be in (0, 180) degrees, got {degrees}"),
+            ),
+            CameraError::Degenerate => self.err(
+                at,
+                "eye equals target, or up is zero or parallel to the view direction",
+            ),
+            e => self.err(at, e.to_string()),
+        })
+    }
+
+    fn light(&self, v: &Json, at: &At) -> Result<Light, FileError> {
+        const TYPES: &str = "\"sphere\", \"disk\", \"rect\", \"segment\" or \"point\"";
+        let Json::Object(entries) = v else {
+            return Err(self.err(at, format!("expected an object, got {}", v.describe())));
+        };
+        let ty_at = at.key("type");
+        let ty = match Fields(entries).get("type") {
+            Some(t) => self.string(t, &ty_at)?,
+            None => return Err(self.err(&ty_at, format!("required but missing (one of {TYPES})"))),
+        };
+        let keys: &[&str] = match ty {
+            "sphere" => &["type", "center", "radius"],
+            "disk" => &["type", "center", "normal", "radius"],
+            "rect" => &["type", "center", "u", "v"],
+            "segment" => &["type", "a", "b"],
+            "point" => &["type", "position"],
+            other => {
+                return Err(self.err(
+                    &ty_at,
+                    format!("unknown light type {other:?} (expected {TYPES})"),
+                ))
+            }
+        };
+        let f = self.object(v, at, keys)?;
+        let vec = |key: &str| self.vec3(self.required(&f, at, key)?, &at.key(key));
+        let num = |key: &str| self.number(self.required(&f, at, key)?, &at.key(key));
+        let light = match ty {
+            "sphere" => Light::sphere(vec("center")?, num("radius")?),
+            "disk" => Light::disk(vec("center")?, vec("normal")?, num("radius")?),
+            "rect" => Light::rect(vec("center")?, vec("u")?, vec("v")?),
+            "segment" => Light::segment(vec("a")?, vec("b")?),
+            _ => Light::point(vec("position")?),
+        };
+        light.map_err(|e| match e {
+            LightError::NonFinite { field } => self.err(&at.key(field), "not finite"),
+            LightError::NonPositiveRadius { radius } => {
+                self.err(&at.key("radius"), format!("must be positive, got {radius}"))
+            }
+            LightError::ZeroNormal => self.err(&at.key("normal"), "has zero length"),
+            LightError::DegenerateRect => self.err(
+                &at.key("v"),
+                "spans no area with u (u or v is zero, or they are parallel)",
+            ),
+            LightError::ZeroLengthSegment => {
+                self.err(&at.key("b"), "equals a (the segment has zero length)")
+            }
+        })
+    }
+
+    fn mesh(
+        &self,
+        v: &Json,
+        at: &At,
+        index: usize,
+        base_dir: &Path,
+    ) -> Result<(String, Mesh), FileError> {
+        let f = self.object(
+            v,
+            at,
+            &[
+                "name",
+                "positions",
+                "triangles",
+                "obj",
+                "primitive",
+                "transform",
+            ],
+        )?;
+        let name = match f.get("name") {
+            Some(v) => self.string(v, &at.key("name"))?.to_owned(),
+            None => format!("mesh{index}"),
+        };
+        let sources: Vec<&str> = ["positions", "obj", "primitive"]
+            .into_iter()
+            .filter(|k| f.get(k).is_some())
+            .collect();
+        let mesh = match sources[..] {
+            ["positions"] => self.inline_mesh(&f, at)?,
+            ["obj"] => {
+                if f.get("triangles").is_some() {
+                    return Err(self.err(&at.key("triangles"), "only goes with \"positions\""));
+                }
+                let at = at.key("obj");
+                let rel = self.string(f.get("obj").unwrap_or(&Json::Null), &at)?;
+                let path = base_dir.join(rel);
+                let bytes = std::fs::read(&path)
+                    .map_err(|e| self.err(&at, format!("cannot read {path:?}: {e}")))?;
+                obj_mesh(&bytes).map_err(|m| self.err(&at, format!("{path:?}: {m}")))?
+            }
+            [_] => {
+                if f.get("triangles").is_some() {
+                    return Err(self.err(&at.key("triangles"), "only goes with \"positions\""));
+                }
+                self.primitive(
+                    f.get("primitive").unwrap_or(&Json::Null),
+                    &at.key("primitive"),
+                )?
+            }
+            [] => {
+                return Err(self.err(
+                    at,
+                    "needs one of \"positions\" (with \"triangles\"), \"obj\" or \"primitive\"",
+                ))
+            }
+            [first, second, ..] => {
+                return Err(self.err(
+                    &at.key(second),
+                    format!("conflicts with {first:?} (a mesh has exactly one source)"),
+                ))
+            }
+        };
+        let mesh = match f.get("transform") {
+            None => mesh,
+            Some(v) => {
+                let at = at.key("transform");
+                self.transform(v, &at)?
+                    .apply(&mesh)
+                    .map_err(|e| self.err(&at, format!("moves a vertex out of range: {e}")))?
+            }
+        };
+        Ok((name, mesh))
+    }
+
+    fn inline_mesh(&self, f: &Fields, at: &At) -> Result<Mesh, FileError> {
+        let p_at = at.key("positions");
+        let positions = self
+            .array(f.get("positions").unwrap_or(&Json::Null), &p_at)?
+            .iter()
+            .enumerate()
+            .map(|(i, v)| self.vec3(v, &p_at.index(i)))
+            .collect::<Result<Vec<_>, _>>()?;
+        let t_at = at.key("triangles");
+        let Some(tris) = f.get("triangles") else {
+            return Err(self.err(&t_at, "required with \"positions\""));
+        };
+        let tris = self.array(tris, &t_at)?;
+        if tris.is_empty() {
+            return Err(self.err(&t_at, "must hold at least one triangle"));
+        }
+        let n = positions.len();
+        let mut triangles = Vec::with_capacity(tris.len());
+        for (t, v) in tris.iter().enumerate() {
+            let at = t_at.index(t);
+            let idx = match v {
+                Json::Array(items) if items.len() == 3 => items,
+                _ => {
+                    return Err(self.err(
+                        &at,
+                        format!(
+                            "expected [i, j, k] (3 vertex indices), got {}",
+                            v.describe()
+                        ),
+                    ))
+                }
+            };
+            let mut tri = [0u32; 3];
+            for (c, slot) in tri.iter_mut().enumerate() {
+                let at = at.index(c);
+                let i = self.uint(&idx[c], &at)?;
+                *slot = match u32::try_from(i) {
+                    Ok(i) if (i as usize) < n => i,
+                    _ => {
+                        return Err(self.err(
+                            &at,
+                            format!(
+                                "vertex index {i} is out of range (the mesh has {n} position{})",
+                                if n == 1 { "" } else { "s" }
+                            ),
+                        ))
+                    }
+                };
+            }
+            triangles.push(tri);
+        }
+        Mesh::new(positions, triangles).map_err(|e| self.err(at, e.to_string()))
+    }
+
+    fn primitive(&self, v: &Json, at: &At) -> Result<Mesh, FileError> {
+        const TYPES: &str = "\"sphere\", \"box\" or \"quad\"";
+        let Json::Object(entries) = v else {
+            return Err(self.err(at, format!("expected an object, got {}", v.describe())));
+        };
+        let ty_at = at.key("type");
+        let ty = match Fields(entries).get("type") {
+            Some(t) => self.string(t, &ty_at)?,
+            None => return Err(self.err(&ty_at, format!("required but missing (one of {TYPES})"))),
+        };
+        let keys: &[&str] = match ty {
+            "sphere" => &["type", "center", "radius", "segments"],
+            "box" => &["type", "min", "max"],
+            "quad" => &["type", "center", "u", "v"],
+            other => {
+                return Err(self.err(
+                    &ty_at,
+                    format!("unknown primitive type {other:?} (expected {TYPES})"),
+                ))
+            }
+        };
+        let f = self.object(v, at, keys)?;
+        let vec = |key: &str| self.vec3(self.required(&f, at, key)?, &at.key(key));
+        let mesh = match ty {
+            "sphere" => {
+                let center = vec("center")?;
+                let radius = self.number(self.required(&f, at, "radius")?, &at.key("radius"))?;
+                let segments = match f.get("segments") {
+                    None => DEFAULT_SEGMENTS,
+                    Some(v) => {
+                        let s_at = at.key("segments");
+                        let s = self.uint(v, &s_at)?;
+                        // Out-of-range counts are reported by `sphere`;
+                        // beyond u32 they are reported here.
+                        u32::try_from(s).map_err(|_| {
+                            self.err(
+                                &s_at,
+                                format!(
+                                    "must be in {}..={}, got {s}",
+                                    primitive::MIN_SEGMENTS,
+                                    primitive::MAX_SEGMENTS
+                                ),
+                            )
+                        })?
+                    }
+                };
+                primitive::sphere(center, radius, segments)
+            }
+            "box" => primitive::cuboid(vec("min")?, vec("max")?),
+            _ => primitive::quad(vec("center")?, vec("u")?, vec("v")?),
+        };
+        mesh.map_err(|e| self.primitive_error(e, at))
+    }
+
+    fn primitive_error(&self, e: PrimitiveError, at: &At) -> FileError {
+        match e {
+            PrimitiveError::NonFinite { field } => self.err(&at.key(field), "not finite"),
+            PrimitiveError::NonPositiveRadius { radius } => {
+                self.err(&at.key("radius"), format!("must be positive, got {radius}"))
+            }
+            PrimitiveError::Segments { segments } => self.err(
+                &at.key("segments"),
+                format!(
+                    "must be in {}..={}, got {segments}",
+                    primitive::MIN_SEGMENTS,
+                    primitive::MAX_SEGMENTS
+                ),
+            ),
+            PrimitiveError::EmptyBox { axis, min, max } => self.err(
+                &at.key("max"),
+                format!(
+                    "must exceed min in every coordinate, got {} {max} <= {min}",
+                    axis_name(axis)
+                ),
+            ),
+            PrimitiveError::DegenerateQuad => self.err(
+                &at.key("v"),
+                "spans no area with u (u or v is zero, or they are parallel)",
+            ),
+            PrimitiveError::NonPositiveScale { scale } => {
+                self.err(&at.key("scale"), format!("must be positive, got {scale}"))
+            }
+            e => self.err(at, e.to_string()),
+        }
+    }
+
+    fn transform(&self, v: &Json, at: &At) -> Result<Transform, FileError> {
+        let f = self.object(v, at, &["scale", "rotate_y_deg", "translate"])?;
+        let num = |key: &str, default: f64| {
+            f.get(key)
+                .map_or(Ok(default), |v| self.number(v, &at.key(key)))
+        };
+        let scale = num("scale", 1.0)?;
+        let rotate = num("rotate_y_deg", 0.0)?;
+        let translate = self.optional_vec3(&f, at, "translate", DVec3::ZERO)?;
+        Transform::new(scale, rotate, translate).map_err(|e| self.primitive_error(e, at))
+    }
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn paths_render_keys_and_indices() {
+        let root = At::ROOT;
+        let m = root.key("meshes");
+        let i = m.index(2);
+        let t = i.key("triangles");
+        let j = t.index(5);
+        assert_eq!(
+            j.index(1).place(),
+            Place::Path("meshes[2].triangles[5][1]".to_owned())
+        );
+        assert_eq!(root.key("a b").place(), Place::Path("[\"a b\"]".to_owned()));
+        assert_eq!(root.place(), Place::Whole);
+    }
+
+    #[test]
+    fn control_characters_stay_on_one_line() {
+        let e = FileError {
+            file: "a\nb.json".to_owned(),
+            place: Place::Path("x".to_owned()),
+            message: "bad\r\nthing".to_owned(),
+        };
+        assert_eq!(e.to_string(), "a\\nb.json: x: bad\\r\\nthing");
+    }
+}
