@@ -294,7 +294,7 @@ pub fn points_from_str(
 ///
 /// # Errors
 /// [`FileError`] (place [`Place::Whole`]) for an OBJ syntax error (tobj's
-/// message: it gives no line), a vertex that is not finite as `f32`, and a
+/// message: it gives no line), a vertex that is not finite, and a
 /// file without faces.
 pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
     obj_mesh(bytes).map_err(|message| FileError {
@@ -358,7 +358,7 @@ fn obj_mesh(bytes: &[u8]) -> Result<Mesh, String> {
     }
     Mesh::new(positions, triangles).map_err(|e| match e {
         MeshError::NonFinitePosition { vertex } => {
-            format!("vertex {vertex} (after merging objects) is not finite as f32")
+            format!("vertex {vertex} (after merging objects) is not finite")
         }
         e => e.to_string(),
     })
