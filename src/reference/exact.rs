@@ -67,7 +67,7 @@
 //! that overlap the light's square, with a bounding-box reject in the inner
 //! loop (see `benches/README.md` for measured costs against `n`).
 
-use super::bvh::Bvh;
+use super::bvh::{segment_blocked, Bvh};
 use crate::kernel::disk::f64::segment_disk_area;
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use crate::scene::{Emitter, Light, ReceiverError};
@@ -747,7 +747,6 @@ fn blocked_interval(p: DVec3, a: DVec3, b: DVec3, n: DVec3, tri: &[DVec3; 3]) ->
 /// open segment `(p, x)` lies on that line, and `x` is blocked beyond the
 /// first crossing.
 fn collinear_segment_visibility(bvh: &Bvh, p: DVec3, a: DVec3, b: DVec3, candidates: &[u32]) -> f64 {
-    // The nearer end first.
     let (near, far) = if (a - p).length_squared() <= (b - p).length_squared() {
         (a, b)
     } else {
@@ -756,31 +755,18 @@ fn collinear_segment_visibility(bvh: &Bvh, p: DVec3, a: DVec3, b: DVec3, candida
     if !bvh.segment_unoccluded(p, near) {
         return 0.0;
     }
-    if bvh.segment_unoccluded(p, far) {
-        return 1.0;
-    }
-    // The first crossing beyond `near`, as a fraction of the light.
+    // The first crossing beyond `near`, as a fraction of the light: what
+    // lies before it is visible.
     let dir = far - near;
-    let len2 = dir.length_squared();
     let mut first = 1.0_f64;
     for &i in candidates {
         let Some(tri) = bvh.occluders().triangles().get(i as usize) else {
             continue;
         };
-        let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-        let den = n.dot(dir);
-        if den != 0.0 {
-            let s = n.dot(tri[0] - near) / den;
-            if (0.0..1.0).contains(&s) {
-                let x = near + dir * s;
-                // Only crossings the exact test confirms.
-                if !bvh.segment_unoccluded(p, near + dir * (s + f64::EPSILON * 4.0).min(1.0))
-                    && len2 > 0.0
-                    && x.is_finite()
-                {
-                    first = first.min(s);
-                }
-            }
+        if segment_blocked(p, far, tri) {
+            let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+            let s = n.dot(tri[0] - near) / n.dot(dir);
+            first = first.min(if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) });
         }
     }
     first

@@ -9,6 +9,7 @@
 pub mod bvh;
 pub mod exact;
 pub mod monte_carlo;
+pub mod stats;
 
 use crate::scene::{Mesh, Scene};
 use glam::DVec3;

@@ -6,7 +6,7 @@ use softshadow::reference::bvh::Bvh;
 use softshadow::reference::{exact, monte_carlo, Occluders};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::{load_points, load_scene};
-use softshadow::scene::{ReceiverError, Scene};
+use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::time::Instant;
 
@@ -62,9 +62,10 @@ pub fn parse_method(s: &str) -> Result<Method, String> {
     }
     if let Some(n) = s.strip_prefix("mc:") {
         return match n.parse::<u32>() {
-            Ok(n) if n > 0 => Ok(Method::MonteCarlo(n)),
+            Ok(n) if n >= monte_carlo::MIN_SAMPLES => Ok(Method::MonteCarlo(n)),
             _ => Err(format!(
-                "'{s}': the sample count must be an integer from 1 to {}",
+                "'{s}': the sample count must be an integer from {} to {}",
+                monte_carlo::MIN_SAMPLES,
                 u32::MAX
             )),
         };
@@ -104,13 +105,13 @@ pub fn run(args: &Args) -> Result<(), String> {
     let mut visibility = Vec::with_capacity(points.len());
     let mut stderr = Vec::new();
     let file = args.points.display();
-    let fail = |i: usize, e: ReceiverError| format!("{file}: points[{i}].p: {e}");
+    let fail = |i: usize, e: &dyn std::fmt::Display| format!("{file}: points[{i}].p: {e}");
     for (c, block) in points.chunks(chunk).enumerate() {
         let base = c * chunk;
         match args.method {
             Method::Exact => {
                 for (k, r) in exact::visibility_many(&bvh, light, block).into_iter().enumerate() {
-                    visibility.push(r.map_err(|e| fail(base + k, e))?);
+                    visibility.push(r.map_err(|e| fail(base + k, &e))?);
                 }
             }
             Method::MonteCarlo(samples) => {
@@ -122,7 +123,7 @@ pub fn run(args: &Args) -> Result<(), String> {
                     .into_iter()
                     .enumerate()
                 {
-                    let e = r.map_err(|e| fail(base + k, e))?;
+                    let e = r.map_err(|e| fail(base + k, &e))?;
                     visibility.push(e.visibility);
                     stderr.push(e.stderr);
                 }

@@ -1,0 +1,130 @@
+//! `softshadow check`, the default run: the kernel self-check, then the two
+//! references side by side on the embedded default scene — exact against
+//! Monte Carlo on the floor receivers in the bunny's penumbra, with the
+//! time each takes.
+
+use crate::selfcheck;
+use glam::DVec3;
+use softshadow::reference::bvh::Bvh;
+use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
+use softshadow::reference::stats::{sidak, student_t_two_sided_quantile};
+use softshadow::reference::{exact, Occluders};
+use softshadow::scene::{builtin, Scene};
+use std::process::ExitCode;
+use std::time::Instant;
+
+/// Receivers per side of the floor grid.
+const GRID: usize = 32;
+/// Monte Carlo samples per receiver.
+const SAMPLES: u32 = 4096;
+/// Family-wise false-failure rate of the agreement check.
+const ALPHA: f64 = 1e-3;
+
+pub fn run() -> ExitCode {
+    let kernels = selfcheck::run();
+    println!();
+    let references = match builtin("default") {
+        Some(scene) => references(&scene),
+        None => {
+            println!("the default scene is missing");
+            false
+        }
+    };
+    if kernels && references {
+        ExitCode::SUCCESS
+    } else {
+        ExitCode::FAILURE
+    }
+}
+
+/// A `GRID × GRID` grid of points on the floor (`y = 0`) around the shadow
+/// the occluders (every mesh but the floor, mesh 0) cast from the light's
+/// centre.
+fn floor_receivers(scene: &Scene) -> Vec<DVec3> {
+    let occluders: Vec<_> = scene.meshes().iter().skip(1).filter_map(|m| m.bounds()).collect();
+    let Some((lo, hi)) = occluders.into_iter().reduce(|(a, b), (c, d)| (a.min(c), b.max(d))) else {
+        return Vec::new();
+    };
+    let c = scene.light().center();
+    let m = (lo + hi) * 0.5;
+    // The light-centre shadow of the occluders' centre on the floor.
+    let s = c + (m - c) * (c.y / (c.y - m.y));
+    let half = (hi - lo).max_element() * 1.2;
+    let step = 2.0 * half / (GRID - 1) as f64;
+    (0..GRID * GRID)
+        .map(|k| {
+            let (i, j) = ((k % GRID) as f64, (k / GRID) as f64);
+            DVec3::new(s.x - half + step * i, 0.0, s.z - half + step * j)
+        })
+        .collect()
+}
+
+fn references(scene: &Scene) -> bool {
+    let bvh = Bvh::new(Occluders::from_scene(scene));
+    let light = scene.light();
+    let grid = floor_receivers(scene);
+    let t = Instant::now();
+    let exact_all = exact::visibility_many(&bvh, light, &grid);
+    let exact_seconds = t.elapsed().as_secs_f64();
+    // The penumbra: where the exact answer is strictly between 0 and 1.
+    let (points, exact): (Vec<DVec3>, Vec<f64>) = grid
+        .iter()
+        .zip(&exact_all)
+        .filter_map(|(&p, v)| match v {
+            Ok(v) if *v > 0.0 && *v < 1.0 => Some((p, *v)),
+            _ => None,
+        })
+        .unzip();
+    let errors = exact_all.iter().filter(|v| v.is_err()).count();
+    // Timed again on the penumbra alone: the same receivers as Monte Carlo.
+    let t = Instant::now();
+    let _ = exact::visibility_many(&bvh, light, &points);
+    let penumbra_seconds = t.elapsed().as_secs_f64();
+    let options = Options::new(SAMPLES);
+    let t = Instant::now();
+    let mc = monte_carlo::visibility_many(&bvh, light, &points, &options);
+    let mc_seconds = t.elapsed().as_secs_f64();
+    let mc_per = mc_seconds / points.len().max(1) as f64;
+    let exact_per = exact_seconds / grid.len().max(1) as f64;
+    let penumbra_per = penumbra_seconds / points.len().max(1) as f64;
+    // Tolerance: Student's t with K − 1 degrees of freedom (the standard
+    // error comes from K replicates), Šidák-corrected over the receivers;
+    // plus 1/N, the estimate's resolution, which is all a zero standard
+    // error (every replicate alike) can claim.
+    let q = student_t_two_sided_quantile(sidak(ALPHA, points.len().max(1)), REPLICATES - 1);
+    let mut worst: f64 = 0.0;
+    let mut disagree = 0;
+    for (e, m) in exact.iter().zip(&mc) {
+        let Ok(m) = m else {
+            disagree += 1;
+            continue;
+        };
+        let allowed = q * m.stderr + 1.0 / f64::from(SAMPLES);
+        let d = (m.visibility - e).abs();
+        worst = worst.max(d / allowed);
+        disagree += usize::from(d > allowed);
+    }
+    println!(
+        "references on the default scene ({} triangles, sphere light): {} floor receivers, {} in the penumbra, {} receiver errors",
+        scene.triangle_count(),
+        grid.len(),
+        points.len(),
+        errors
+    );
+    println!(
+        "  exact:   {:>8.1} µs per receiver over all {} receivers, {:.1} µs in the penumbra ({} threads)",
+        exact_per * 1e6,
+        grid.len(),
+        penumbra_per * 1e6,
+        rayon::current_num_threads()
+    );
+    println!(
+        "  mc:{SAMPLES}: {:>8.1} µs per receiver in the penumbra; there exact costs {:.3} of Monte Carlo",
+        mc_per * 1e6,
+        penumbra_per / mc_per
+    );
+    println!(
+        "  agreement: largest |mc − exact| is {worst:.2} of its tolerance (t·stderr + 1/N, t = {q:.2} for a family-wise false-failure rate {ALPHA}); {disagree} disagree"
+    );
+    errors == 0 && disagree == 0 && !points.is_empty()
+}
