@@ -296,3 +296,35 @@ fn receivers_the_light_cannot_be_seen_from_are_errors() {
     );
     assert_eq!(visibility(&scene, &disk, DVec3::ZERO), Ok(1.0));
 }
+
+#[test]
+fn regression_a_sliver_along_another_edge_removes_nothing() {
+    // Found by the agreement test (case 10552 of its exhaustive run): a
+    // triangle straddling a tilted disk light's plane, seen almost edge-on,
+    // projects to two slivers. Crossing parameters from rounded
+    // determinants cut nearly parallel edges at different points, and the
+    // union lost 0.02 of the light. The sliver covers nothing (V = 1 alone),
+    // so adding it must not change the other triangle's answer.
+    let light = Light::disk(
+        DVec3::new(-0.020143567856858113, 0.0060544466079512915, 5.357326587786698),
+        DVec3::new(-0.3985703764828735, -0.5497945756058421, -0.7340760039837104),
+        0.1290614705018563,
+    )
+    .unwrap();
+    let p = DVec3::new(0.018821517894121453, -0.38913241855518166, 0.015133481755399247);
+    let sliver = [
+        DVec3::new(0.07533360533954292, -0.3071776318435956, 2.3147829588271276),
+        DVec3::new(0.13184569278496439, -0.22522284513200946, 4.614432435898856),
+        DVec3::new(-0.0382296223218087, 0.003990743626280921, 5.649484535193103),
+    ];
+    let other = [
+        DVec3::new(0.006184177136951168, -0.25408576950410355, 1.5633394631948738),
+        DVec3::new(-0.019729983949386166, -0.2317907919005766, 1.6047514161807577),
+        DVec3::new(0.0400522948806009, -0.27513943185211115, 1.599301297456961),
+    ];
+    assert_eq!(visibility(&bvh(vec![sliver]), &light, p).unwrap(), 1.0);
+    let alone = visibility(&bvh(vec![other]), &light, p).unwrap();
+    let both = visibility(&bvh(vec![other, sliver]), &light, p).unwrap();
+    assert!(alone < 0.999, "the other triangle occludes: {alone}");
+    assert!((both - alone).abs() < 1e-12, "{both} vs {alone}");
+}

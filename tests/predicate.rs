@@ -2,11 +2,14 @@
 //! `robust` crate, an independent implementation), on near-degenerate input
 //! where a rounded determinant gets the sign wrong.
 
+mod support;
+
 use glam::{DVec2, DVec3};
+use support::Big;
 use proptest::prelude::*;
 use robust::{Coord, Coord3D};
 use softshadow::arbitrary::Rng;
-use softshadow::kernel::predicate::{orient2d, orient3d, Sign};
+use softshadow::kernel::predicate::{orient2d, orient2d_value, orient3d, Sign};
 
 fn shewchuk2(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     let p = |v: DVec2| Coord { x: v.x, y: v.y };
@@ -61,6 +64,30 @@ fn near_coplanar(rng: &mut Rng) -> (DVec3, DVec3, DVec3, DVec3) {
 
 proptest! {
     #![proptest_config(ProptestConfig { cases: 2000, ..ProptestConfig::default() })]
+
+    #[test]
+    fn orient2d_value_is_accurate_to_2_pow_minus_40(seed in any::<u64>()) {
+        // Against the determinant in 256-bit arithmetic (exact here: the
+        // inputs are doubles within astro-float's range, four products of
+        // exact differences fit in 256 bits for these scales).
+        let mut rng = Rng::new(seed);
+        let (a, b, c) = if rng.chance(0.5) {
+            near_collinear(&mut rng)
+        } else {
+            (point2(&mut rng, 1.0), point2(&mut rng, 1.0), point2(&mut rng, 1.0))
+        };
+        let d = |x: f64, y: f64| Big::new(x).sub(&Big::new(y));
+        let exact = d(a.x, c.x)
+            .mul(&d(b.y, c.y))
+            .sub(&d(a.y, c.y).mul(&d(b.x, c.x)))
+            .to_f64();
+        let v = orient2d_value(a, b, c);
+        prop_assert_eq!(Sign::of(v), orient2d(a, b, c));
+        prop_assert!(
+            (v - exact).abs() <= exact.abs() * 2f64.powi(-40),
+            "{:?} {:?} {:?}: {} vs {}", a, b, c, v, exact
+        );
+    }
 
     #[test]
     fn orient2d_agrees_with_shewchuk(seed in any::<u64>()) {

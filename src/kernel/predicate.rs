@@ -112,6 +112,29 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     orient2d_exact(a, b, c)
 }
 
+/// The value of the determinant `(a − c) × (b − c)` whose sign [`orient2d`]
+/// gives: its sign exact, its relative error below `2⁻⁴⁰` (the rounded
+/// determinant where its error bound allows, else the exact expansion
+/// summed). Where two nearly parallel edges cross, a crossing parameter
+/// `va / (va − vb)` formed from these values is accurate, so two edges cut
+/// at their crossing are cut at the same point. Same domain as
+/// [`orient2d`]; `0` for non-finite input.
+#[must_use]
+pub fn orient2d_value(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    if !(a.is_finite() && b.is_finite() && c.is_finite()) {
+        return 0.0;
+    }
+    let detleft = (a.x - c.x) * (b.y - c.y);
+    let detright = (a.y - c.y) * (b.x - c.x);
+    let det = detleft - detright;
+    // |det − exact| ≤ bound, so the relative error is below 2⁻⁴⁰ here.
+    let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) * (1u64 << 40) as f64;
+    if det > bound || -det > bound {
+        return det;
+    }
+    orient2d_expansion(a, b, c).approximate()
+}
+
 /// The sign of the determinant `| a−d ; b−d ; c−d |` (rows): [`Sign::Positive`]
 /// when `d` lies *below* the plane through `a, b, c`, i.e. on the side from
 /// which `a, b, c` appear clockwise; [`Sign::Negative`] when `d` sees them
@@ -202,6 +225,12 @@ impl<const N: usize> Expansion<N> {
         }
     }
 
+    /// The exact sum rounded: the components added smallest first, each
+    /// sum exact but the last few, so the error is a few ulps.
+    fn approximate(&self) -> f64 {
+        self.terms[..self.len].iter().fold(0.0, |s, &t| s + t)
+    }
+
     /// The sign of the exact sum: that of its largest component.
     fn sign(&self) -> Sign {
         if self.len == 0 {
@@ -221,6 +250,11 @@ fn diff(a: f64, b: f64) -> [f64; 2] {
 
 #[cold]
 fn orient2d_exact(a: DVec2, b: DVec2, c: DVec2) -> Sign {
+    orient2d_expansion(a, b, c).sign()
+}
+
+/// `(a − c) × (b − c)` as an exact expansion.
+fn orient2d_expansion(a: DVec2, b: DVec2, c: DVec2) -> Expansion<16> {
     let (acx, bcy) = (diff(a.x, c.x), diff(b.y, c.y));
     let (acy, bcx) = (diff(a.y, c.y), diff(b.x, c.x));
     // 2 products of (2-term × 2-term) → 8 exact partial products → 16 doubles.
@@ -235,7 +269,7 @@ fn orient2d_exact(a: DVec2, b: DVec2, c: DVec2) -> Sign {
             }
         }
     }
-    sum.sign()
+    sum
 }
 
 #[cold]

@@ -69,7 +69,7 @@
 
 use super::bvh::{segment_blocked, Bvh};
 use crate::kernel::disk::f64::segment_disk_area;
-use crate::kernel::predicate::{orient2d, orient3d, Sign};
+use crate::kernel::predicate::{orient2d, orient2d_value, orient3d, Sign};
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -617,9 +617,12 @@ fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for k in 0..3 {
         let (f0, f1) = t.edge(k);
-        let sa = orient2d(f0, f1, a);
-        let sb = orient2d(f0, f1, b);
-        match (sa, sb) {
+        // Signed areas with exact signs and accurate values: the cut of
+        // this edge by `f` and the cut of `f` by this edge land on the same
+        // point even for nearly parallel edges.
+        let va = orient2d_value(f0, f1, a);
+        let vb = orient2d_value(f0, f1, b);
+        match (Sign::of(va), Sign::of(vb)) {
             (Sign::Zero, Sign::Zero) => {
                 let same_side = (b - a).dot(f1 - f0) > 0.0;
                 if same_side && !t_first {
@@ -630,14 +633,10 @@ fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)
                 return None;
             }
             (Sign::Positive | Sign::Zero, Sign::Positive | Sign::Zero) => {}
-            _ => {
-                // A strict crossing: the exact signs decide which end is
-                // kept; only the cut's position is rounded.
-                let e = f1 - f0;
-                let va = e.perp_dot(a - f0);
-                let vb = e.perp_dot(b - f0);
-                let s = va / (va - vb);
-                let s = if s.is_nan() { 0.5 } else { s.clamp(0.0, 1.0) };
+            (sa, _) => {
+                // A strict crossing: va and vb have opposite signs, so
+                // va − vb does not cancel.
+                let s = (va / (va - vb)).clamp(0.0, 1.0);
                 if sa == Sign::Negative {
                     t0 = t0.max(s);
                 } else {
@@ -809,3 +808,4 @@ impl Sum {
         self.sum + self.c
     }
 }
+

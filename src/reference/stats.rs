@@ -4,7 +4,29 @@
 //! into a tolerance that fixes the false-failure rate however many points
 //! are compared.
 
+use super::monte_carlo::{Estimate, REPLICATES};
 use std::f64::consts::{PI, SQRT_2};
+
+/// How far a Monte Carlo [`Estimate`] made with `samples` samples may lie
+/// from the true `V` at the two-sided quantile `q` (from
+/// [`student_t_two_sided_quantile`] with `REPLICATES − 1` degrees of
+/// freedom): `q · stderr`, or, when the standard error is zero, the
+/// resolution of one replicate, `1/m` with `m = ⌈samples / K⌉` its points.
+///
+/// A zero standard error means every replicate counted the same number of
+/// unoccluded samples. Stratified counts are nearly deterministic (in 1D,
+/// for a segment light, the count in an interval takes at most two
+/// values), so all `K` replicates often agree while the truth lies between
+/// two counts: the estimate then resolves `V` only to one count, `1/m`.
+#[must_use]
+pub fn agreement_tolerance(estimate: &Estimate, samples: u32, q: f64) -> f64 {
+    if estimate.stderr > 0.0 {
+        q * estimate.stderr
+    } else {
+        let k = REPLICATES.min(samples.max(1));
+        1.0 / f64::from(samples.max(1).div_ceil(k))
+    }
+}
 
 /// The complementary error function `erfc(x) = 1 − erf(x)`, to about
 /// `1e-15` relative for `x ≥ 0` (Maclaurin series of `erf` below 2, Lentz's

@@ -7,7 +7,7 @@ use crate::selfcheck;
 use glam::DVec3;
 use softshadow::reference::bvh::Bvh;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
-use softshadow::reference::stats::{sidak, student_t_two_sided_quantile};
+use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
 use softshadow::reference::{exact, Occluders};
 use softshadow::scene::{builtin, Scene};
 use std::process::ExitCode;
@@ -88,9 +88,8 @@ fn references(scene: &Scene) -> bool {
     let exact_per = exact_seconds / grid.len().max(1) as f64;
     let penumbra_per = penumbra_seconds / points.len().max(1) as f64;
     // Tolerance: Student's t with K − 1 degrees of freedom (the standard
-    // error comes from K replicates), Šidák-corrected over the receivers;
-    // plus 1/N, the estimate's resolution, which is all a zero standard
-    // error (every replicate alike) can claim.
+    // error comes from K replicates), Šidák-corrected over the receivers
+    // (one replicate's resolution where the standard error is zero).
     let q = student_t_two_sided_quantile(sidak(ALPHA, points.len().max(1)), REPLICATES - 1);
     let mut worst: f64 = 0.0;
     let mut disagree = 0;
@@ -99,7 +98,7 @@ fn references(scene: &Scene) -> bool {
             disagree += 1;
             continue;
         };
-        let allowed = q * m.stderr + 1.0 / f64::from(SAMPLES);
+        let allowed = agreement_tolerance(m, SAMPLES, q);
         let d = (m.visibility - e).abs();
         worst = worst.max(d / allowed);
         disagree += usize::from(d > allowed);
@@ -124,7 +123,7 @@ fn references(scene: &Scene) -> bool {
         penumbra_per / mc_per
     );
     println!(
-        "  agreement: largest |mc − exact| is {worst:.2} of its tolerance (t·stderr + 1/N, t = {q:.2} for a family-wise false-failure rate {ALPHA}); {disagree} disagree"
+        "  agreement: largest |mc − exact| is {worst:.2} of its tolerance (t·stderr, t = {q:.2} for a family-wise false-failure rate {ALPHA}); {disagree} disagree"
     );
     errors == 0 && disagree == 0 && !points.is_empty()
 }
