@@ -14,11 +14,13 @@
 # 100,820-triangle closed geodesic sphere; 1M floor-to-area-light rays each;
 # format in that file) to outdir (default target/ray_corpus), times ours on
 # 2 threads and writes our per-ray answers; then `benches/embree_compare.py`
-# times Embree on the same rays (2 threads; default and robust scene flags)
-# and compares per-ray answers. Both report the median of 7 repetitions after
-# a warm-up. Environment: RAYS (rays per scene, default 1000000), SEED
-# (default 2026), REPS (Embree repetitions, default 7), plus the usual
-# CARGO_TARGET_DIR.
+# times Embree on the same rays (2 worker processes, as embreex does not
+# release the GIL for long; default and robust scene flags) and compares the
+# per-ray answers. Both report the median of 7 repetitions after a warm-up;
+# both also measure CPU time, since rays per CPU-second is the steadier
+# figure when other work shares the cores. Environment: RAYS (rays per scene,
+# default 1000000), SEED (default 2026), REPS (Embree repetitions, default
+# 7), plus the usual CARGO_TARGET_DIR.
 set -euo pipefail
 
 cd "$(dirname "$0")/.."
@@ -45,7 +47,8 @@ echo "== Embree: $VENV/bin/python benches/embree_compare.py $OUTDIR --reps $REPS
 echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"
 
 echo
-echo "Embree $(awk '/^EMBREE_VERSION/ {print $2}' "$LOG/embree.txt"); 2 threads each; rays/s from the median of the repetitions"
+echo "Embree $(awk '/^EMBREE_VERSION/ {print $2}' "$LOG/embree.txt"); 2 threads (ours) / 2 processes (Embree);"
+echo "Mrays/s from the median wall time, Mrays/CPU-s from the median CPU time of the repetitions"
 echo
 awk '
     function field(line, key,    n, i, kv, parts) {
@@ -61,21 +64,24 @@ awk '
         scene = field($0, "scene")
         if (file == 1) {
             ours[scene] = field($0, "rays_per_s"); ourhits[scene] = field($0, "hits")
+            ourcpu[scene] = field($0, "rays_per_cpu_s")
         } else {
             row++
             rs[row] = scene; mode[row] = field($0, "mode")
             emb[row] = field($0, "rays_per_s"); embhits[row] = field($0, "hits")
-            dis[row] = field($0, "disagree")
+            dis[row] = field($0, "disagree"); embcpu[row] = field($0, "rays_per_cpu_s")
         }
     }
     END {
-        printf "| scene | Embree scene flags | ours Mrays/s | Embree Mrays/s | Embree ÷ ours | occluded (ours) | occluded (Embree) | disagreeing rays |\n"
-        printf "|---|---|---|---|---|---|---|---|\n"
+        printf "| scene | Embree scene flags | ours Mrays/s | Embree Mrays/s | Embree ÷ ours | ours Mrays/CPU-s | Embree Mrays/CPU-s | Embree ÷ ours (CPU) | occluded (ours) | occluded (Embree) | disagreeing rays |\n"
+        printf "|---|---|---|---|---|---|---|---|---|---|---|\n"
         for (i = 1; i <= row; i++) {
             s = rs[i]
-            o = ours[s] + 0
-            printf "| %s | %s | %.3f | %.3f | %s | %s | %s | %s |\n", s, mode[i], o / 1e6, emb[i] / 1e6,
-                (o > 0 ? sprintf("%.2f", emb[i] / o) : "-"), ourhits[s], embhits[i], (dis[i] == "" ? "-" : dis[i])
+            o = ours[s] + 0; oc = ourcpu[s] + 0; ec = embcpu[i] + 0
+            printf "| %s | %s | %.3f | %.3f | %s | %.3f | %.3f | %s | %s | %s | %s |\n", s, mode[i],
+                o / 1e6, emb[i] / 1e6, (o > 0 ? sprintf("%.2f", emb[i] / o) : "-"),
+                oc / 1e6, ec / 1e6, (oc > 0 ? sprintf("%.2f", ec / oc) : "-"),
+                ourhits[s], embhits[i], (dis[i] == "" ? "-" : dis[i])
         }
     }
 ' "$LOG/ours.txt" "$LOG/embree.txt"

@@ -51,8 +51,11 @@
 //! The BVH is built once (its build time is printed); then, on a rayon pool
 //! of exactly 2 threads, `segment_unoccluded` runs over all rays
 //! (`par_chunks` of 4096 rays, one result byte written per ray) once to warm
-//! up and 7 more times; the median wall time gives rays/s. One line per
-//! scene starting with `RESULT` is meant for scripts.
+//! up and 7 more times; the median wall time gives rays/s. As the machine
+//! may be shared, the CPU time of the process over each repetition (Linux
+//! schedstat, all threads) is measured too: rays per CPU-second is the less
+//! noisy measure of per-ray cost when other work competes for the cores.
+//! One line per scene starting with `RESULT` is meant for scripts.
 
 use glam::DVec3;
 use rayon::prelude::*;
@@ -253,6 +256,18 @@ fn write_corpus(
     w.flush()
 }
 
+/// CPU time consumed so far by all threads of this process, in
+/// nanoseconds (Linux: the first field of `/proc/self/task/*/schedstat`);
+/// `None` where that is unavailable.
+fn cpu_ns() -> Option<u64> {
+    let mut total = 0;
+    for entry in fs::read_dir("/proc/self/task").ok()? {
+        let text = fs::read_to_string(entry.ok()?.path().join("schedstat")).ok()?;
+        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(total)
+}
+
 fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
@@ -301,6 +316,7 @@ fn main() {
         let segments: Vec<(DVec3, DVec3)> = origins.into_iter().zip(ends).collect();
         let mut occluded = vec![0u8; count];
         let run = |occluded: &mut [u8]| {
+            let cpu = cpu_ns();
             let start = Instant::now();
             pool.install(|| {
                 occluded
@@ -312,29 +328,40 @@ fn main() {
                         }
                     });
             });
-            start.elapsed().as_secs_f64()
+            let wall = start.elapsed().as_secs_f64();
+            (wall, cpu_ns().zip(cpu).map(|(b, a)| (b - a) as f64 * 1e-9))
         };
         for _ in 0..WARMUPS {
             run(&mut occluded);
         }
-        let times: Vec<f64> = (0..REPETITIONS).map(|_| run(&mut occluded)).collect();
+        let (times, cpus): (Vec<f64>, Vec<Option<f64>>) =
+            (0..REPETITIONS).map(|_| run(&mut occluded)).unzip();
+        let cpu = cpus.into_iter().collect::<Option<Vec<f64>>>().map(median);
         let hits = occluded.iter().filter(|&&o| o == 1).count();
         let secs = median(times.clone());
         let rate = count as f64 / secs;
         fs::write(outdir.join(format!("{name}.ours.occluded")), &occluded).expect("write results");
         println!(
             "{name}: occluded {hits} of {count} ({:.2}%), median {:.1} ms over {REPETITIONS} \
-             (min {:.1}, max {:.1}) on {THREADS} threads: {:.3} Mrays/s",
+             (min {:.1}, max {:.1}) on {THREADS} threads: {:.3} Mrays/s; CPU time {}",
             100.0 * hits as f64 / count as f64,
             secs * 1e3,
             times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
             times.iter().copied().fold(0.0, f64::max) * 1e3,
-            rate / 1e6
+            rate / 1e6,
+            cpu.map_or("unknown".into(), |c| format!(
+                "{:.1} ms: {:.3} Mrays per CPU-second",
+                c * 1e3,
+                count as f64 / c / 1e6
+            ))
         );
         println!(
             "RESULT scene={name} triangles={} rays={count} hits={hits} median_s={secs:.6} \
-             rays_per_s={rate:.0} threads={THREADS}",
-            bvh.occluders().len()
+             min_s={:.6} rays_per_s={rate:.0} cpu_s={} rays_per_cpu_s={} threads={THREADS}",
+            bvh.occluders().len(),
+            times.iter().copied().fold(f64::INFINITY, f64::min),
+            cpu.map_or("-".into(), |c| format!("{c:.6}")),
+            cpu.map_or("-".into(), |c| format!("{:.0}", count as f64 / c)),
         );
     }
 }

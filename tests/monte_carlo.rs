@@ -223,6 +223,28 @@ fn empty_bvh_occludes_nothing() {
     assert!(out.is_empty());
 }
 
+/// The contract of `segment_blocked`, written directly on Shewchuk's
+/// predicates (the `robust` crate): an independent implementation.
+fn blocked_by_spec(p: DVec3, x: DVec3, t: &[DVec3; 3]) -> bool {
+    let q = |v: DVec3| robust::Coord3D {
+        x: v.x,
+        y: v.y,
+        z: v.z,
+    };
+    let o = |a: DVec3, b: DVec3, c: DVec3, d: DVec3| {
+        let v = robust::orient3d(q(a), q(b), q(c), q(d));
+        i32::from(v > 0.0) - i32::from(v < 0.0)
+    };
+    let [a, b, c] = *t;
+    let (sp, sx) = (o(a, b, c, p), o(a, b, c, x));
+    let e = [o(p, x, a, b), o(p, x, b, c), o(p, x, c, a)];
+    let opposite = |s: i32, t: i32| s * t < 0;
+    sp != 0
+        && sx == -sp
+        && !(opposite(e[0], e[1]) || opposite(e[1], e[2]) || opposite(e[0], e[2]))
+        && e != [0, 0, 0]
+}
+
 // ---------------------------------------------------------------------
 // The traversal against brute force.
 
@@ -301,6 +323,9 @@ proptest! {
             ends.push((p, t[(rng.below(3)) as usize]));
         }
         for (p, x) in ends {
+            for t in &triangles {
+                prop_assert_eq!(segment_blocked(p, x, t), blocked_by_spec(p, x, t));
+            }
             let brute = !triangles.iter().any(|t| segment_blocked(p, x, t));
             prop_assert_eq!(b.segment_unoccluded(p, x), brute, "p {:?} x {:?}", p, x);
         }
