@@ -59,5 +59,8 @@ fn exact_agrees_with_monte_carlo_on_random_scenes() {
         assert!((0.0..=1.0).contains(&e));
     }
     // The generator must actually produce penumbrae, or the test is idle.
-    assert!(penumbra * 3 >= cases, "only {penumbra} of {cases} in a penumbra");
+    assert!(
+        penumbra * 3 >= cases,
+        "only {penumbra} of {cases} in a penumbra"
+    );
 }

@@ -22,6 +22,10 @@ use softshadow::reference::bvh::{segment_blocked, Bvh};
 use softshadow::reference::monte_carlo::{
     visibility, visibility_many, Error, Estimate, Options, REPLICATES,
 };
+use softshadow::reference::stats::{
+    normal_two_sided_quantile as z_quantile, sidak, student_t_coverage as t_coverage,
+    student_t_two_sided_quantile as t_quantile,
+};
 use softshadow::reference::Occluders;
 use softshadow::scene::{Light, ReceiverError};
 use std::f64::consts::PI;
@@ -35,86 +39,6 @@ fn v3(x: f64, y: f64, z: f64) -> DVec3 {
 
 fn bvh(triangles: Vec<[DVec3; 3]>) -> Bvh {
     Bvh::new(Occluders::from_triangles(triangles))
-}
-
-/// `P(|T| < t)` for Student's `t` with `nu` degrees of freedom (Abramowitz
-/// and Stegun 26.7.3–4, finite sums).
-fn t_coverage(t: f64, nu: u32) -> f64 {
-    let theta = (t / f64::from(nu).sqrt()).atan();
-    let (s, c) = theta.sin_cos();
-    if nu % 2 == 1 {
-        // θ + sin θ (cos θ + (2/3) cos³θ + … + (2·4⋯(ν−3))/(1·3⋯(ν−2)) cos^(ν−2) θ)
-        let (mut sum, mut term) = (0.0, c);
-        if nu > 1 {
-            sum = c;
-            for k in 1..=(nu - 3) / 2 {
-                term *= c * c * f64::from(2 * k) / f64::from(2 * k + 1);
-                sum += term;
-            }
-        }
-        2.0 / PI * (theta + s * sum)
-    } else {
-        let (mut sum, mut term) = (1.0, 1.0);
-        for k in 1..=(nu - 2) / 2 {
-            term *= c * c * f64::from(2 * k - 1) / f64::from(2 * k);
-            sum += term;
-        }
-        s * sum
-    }
-}
-
-/// The two-sided Student-t quantile: `P(|T| < q) = 1 − alpha`.
-fn t_quantile(alpha: f64, nu: u32) -> f64 {
-    let (mut lo, mut hi) = (0.0, 1e6);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if t_coverage(mid, nu) < 1.0 - alpha {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    hi
-}
-
-/// `erfc` (Numerical Recipes' Chebyshev fit, relative error < 1.2e-7).
-fn erfc(x: f64) -> f64 {
-    let z = x.abs();
-    let t = 1.0 / (1.0 + 0.5 * z);
-    let poly = -z * z - 1.265_512_23
-        + t * (1.000_023_68
-            + t * (0.374_091_96
-                + t * (0.096_784_18
-                    + t * (-0.186_288_06
-                        + t * (0.278_868_07
-                            + t * (-1.135_203_98
-                                + t * (1.488_515_87 + t * (-0.822_152_23 + t * 0.170_872_77))))))));
-    let r = t * poly.exp();
-    if x >= 0.0 {
-        r
-    } else {
-        2.0 - r
-    }
-}
-
-/// The two-sided standard normal quantile: `P(|Z| < q) = 1 − alpha`.
-fn z_quantile(alpha: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0, 40.0);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if erfc(mid / 2f64.sqrt()) > alpha {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    hi
-}
-
-/// Šidák: the per-check level keeping the family-wise level at `alpha`
-/// over `checks` independent checks.
-fn sidak(alpha: f64, checks: usize) -> f64 {
-    1.0 - (1.0 - alpha).powf(1.0 / checks as f64)
 }
 
 /// Asserts `|estimate − exact| ≤ q · stderr`.
@@ -650,14 +574,4 @@ fn stderr_is_calibrated() {
         "coverage {fraction} vs expected {expected} ± {}",
         z * sd
     );
-}
-
-#[test]
-fn statistics_helpers_are_right() {
-    // Known values: t₁ is Cauchy (P(|T| < 1) = 1/2), t₂: P(|T| < t) =
-    // t/√(2 + t²); the normal's 97.5 % point.
-    assert!((t_coverage(1.0, 1) - 0.5).abs() < 1e-15);
-    assert!((t_coverage(1.5, 2) - 1.5 / (2.0 + 2.25f64).sqrt()).abs() < 1e-15);
-    assert!((t_quantile(0.05, 15) - 2.131_449_5).abs() < 1e-6);
-    assert!((z_quantile(0.05) - 1.959_964).abs() < 1e-5);
 }

@@ -5,11 +5,11 @@
 mod support;
 
 use glam::{DVec2, DVec3};
-use support::Big;
 use proptest::prelude::*;
 use robust::{Coord, Coord3D};
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::predicate::{orient2d, orient2d_value, orient3d, Sign};
+use support::Big;
 
 fn shewchuk2(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     let p = |v: DVec2| Coord { x: v.x, y: v.y };

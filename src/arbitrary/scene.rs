@@ -48,12 +48,24 @@ fn light(rng: &mut Rng, c: DVec3, s: f64) -> Light {
             Light::disk(c, n, s)
         }
         4 | 5 => {
-            let u = DVec3::new(rng.uniform(0.3, 1.0), rng.uniform(-0.5, 0.5), rng.uniform(-0.2, 0.2)) * s;
-            let v = DVec3::new(rng.uniform(-0.5, 0.5), rng.uniform(0.3, 1.0), rng.uniform(-0.2, 0.2)) * s;
+            let u = DVec3::new(
+                rng.uniform(0.3, 1.0),
+                rng.uniform(-0.5, 0.5),
+                rng.uniform(-0.2, 0.2),
+            ) * s;
+            let v = DVec3::new(
+                rng.uniform(-0.5, 0.5),
+                rng.uniform(0.3, 1.0),
+                rng.uniform(-0.2, 0.2),
+            ) * s;
             Light::rect(c, u, v)
         }
         6 | 7 => {
-            let d = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-0.3, 0.3));
+            let d = DVec3::new(
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-0.3, 0.3),
+            );
             Light::segment(c - d * s, c + d * s)
         }
         _ => Light::point(c),
@@ -67,7 +79,11 @@ pub fn visibility_case(rng: &mut Rng, triangles: usize) -> VisibilityCase {
     let size = rng.log_uniform(-1.0, 0.2);
     let c = DVec3::new(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), height);
     let light = light(rng, c, size);
-    let receiver = DVec3::new(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5), rng.uniform(-0.2, 0.2));
+    let receiver = DVec3::new(
+        rng.uniform(-0.5, 0.5),
+        rng.uniform(-0.5, 0.5),
+        rng.uniform(-0.2, 0.2),
+    );
     let count = 1 + rng.below(triangles.max(1) as u64) as usize;
     let mut out: Vec<[DVec3; 3]> = Vec::with_capacity(count + 4);
     while out.len() < count {
@@ -117,7 +133,11 @@ pub fn visibility_case(rng: &mut Rng, triangles: usize) -> VisibilityCase {
             5 => {
                 // Edge-on: the receiver in the triangle's plane.
                 let a = q + e0;
-                out.push([receiver + (a - receiver) * 0.5, a, q + (q - receiver) * 0.25]);
+                out.push([
+                    receiver + (a - receiver) * 0.5,
+                    a,
+                    q + (q - receiver) * 0.25,
+                ]);
             }
             _ => out.push([q - e0, q + e0, q + e1]),
         }

@@ -139,7 +139,13 @@ pub fn visibility_with(
             // A square around the disk, with margin, so that clipping
             // happens well outside the disk.
             let half = 1.5 * radius;
-            let view = View::new(p, center, [t * half, b * half], Plane2d::Ortho { t, b }, half);
+            let view = View::new(
+                p,
+                center,
+                [t * half, b * half],
+                Plane2d::Ortho { t, b },
+                half,
+            );
             let covered = view.covered_area(bvh, scratch, Measure::Disk(radius));
             1.0 - covered / (PI * radius * radius)
         }
@@ -289,7 +295,11 @@ impl View {
         for k in 0..4 {
             let m = rel[k].cross(rel[(k + 1) % 4]);
             // Inward: toward the opposite corner.
-            let m = if m.dot(rel[(k + 2) % 4]) >= 0.0 { m } else { -m };
+            let m = if m.dot(rel[(k + 2) % 4]) >= 0.0 {
+                m
+            } else {
+                -m
+            };
             planes[k] = (m, 0.0);
         }
         // Stop at the light's plane: keep w · d ≤ depth.
@@ -675,7 +685,13 @@ fn segment_visibility(bvh: &Bvh, p: DVec3, a: DVec3, b: DVec3, scratch: &mut Scr
 
 /// The interval of the segment light's parameter `s ∈ [0, 1]` (the point
 /// `a + s (b − a)`) that the triangle blocks from `p`; `n = (a−p) × (b−p)`.
-fn blocked_interval(p: DVec3, a: DVec3, b: DVec3, n: DVec3, tri: &[DVec3; 3]) -> Option<(f64, f64)> {
+fn blocked_interval(
+    p: DVec3,
+    a: DVec3,
+    b: DVec3,
+    n: DVec3,
+    tri: &[DVec3; 3],
+) -> Option<(f64, f64)> {
     if !tri.iter().all(|v| v.is_finite()) {
         return None;
     }
@@ -745,7 +761,13 @@ fn blocked_interval(p: DVec3, a: DVec3, b: DVec3, n: DVec3, tri: &[DVec3; 3]) ->
 /// A receiver on the segment light's line (but not on the light): every
 /// open segment `(p, x)` lies on that line, and `x` is blocked beyond the
 /// first crossing.
-fn collinear_segment_visibility(bvh: &Bvh, p: DVec3, a: DVec3, b: DVec3, candidates: &[u32]) -> f64 {
+fn collinear_segment_visibility(
+    bvh: &Bvh,
+    p: DVec3,
+    a: DVec3,
+    b: DVec3,
+    candidates: &[u32],
+) -> f64 {
     let (near, far) = if (a - p).length_squared() <= (b - p).length_squared() {
         (a, b)
     } else {
@@ -808,4 +830,3 @@ impl Sum {
         self.sum + self.c
     }
 }
-

@@ -158,6 +158,10 @@ mod tests {
         // back: (1 − a_k)^k = 1 − a.
         assert!((sidak(0.01, 1) - 0.01).abs() < 1e-17);
         assert!(((1.0 - sidak(0.01, 1000)).powi(1000) - 0.99).abs() < 1e-12);
+        // Closed forms: t₁ is Cauchy (P(|T| < 1) = 1/2); for t₂,
+        // P(|T| < t) = t/√(2 + t²).
+        assert!((student_t_coverage(1.0, 1) - 0.5).abs() < 1e-15);
+        assert!((student_t_coverage(1.5, 2) - 1.5 / (2.0 + 2.25f64).sqrt()).abs() < 1e-15);
         assert_eq!(erfc(0.0), 1.0);
         assert!((erfc(-1.0) - 1.842_700_792_949_715).abs() < 1e-15);
         assert!((erfc(3.0) - 2.209_049_699_858_544e-5).abs() < 1e-19);

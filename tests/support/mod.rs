@@ -166,66 +166,7 @@ impl Ctx {
     }
 }
 
-/// The two-sided standard-normal quantile `z` with `P(|Z| > z) = alpha`,
-/// by bisection on `erfc` (Abramowitz–Stegun 7.1.26 is too coarse far in the
-/// tail, so `erfc` is integrated by its continued fraction).
-pub fn normal_two_sided_quantile(alpha: f64) -> f64 {
-    let (mut lo, mut hi) = (0.0f64, 40.0f64);
-    for _ in 0..200 {
-        let mid = 0.5 * (lo + hi);
-        if erfc(mid / std::f64::consts::SQRT_2) > alpha {
-            lo = mid;
-        } else {
-            hi = mid;
-        }
-    }
-    0.5 * (lo + hi)
-}
-
-/// The Šidák-corrected per-test significance that keeps the family-wise
-/// false-failure rate at `alpha` over `tests` independent tests.
-pub fn sidak(alpha: f64, tests: usize) -> f64 {
-    // 1 − (1 − α)^(1/k), without cancellation.
-    -((-alpha).ln_1p() / tests as f64).exp_m1()
-}
-
-/// Complementary error function, accurate to ~1e-15 relative for `x ≥ 0`
-/// (series below 2, Lentz continued fraction above).
-pub fn erfc(x: f64) -> f64 {
-    if x < 2.0 {
-        // erf by its Maclaurin series: Σ (−1)^n x^(2n+1) / (n! (2n+1)).
-        let mut term = x;
-        let mut sum = x;
-        let mut n = 0.0;
-        loop {
-            n += 1.0;
-            term *= -x * x / n;
-            let add = term / (2.0 * n + 1.0);
-            sum += add;
-            if add.abs() < 1e-18 * sum.abs() {
-                break;
-            }
-        }
-        1.0 - sum * 2.0 / std::f64::consts::PI.sqrt()
-    } else {
-        // erfc(x) = exp(−x²)/√π · 1/(x + 1/2/(x + 1/(x + 3/2/(x + …)))).
-        let tiny = 1e-300;
-        let mut f = x;
-        let mut c = x;
-        let mut d = 0.0;
-        for k in 1..500 {
-            let a = k as f64 / 2.0;
-            d = x + a * d;
-            d = if d.abs() < tiny { tiny } else { d };
-            c = x + a / c;
-            c = if c.abs() < tiny { tiny } else { c };
-            d = 1.0 / d;
-            let delta = c * d;
-            f *= delta;
-            if (delta - 1.0).abs() < 1e-16 {
-                break;
-            }
-        }
-        (-x * x).exp() / std::f64::consts::PI.sqrt() / f
-    }
-}
+// The statistics (normal and Student-t quantiles, Šidák) live in the
+// library, shared with the `check` command.
+#[allow(unused_imports)]
+pub use softshadow::reference::stats::{normal_two_sided_quantile, sidak};

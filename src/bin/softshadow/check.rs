@@ -41,8 +41,16 @@ pub fn run() -> ExitCode {
 /// the occluders (every mesh but the floor, mesh 0) cast from the light's
 /// centre.
 fn floor_receivers(scene: &Scene) -> Vec<DVec3> {
-    let occluders: Vec<_> = scene.meshes().iter().skip(1).filter_map(|m| m.bounds()).collect();
-    let Some((lo, hi)) = occluders.into_iter().reduce(|(a, b), (c, d)| (a.min(c), b.max(d))) else {
+    let occluders: Vec<_> = scene
+        .meshes()
+        .iter()
+        .skip(1)
+        .filter_map(|m| m.bounds())
+        .collect();
+    let Some((lo, hi)) = occluders
+        .into_iter()
+        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+    else {
         return Vec::new();
     };
     let c = scene.light().center();

@@ -18,7 +18,11 @@ use clap::{Parser, Subcommand};
 use std::process::ExitCode;
 
 #[derive(Parser)]
-#[command(name = "softshadow", version, about = "Soft-shadow kernels, references and methods")]
+#[command(
+    name = "softshadow",
+    version,
+    about = "Soft-shadow kernels, references and methods"
+)]
 struct Cli {
     #[command(subcommand)]
     command: Option<Command>,

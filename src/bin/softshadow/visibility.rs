@@ -110,7 +110,10 @@ pub fn run(args: &Args) -> Result<(), String> {
         let base = c * chunk;
         match args.method {
             Method::Exact => {
-                for (k, r) in exact::visibility_many(&bvh, light, block).into_iter().enumerate() {
+                for (k, r) in exact::visibility_many(&bvh, light, block)
+                    .into_iter()
+                    .enumerate()
+                {
                     visibility.push(r.map_err(|e| fail(base + k, &e))?);
                 }
             }
