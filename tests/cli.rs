@@ -1,15 +1,345 @@
-//! The main job (`softshadow` with no arguments) runs, and every kernel in
-//! its self-check is within its budget of the closed form.
+//! The command-line program: the default run (kernel self-check and the
+//! references on the default scene) passes, `visibility` prints the JSON of
+//! DESIGN §8 with answers that agree with the library, and every kind of
+//! bad input ends with one line naming the file, the place and the field,
+//! exit status 2, nothing on stdout and no panic.
 
-use std::process::Command;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output};
+
+fn softshadow(args: &[&str]) -> Output {
+    Command::new(env!("CARGO_BIN_EXE_softshadow"))
+        .args(args)
+        .output()
+        .expect("the softshadow binary runs")
+}
+
+/// A fresh directory for one test's files.
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("softshadow-cli-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_owned()
+}
+
+/// Runs `visibility`, expects bad input: exit 2, one line on stderr that
+/// contains every one of `needles`, nothing on stdout.
+fn rejects(args: &[&str], needles: &[&str]) {
+    let out = softshadow(args);
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
+    assert!(out.stdout.is_empty(), "{args:?}: partial output");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    for n in needles {
+        assert!(stderr.contains(n), "{args:?}: {stderr:?} lacks {n:?}");
+    }
+}
+
+const POINTS: &str =
+    r#"{"points": [{"p": [0.2, 0.0, 0.1]}, {"p": [-0.3, 0.0, -0.4], "object": 0}]}"#;
+
+fn scene_with_light(light: &str) -> String {
+    format!(
+        r#"{{"light": {light}, "meshes": [{{"name": "card", "positions": [[-1,1,-1],[1,1,-1],[0,1,1]], "triangles": [[0,1,2]]}}]}}"#
+    )
+}
 
 #[test]
 fn default_run_passes_its_self_check() {
-    let out = Command::new(env!("CARGO_BIN_EXE_softshadow"))
-        .output()
-        .expect("the softshadow binary runs");
+    let out = softshadow(&[]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "exit {:?}\n{stdout}", out.status);
     assert!(stdout.contains(" 0 over budget"), "{stdout}");
+    assert!(stdout.contains("; 0 disagree"), "{stdout}");
     assert!(!stdout.contains("NaN"), "{stdout}");
+}
+
+#[test]
+fn visibility_prints_the_json_of_the_design() {
+    let d = dir("json");
+    let points = write(&d, "points.json", POINTS);
+    for method in ["exact", "mc:256"] {
+        let out = softshadow(&[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &points,
+            "--method",
+            method,
+        ]);
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        assert_eq!(json["method"], method);
+        let v = json["visibility"].as_array().unwrap();
+        assert_eq!(v.len(), 2);
+        assert!(v.iter().all(|x| (0.0..=1.0).contains(&x.as_f64().unwrap())));
+        assert!(json["seconds"].as_f64().unwrap() >= 0.0);
+        assert_eq!(json.get("stderr").is_some(), method != "exact", "{json}");
+    }
+}
+
+#[test]
+fn visibility_answers_match_the_library() {
+    // A card at height 1 between a sphere light and two receivers: the
+    // CLI's exact answer, through the scene file, the points file and the
+    // JSON printer, is the library's, bit for bit.
+    let d = dir("match");
+    let scene = write(
+        &d,
+        "scene.json",
+        &scene_with_light(r#"{"type": "sphere", "center": [0, 3, 0], "radius": 0.5}"#),
+    );
+    let points = write(
+        &d,
+        "points.json",
+        r#"{"points": [{"p": [0, 0, 0]}, {"p": [0.1, 0, -0.2]}]}"#,
+    );
+    let out = softshadow(&[
+        "visibility",
+        "--scene",
+        &scene,
+        "--points",
+        &points,
+        "--method",
+        "exact",
+    ]);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let got: Vec<f64> = json["visibility"]
+        .as_array()
+        .unwrap()
+        .iter()
+        .map(|x| x.as_f64().unwrap())
+        .collect();
+
+    use glam::DVec3;
+    use softshadow::reference::{bvh::Bvh, exact, Occluders};
+    use softshadow::scene::{Light, Mesh, Scene};
+    let mesh = Mesh::new(
+        vec![
+            DVec3::new(-1.0, 1.0, -1.0),
+            DVec3::new(1.0, 1.0, -1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).unwrap();
+    let scene = Scene::new(light).with_mesh("card", mesh);
+    let bvh = Bvh::new(Occluders::from_scene(&scene));
+    for (k, p) in [DVec3::ZERO, DVec3::new(0.1, 0.0, -0.2)]
+        .into_iter()
+        .enumerate()
+    {
+        assert_eq!(got[k], exact::visibility(&bvh, &light, p).unwrap());
+    }
+}
+
+#[test]
+fn bad_scene_files_are_one_line_errors() {
+    let d = dir("scenes");
+    let points = write(&d, "points.json", POINTS);
+    let cases: &[(&str, &str, &[&str])] = &[
+        (
+            "malformed.json",
+            r#"{"light": {"type": "point""#,
+            &["malformed.json:1:"],
+        ),
+        ("empty.json", "", &["empty.json", "empty"]),
+        (
+            "huge.json",
+            &scene_with_light(r#"{"type": "point", "position": [0, 1e999, 0]}"#),
+            &["huge.json:1:"],
+        ),
+        (
+            "negative.json",
+            &scene_with_light(r#"{"type": "sphere", "center": [0, 3, 0], "radius": -1}"#),
+            &["negative.json", "light.radius", "-1"],
+        ),
+        (
+            "zero.json",
+            &scene_with_light(
+                r#"{"type": "disk", "center": [0, 3, 0], "normal": [0, -1, 0], "radius": 0}"#,
+            ),
+            &["zero.json", "light.radius"],
+        ),
+        (
+            "unknown.json",
+            &scene_with_light(r#"{"type": "spot", "position": [0, 3, 0]}"#),
+            &["unknown.json", "light.type", "spot"],
+        ),
+        (
+            "degenerate.json",
+            &scene_with_light(r#"{"type": "segment", "a": [0, 3, 0], "b": [0, 3, 0]}"#),
+            &["degenerate.json", "light"],
+        ),
+        (
+            "arity.json",
+            &scene_with_light(r#"{"type": "point", "position": [0, 3]}"#),
+            &["arity.json", "light.position"],
+        ),
+        (
+            "index.json",
+            r#"{"light": {"type": "point", "position": [0, 3, 0]}, "meshes": [{"positions": [[0,0,0],[1,0,0],[0,0,1]], "triangles": [[0,1,3]]}]}"#,
+            &["index.json", "meshes[0].triangles[0][2]", "3"],
+        ),
+    ];
+    for (name, text, needles) in cases {
+        let scene = write(&d, name, text);
+        rejects(
+            &[
+                "visibility",
+                "--scene",
+                &scene,
+                "--points",
+                &points,
+                "--method",
+                "exact",
+            ],
+            needles,
+        );
+    }
+}
+
+#[test]
+fn bad_points_and_arguments_are_one_line_errors() {
+    let d = dir("points");
+    let inside = write(
+        &d,
+        "inside.json",
+        r#"{"points": [{"p": [0, 0, 0]}, {"p": [1.5, 3.5, 2.1]}]}"#,
+    );
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &inside,
+            "--method",
+            "exact",
+        ],
+        &["inside.json", "points[1].p", "inside the sphere light"],
+    );
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &inside,
+            "--method",
+            "mc:64",
+        ],
+        &["inside.json", "points[1].p", "inside the sphere light"],
+    );
+    let missing = d.join("missing.json");
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            missing.to_str().unwrap(),
+            "--method",
+            "exact",
+        ],
+        &["missing.json"],
+    );
+    let object = write(
+        &d,
+        "object.json",
+        r#"{"points": [{"p": [0, 0, 0], "object": 7}]}"#,
+    );
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &object,
+            "--method",
+            "exact",
+        ],
+        &["object.json", "points[0].object", "7"],
+    );
+    let nan = write(&d, "nan.json", r#"{"points": [{"p": [0, "NaN", 0]}]}"#);
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &nan,
+            "--method",
+            "exact",
+        ],
+        &["nan.json", "points[0].p[1]"],
+    );
+    let empty = write(&d, "empty.json", "");
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &empty,
+            "--method",
+            "exact",
+        ],
+        &["empty.json"],
+    );
+    let ok = write(&d, "ok.json", POINTS);
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "nowhere",
+            "--points",
+            &ok,
+            "--method",
+            "exact",
+        ],
+        &["nowhere", "default"],
+    );
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &ok,
+            "--method",
+            "mc:1",
+        ],
+        &["mc:1"],
+    );
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &ok,
+            "--method",
+            "sism",
+        ],
+        &["sism"],
+    );
 }

@@ -15,6 +15,7 @@ mod selfcheck;
 mod visibility;
 
 use clap::{Parser, Subcommand};
+
 use std::process::ExitCode;
 
 #[derive(Parser)]
@@ -41,7 +42,29 @@ enum Command {
 const BAD_INPUT: u8 = 2;
 
 fn main() -> ExitCode {
-    let cli = Cli::parse();
+    let cli = match Cli::try_parse() {
+        Ok(cli) => cli,
+        Err(e) => {
+            use clap::error::ErrorKind;
+            if matches!(e.kind(), ErrorKind::DisplayHelp | ErrorKind::DisplayVersion)
+                || matches!(
+                    e.kind(),
+                    ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
+                )
+            {
+                e.exit();
+            }
+            // One line, as for every other bad input (clap's own message
+            // adds a usage block and a hint).
+            let text = e.to_string();
+            let first = text.lines().next().unwrap_or("bad arguments");
+            eprintln!(
+                "softshadow: {} (see softshadow --help)",
+                first.trim_start_matches("error: ")
+            );
+            return ExitCode::from(BAD_INPUT);
+        }
+    };
     match cli.command.unwrap_or(Command::Check) {
         Command::Check => check::run(),
         Command::Visibility(args) => match visibility::run(&args) {
