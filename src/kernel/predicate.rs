@@ -102,12 +102,16 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return Sign::Zero;
     }
-    let detleft = (a.x - c.x) * (b.y - c.y);
-    let detright = (a.y - c.y) * (b.x - c.x);
+    let (acx, bcy, acy, bcx) = (a.x - c.x, b.y - c.y, a.y - c.y, b.x - c.x);
+    let detleft = acx * bcy;
+    let detright = acy * bcx;
     let det = detleft - detright;
     let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs());
     if det > bound || -det > bound {
         return Sign::of(det);
+    }
+    if exact_zero(acx, bcy, acy, bcx) {
+        return Sign::Zero;
     }
     orient2d_exact(a, b, c)
 }
@@ -124,13 +128,17 @@ pub fn orient2d_value(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return 0.0;
     }
-    let detleft = (a.x - c.x) * (b.y - c.y);
-    let detright = (a.y - c.y) * (b.x - c.x);
+    let (acx, bcy, acy, bcx) = (a.x - c.x, b.y - c.y, a.y - c.y, b.x - c.x);
+    let detleft = acx * bcy;
+    let detright = acy * bcx;
     let det = detleft - detright;
     // |det − exact| ≤ bound, so the relative error is below 2⁻⁴⁰ here.
     let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) * (1u64 << 40) as f64;
     if det > bound || -det > bound {
         return det;
+    }
+    if exact_zero(acx, bcy, acy, bcx) {
+        return 0.0;
     }
     orient2d_expansion(a, b, c).approximate()
 }
@@ -239,6 +247,16 @@ impl<const N: usize> Expansion<N> {
             Sign::of(self.terms[self.len - 1])
         }
     }
+}
+
+/// Whether `acx·bcy − acy·bcx` is exactly zero because a factor of each
+/// product is: a computed difference is zero only when its operands are
+/// equal (gradual underflow), so this holds for the exact differences too.
+/// The common degenerate case — a shared vertex, `a = c` or `b = c` — and
+/// axis-aligned collinear points skip the expansion.
+#[inline]
+fn exact_zero(acx: f64, bcy: f64, acy: f64, bcx: f64) -> bool {
+    (acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0)
 }
 
 /// An exact difference `a − b` as the pair `(hi, lo)`.

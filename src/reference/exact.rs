@@ -481,9 +481,13 @@ fn union_area(tris: &[Tri], measure: Measure, half: f64, scratch: &mut UnionScra
                 }
                 if let Some(span) = covered_span(a, b, tj, j < i) {
                     // A span of the whole edge settles it (a shared edge,
-                    // a copy): nothing of the edge is on the boundary.
-                    whole = span == (0.0, 1.0);
+                    // a copy): nothing of the edge is on the boundary. So
+                    // do spans that together cover it, checked at every
+                    // power of two to keep the check's cost linear.
                     scratch.intervals.push(span);
+                    let n = scratch.intervals.len();
+                    whole = span == (0.0, 1.0)
+                        || (n >= 4 && n.is_power_of_two() && covers_unit(&mut scratch.intervals));
                 }
                 !whole
             });
@@ -584,6 +588,19 @@ impl Grid {
             }
         }
     }
+}
+
+/// Whether the intervals cover all of `[0, 1]` (sorts them).
+fn covers_unit(intervals: &mut [(f64, f64)]) -> bool {
+    intervals.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    let mut reach = 0.0_f64;
+    for &(s, e) in intervals.iter() {
+        if s > reach {
+            return false;
+        }
+        reach = reach.max(e);
+    }
+    reach >= 1.0
 }
 
 /// Adds the pieces of `a → b` outside every interval of `intervals`.

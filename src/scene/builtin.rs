@@ -223,3 +223,41 @@ fn rect_light() -> Built {
     .with_mesh("card", card)
     .with_camera(camera(v(0.0, 2.0, 3.5), v(0.0, 0.3, 0.0))?))
 }
+
+/// A `side × side` grid of receivers on the floor (`y = 0`, mesh 0 of every
+/// built-in scene) centred on the shadow that the other meshes cast from the
+/// light's centre, spanning 2.4 times their largest extent: most of a
+/// built-in scene's penumbrae, for checks and benchmarks. Empty when the
+/// scene has no occluder besides the floor, or the light is not above the
+/// occluders.
+#[must_use]
+pub fn floor_receivers(scene: &Scene, side: usize) -> Vec<DVec3> {
+    let Some((lo, hi)) = scene
+        .meshes()
+        .iter()
+        .skip(1)
+        .filter_map(Mesh::bounds)
+        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
+    else {
+        return Vec::new();
+    };
+    let c = scene.light().center();
+    let m = (lo + hi) * 0.5;
+    if !(c.y > m.y) || side == 0 {
+        return Vec::new();
+    }
+    // The light-centre shadow of the occluders' centre on the floor.
+    let s = c + (m - c) * (c.y / (c.y - m.y));
+    let half = (hi - lo).max_element() * 1.2;
+    let step = if side > 1 {
+        2.0 * half / (side - 1) as f64
+    } else {
+        0.0
+    };
+    (0..side * side)
+        .map(|k| {
+            let (i, j) = ((k % side) as f64, (k / side) as f64);
+            DVec3::new(s.x - half + step * i, 0.0, s.z - half + step * j)
+        })
+        .collect()
+}

@@ -9,6 +9,7 @@ use softshadow::reference::bvh::Bvh;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
 use softshadow::reference::{exact, Occluders};
+use softshadow::scene::builtin::floor_receivers;
 use softshadow::scene::{builtin, Scene};
 use std::process::ExitCode;
 use std::time::Instant;
@@ -37,40 +38,10 @@ pub fn run() -> ExitCode {
     }
 }
 
-/// A `GRID × GRID` grid of points on the floor (`y = 0`) around the shadow
-/// the occluders (every mesh but the floor, mesh 0) cast from the light's
-/// centre.
-fn floor_receivers(scene: &Scene) -> Vec<DVec3> {
-    let occluders: Vec<_> = scene
-        .meshes()
-        .iter()
-        .skip(1)
-        .filter_map(|m| m.bounds())
-        .collect();
-    let Some((lo, hi)) = occluders
-        .into_iter()
-        .reduce(|(a, b), (c, d)| (a.min(c), b.max(d)))
-    else {
-        return Vec::new();
-    };
-    let c = scene.light().center();
-    let m = (lo + hi) * 0.5;
-    // The light-centre shadow of the occluders' centre on the floor.
-    let s = c + (m - c) * (c.y / (c.y - m.y));
-    let half = (hi - lo).max_element() * 1.2;
-    let step = 2.0 * half / (GRID - 1) as f64;
-    (0..GRID * GRID)
-        .map(|k| {
-            let (i, j) = ((k % GRID) as f64, (k / GRID) as f64);
-            DVec3::new(s.x - half + step * i, 0.0, s.z - half + step * j)
-        })
-        .collect()
-}
-
 fn references(scene: &Scene) -> bool {
     let bvh = Bvh::new(Occluders::from_scene(scene));
     let light = scene.light();
-    let grid = floor_receivers(scene);
+    let grid = floor_receivers(scene, GRID);
     let t = Instant::now();
     let exact_all = exact::visibility_many(&bvh, light, &grid);
     let exact_seconds = t.elapsed().as_secs_f64();

@@ -1,0 +1,103 @@
+//! The cost of the exact reference per receiver, against Monte Carlo at
+//! 4096 samples on the same receivers, and how it grows with the number of
+//! occluders whose projection meets the light. One thread each (the
+//! references parallelise over receivers, so ratios carry over).
+//!
+//! - `default_scene`: the default scene's floor receivers in the bunny's
+//!   penumbra (where `0 < V < 1`), and the whole floor grid (a frame).
+//! - `occluders`: a receiver under a sphere light behind `n` random small
+//!   triangles, every one of which projects onto the light.
+//!
+//! `cargo bench --bench references`; figures in `benches/README.md`.
+
+use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
+use glam::DVec3;
+use softshadow::arbitrary::Rng;
+use softshadow::reference::bvh::Bvh;
+use softshadow::reference::exact::{self, Scratch};
+use softshadow::reference::monte_carlo::{self, Options};
+use softshadow::reference::Occluders;
+use softshadow::scene::builtin::{builtin, floor_receivers};
+use softshadow::scene::Light;
+use std::hint::black_box;
+use std::time::Duration;
+
+fn default_scene(c: &mut Criterion) {
+    let scene = builtin("default").expect("the default scene");
+    let bvh = Bvh::new(Occluders::from_scene(&scene));
+    let light = *scene.light();
+    let grid = floor_receivers(&scene, 32);
+    let penumbra: Vec<DVec3> = grid
+        .iter()
+        .copied()
+        .filter(|&p| matches!(exact::visibility(&bvh, &light, p), Ok(v) if v > 0.0 && v < 1.0))
+        .collect();
+    let mut g = c.benchmark_group("default_scene");
+    g.sample_size(10).measurement_time(Duration::from_secs(4));
+    for (name, points) in [("penumbra", &penumbra), ("frame", &grid)] {
+        g.throughput(Throughput::Elements(points.len() as u64));
+        g.bench_function(BenchmarkId::new("exact", name), |b| {
+            let mut scratch = Scratch::default();
+            b.iter(|| {
+                for &p in points {
+                    black_box(exact::visibility_with(&bvh, &light, p, &mut scratch).ok());
+                }
+            })
+        });
+        let options = Options::new(4096);
+        g.bench_function(BenchmarkId::new("mc4096", name), |b| {
+            b.iter(|| {
+                for &p in points {
+                    black_box(monte_carlo::visibility(&bvh, &light, p, &options).ok());
+                }
+            })
+        });
+    }
+    g.finish();
+}
+
+/// `n` triangles of size about a tenth of the light's image, centred on
+/// segments from the receiver at the origin to points of a sphere light of
+/// radius 0.5 at height 4, at depths 0.2–0.8 of the way.
+fn occluders(n: usize) -> Vec<[DVec3; 3]> {
+    let mut rng = Rng::new(7);
+    let light = DVec3::new(0.0, 0.0, 4.0);
+    (0..n)
+        .map(|_| {
+            let target = light + DVec3::new(rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4), 0.0);
+            let depth = rng.uniform(0.2, 0.8);
+            let q = target * depth;
+            let s = 0.05 * depth;
+            let mut corner =
+                || q + DVec3::new(rng.uniform(-s, s), rng.uniform(-s, s), rng.uniform(-s, s));
+            [corner(), corner(), corner()]
+        })
+        .collect()
+}
+
+fn growth(c: &mut Criterion) {
+    let light = Light::sphere(DVec3::new(0.0, 0.0, 4.0), 0.5).expect("a valid light");
+    let mut g = c.benchmark_group("occluders");
+    g.sample_size(10).measurement_time(Duration::from_secs(2));
+    for n in [1, 4, 16, 64, 256, 1024, 4096] {
+        let bvh = Bvh::new(Occluders::from_triangles(occluders(n)));
+        g.bench_function(BenchmarkId::new("exact", n), |b| {
+            let mut scratch = Scratch::default();
+            b.iter(|| {
+                black_box(exact::visibility_with(&bvh, &light, DVec3::ZERO, &mut scratch).ok())
+            })
+        });
+        if n <= 256 || n == 4096 {
+            let options = Options::new(4096);
+            g.bench_function(BenchmarkId::new("mc4096", n), |b| {
+                b.iter(|| {
+                    black_box(monte_carlo::visibility(&bvh, &light, DVec3::ZERO, &options).ok())
+                })
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, default_scene, growth);
+criterion_main!(benches);
