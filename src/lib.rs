@@ -11,8 +11,12 @@
 //!
 //! ## Modules
 //!
-//! - [`scene`]: lights (for now), validated at construction, and the
-//!   emitting measure each presents to a receiver.
+//! - [`scene`]: lights, meshes, the camera and the scene, validated at
+//!   construction; primitives; with `scene-file`, the JSON scene and points
+//!   files and the built-in scenes.
+//! - `reference` (feature `reference`): the exact and Monte Carlo
+//!   visibility references, the BVH they share, and the statistics that
+//!   compare them.
 //! - [`kernel`]: the pure geometry kernels (silhouettes, penumbra wedges,
 //!   disk occlusion, falloff, SSOC distortion, the linear-light kernel) and
 //!   the exact orientation predicates they decide topology with. Depends on
@@ -48,7 +52,12 @@
 //!
 //! With `--no-default-features` the crate is the kernels alone, on `glam`.
 //!
-//! - `cli` (default): the `softshadow` command-line program.
+//! - `cli` (default): the `softshadow` command-line program (turns on
+//!   `reference` and `scene-file`).
+//! - `reference`: `softshadow::reference`, the visibility references
+//!   (`obvhs`, `rayon`).
+//! - `scene-file`: `scene::file` and `scene::builtin`: JSON scene and points
+//!   files, OBJ meshes, the built-in scenes (`serde`, `serde_json`, `tobj`).
 //! - `arbitrary`: [`arbitrary`], deterministic generators of near-degenerate
 //!   inputs, shared by the property tests, the fuzz targets and the
 //!   benchmarks.
