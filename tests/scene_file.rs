@@ -708,9 +708,9 @@ fn example_files_load() {
     assert_eq!(prims.names(), ["floor", "ball", "box", "triangle"]);
     assert_eq!(prims.triangle_count(), 2 + 960 + 12 + 1);
     let points = load_points(&dir.join("points.json"), prims.meshes().len()).unwrap();
-    assert_eq!(points.len(), 3);
+    assert_eq!(points.len(), 5);
     assert_eq!(points[0].object, Some(0));
-    assert_eq!(points[1].normal, None);
+    assert_eq!(points[2].normal, None);
 }
 
 // ------------------------------------------------------------------- builtins

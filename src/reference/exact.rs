@@ -372,16 +372,15 @@ impl View {
             }
         }
         let mut q = [DVec2::ZERO; Poly::CAP];
-        for k in 0..poly.len {
-            let d = poly.v[k];
+        for (qk, &d) in q.iter_mut().zip(&poly.v[..poly.len]) {
             let z = self.w.dot(d);
-            if !(z > 0.0) {
+            if z.is_nan() || z <= 0.0 {
                 // Only the apex p has depth 0 in the pyramid, and a
                 // triangle through p was skipped above: this is underflow.
                 return;
             }
             let x = d * (self.depth / z) - self.center;
-            q[k] = self.plane.coords(x);
+            *qk = self.plane.coords(x);
         }
         for k in 1..poly.len - 1 {
             if let Some(t) = Tri::new(q[0], q[k], q[k + 1]) {
@@ -413,9 +412,9 @@ impl Poly {
     fn clip(&mut self, m: DVec3, o: f64) {
         let mut f = [0.0; Poly::CAP];
         let mut all_in = true;
-        for k in 0..self.len {
-            f[k] = m.dot(self.v[k]) + o;
-            all_in &= f[k] >= 0.0;
+        for (fk, &v) in f.iter_mut().zip(&self.v[..self.len]) {
+            *fk = m.dot(v) + o;
+            all_in &= *fk >= 0.0;
         }
         if all_in {
             return;
@@ -755,7 +754,7 @@ fn blocked_interval(
             t1 = t1.min(v0 / (v0 - v1));
         }
     }
-    if !(t0 < t1) {
+    if t0 >= t1 || t0.is_nan() || t1.is_nan() {
         return None;
     }
     // Project both ends from p onto the light: s = f / (f + g).

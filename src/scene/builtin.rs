@@ -243,7 +243,7 @@ pub fn floor_receivers(scene: &Scene, side: usize) -> Vec<DVec3> {
     };
     let c = scene.light().center();
     let m = (lo + hi) * 0.5;
-    if !(c.y > m.y) || side == 0 {
+    if c.y <= m.y || c.y.is_nan() || side == 0 {
         return Vec::new();
     }
     // The light-centre shadow of the occluders' centre on the floor.

@@ -343,7 +343,7 @@ fn obj_mesh(bytes: &[u8]) -> Result<Mesh, String> {
                 .mesh
                 .positions
                 .chunks_exact(3)
-                .map(|c| DVec3::new(f64::from(c[0]), f64::from(c[1]), f64::from(c[2]))),
+                .map(|c| DVec3::new(c[0], c[1], c[2])),
         );
         for t in model.mesh.indices.chunks_exact(3) {
             let shifted = [t[0], t[1], t[2]].map(|i| i.checked_add(base));
