@@ -388,9 +388,103 @@ fn regression_a_sliver_along_another_edge_removes_nothing() {
         ),
         DVec3::new(0.0400522948806009, -0.27513943185211115, 1.599301297456961),
     ];
-    assert_eq!(visibility(&bvh(vec![sliver]), &light, p).unwrap(), 1.0);
+    // Alone it hides nothing but its own area, a few 1e-19 of the light.
+    let sliver_alone = visibility(&bvh(vec![sliver]), &light, p).unwrap();
+    assert!((sliver_alone - 1.0).abs() < 1e-12, "{sliver_alone}");
     let alone = visibility(&bvh(vec![other]), &light, p).unwrap();
     let both = visibility(&bvh(vec![other, sliver]), &light, p).unwrap();
     assert!(alone < 0.999, "the other triangle occludes: {alone}");
     assert!((both - alone).abs() < 1e-12, "{both} vs {alone}");
+}
+
+#[test]
+fn touching_and_partly_collinear_edges_add_up_exactly() {
+    // Triangles in the plane halfway between the receiver and a disk light
+    // of radius 1 project at twice their size, wholly inside the light, so
+    // V = 1 − 4 · area(union) / π. Each configuration's union area is known.
+    let mut worst = Worst::new("touching and partly collinear edges");
+    let light = Light::disk(DVec3::new(0.0, 0.0, 2.0), DVec3::Z, 1.0).unwrap();
+    let q = |x: f64, y: f64| DVec3::new(x, y, 1.0);
+    let area = |t: &[DVec3; 3]| 0.5 * (t[1] - t[0]).cross(t[2] - t[0]).length();
+    let a = [q(0.0, 0.0), q(0.3, 0.0), q(0.0, 0.3)];
+    let cases: Vec<(&str, Vec<[DVec3; 3]>, f64)> = vec![
+        // Touching at one vertex only.
+        (
+            "vertex",
+            vec![a, [q(0.0, 0.0), q(-0.2, 0.0), q(0.0, -0.2)]],
+            area(&a) + 0.02,
+        ),
+        // Opposite sides of y = 0, sharing [0, 0.2] of their edges.
+        (
+            "partial edge, opposite sides",
+            vec![a, [q(-0.1, 0.0), q(0.2, 0.0), q(0.05, -0.1)]],
+            area(&a) + 0.015,
+        ),
+        // Same side of y = 0, the second inside the first: the union is the
+        // first.
+        (
+            "partial edge, same side, nested",
+            vec![a, [q(0.05, 0.0), q(0.2, 0.0), q(0.05, 0.1)]],
+            area(&a),
+        ),
+        // A fan of 6 around one point, each pair sharing a whole edge: a
+        // hexagon of circumradius 0.3.
+        (
+            "fan",
+            (0..6)
+                .map(|k| {
+                    let t = |k: i32| std::f64::consts::FRAC_PI_3 * f64::from(k);
+                    [
+                        q(0.0, 0.0),
+                        q(0.3 * t(k).cos(), 0.3 * t(k).sin()),
+                        q(0.3 * t(k + 1).cos(), 0.3 * t(k + 1).sin()),
+                    ]
+                })
+                .collect(),
+            1.5 * 3f64.sqrt() * 0.09,
+        ),
+    ];
+    for (name, tris, union) in cases {
+        let v = visibility(&bvh(tris), &light, DVec3::ZERO).unwrap();
+        let want = 1.0 - 4.0 * union / PI;
+        worst.check(v, want, format!("{name}: {v} vs {want}"));
+    }
+}
+
+#[test]
+fn a_corner_at_1e24_does_not_blur_the_clip() {
+    // A thin triangle with one corner 8.5·10²³ away (from the `exact` fuzz
+    // target's corpus) crossing the pyramid near the light: its clip points
+    // must be computed from the near end, or their absolute error is about
+    // 10⁸. The answer must equal that for the same triangle cut by hand at
+    // x = −10, far outside the pyramid (a few tenths wide at these depths),
+    // where no corner is huge.
+    let light = Light::sphere(
+        DVec3::new(-0.0974529059379241, 0.3328518876516203, 4.323456731643299),
+        0.12476399175426706,
+    )
+    .unwrap();
+    let p = DVec3::new(0.06491517889205256, 0.48392696062234175, 0.1210760765140187);
+    let far = DVec3::new(
+        -8.535469649605702e23,
+        0.4848582771776699,
+        1.9394797834197075,
+    );
+    let b = DVec3::new(
+        -0.043689510894366956,
+        0.43913245132519313,
+        2.0550791892855096,
+    );
+    let c = DVec3::new(-0.09705801540733294, 0.3320942673553075, 2.132437301077274);
+    let v = visibility(&bvh(vec![[far, b, c]]), &light, p).unwrap();
+    // The point of segment `q e` at x = −10.
+    let cut = |q: DVec3, e: DVec3| e + (q - e) * ((-10.0 - e.x) / (q.x - e.x));
+    let near = visibility(
+        &bvh(vec![[cut(far, b), b, c], [cut(far, b), c, cut(far, c)]]),
+        &light,
+        p,
+    )
+    .unwrap();
+    assert!(v < 1.0, "the triangle occludes: {v}");
+    assert!((v - near).abs() < TOL, "{v} vs {near}");
 }

@@ -439,9 +439,18 @@ impl Poly {
 }
 
 /// The point where the segment `a b` crosses the plane with values `fa`,
-/// `fb` of strictly opposite signs there; symmetric in its arguments.
+/// `fb` of strictly opposite signs there; symmetric in its arguments, so
+/// two triangles sharing an edge get the same bits. Measured from the end
+/// nearer the plane (`t ≤ ½`), so that the rounding is relative to the
+/// distance from that end, not to the far end's magnitude (a corner at
+/// 10²⁴ must not blur a crossing near the light).
 fn crossing(a: DVec3, fa: f64, b: DVec3, fb: f64) -> DVec3 {
-    let (a, fa, b, fb) = if (a.x, a.y, a.z) <= (b.x, b.y, b.z) {
+    let a_first = match fa.abs().total_cmp(&fb.abs()) {
+        std::cmp::Ordering::Less => true,
+        std::cmp::Ordering::Greater => false,
+        std::cmp::Ordering::Equal => (a.x, a.y, a.z) <= (b.x, b.y, b.z),
+    };
+    let (a, fa, b, fb) = if a_first {
         (a, fa, b, fb)
     } else {
         (b, fb, a, fa)
