@@ -38,9 +38,9 @@ if [[ ! -x "$VENV/bin/python" ]] || ! "$VENV/bin/python" -c 'import embreex, num
 fi
 
 echo "== machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
-echo "== ours: cargo run --release --example ray_corpus --features reference -- $OUTDIR $RAYS $SEED"
-cargo build --quiet --release --example ray_corpus --features reference
-cargo run --quiet --release --example ray_corpus --features reference -- "$OUTDIR" "$RAYS" "$SEED" |
+echo "== ours: cargo run --release --example ray_corpus --features reference,arbitrary -- $OUTDIR $RAYS $SEED"
+cargo build --quiet --release --example ray_corpus --features reference,arbitrary
+cargo run --quiet --release --example ray_corpus --features reference,arbitrary -- "$OUTDIR" "$RAYS" "$SEED" |
     tee "$LOG/ours.txt"
 echo "== Embree: $VENV/bin/python benches/embree_compare.py $OUTDIR --reps $REPS --threads 2"
 "$VENV/bin/python" benches/embree_compare.py "$OUTDIR" --reps "$REPS" --threads 2 | tee "$LOG/embree.txt"

@@ -2,7 +2,7 @@
 //! Rust half of the opt-in comparison with Intel Embree 4
 //! (`benches/compare_embree.sh` runs both halves; not part of CI).
 //!
-//! `cargo run --release --example ray_corpus --features reference -- [outdir] [rays] [seed]`
+//! `cargo run --release --example ray_corpus --features reference,arbitrary -- [outdir] [rays] [seed]`
 //!
 //! (defaults: `target/ray_corpus`, 1,000,000 rays per scene, seed 2026).
 //!
@@ -59,6 +59,8 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
+use softshadow::arbitrary::mesh::icosphere;
+use softshadow::arbitrary::Rng;
 use softshadow::reference::bvh::Bvh;
 use softshadow::reference::Occluders;
 use std::fs::{self, File};
@@ -81,28 +83,6 @@ const WARMUPS: usize = 1;
 const REPETITIONS: usize = 7;
 const MAGIC: &[u8; 8] = b"SSRAYC1\0";
 const VERSION: u32 = 1;
-
-/// SplitMix64: small, seedable, the same stream on every platform.
-struct Rng(u64);
-
-impl Rng {
-    fn next_u64(&mut self) -> u64 {
-        self.0 = self.0.wrapping_add(0x9E37_79B9_7F4A_7C15);
-        let mut z = self.0;
-        z = (z ^ (z >> 30)).wrapping_mul(0xBF58_476D_1CE4_E5B9);
-        z = (z ^ (z >> 27)).wrapping_mul(0x94D0_49BB_1331_11EB);
-        z ^ (z >> 31)
-    }
-
-    /// Uniform in `[0, 1)` with 53 random bits.
-    fn unit(&mut self) -> f64 {
-        (self.next_u64() >> 11) as f64 * (1.0 / (1u64 << 53) as f64)
-    }
-
-    fn uniform(&mut self, lo: f64, hi: f64) -> f64 {
-        lo + (hi - lo) * self.unit()
-    }
-}
 
 /// The nearest `f32` value, as an `f64` (exactly representable in both).
 fn to_f32(v: DVec3) -> DVec3 {
@@ -136,43 +116,14 @@ fn soup(rng: &mut Rng) -> Vec<[DVec3; 3]> {
 /// corner shared by two faces comes out bit-identical in both: the mesh is
 /// closed (no cracks) after rounding too.
 fn geodesic_sphere(n: usize) -> Vec<[DVec3; 3]> {
-    let t = (1.0 + 5f64.sqrt()) / 2.0;
-    let corners = [
-        DVec3::new(-1.0, t, 0.0),
-        DVec3::new(1.0, t, 0.0),
-        DVec3::new(-1.0, -t, 0.0),
-        DVec3::new(1.0, -t, 0.0),
-        DVec3::new(0.0, -1.0, t),
-        DVec3::new(0.0, 1.0, t),
-        DVec3::new(0.0, -1.0, -t),
-        DVec3::new(0.0, 1.0, -t),
-        DVec3::new(t, 0.0, -1.0),
-        DVec3::new(t, 0.0, 1.0),
-        DVec3::new(-t, 0.0, -1.0),
-        DVec3::new(-t, 0.0, 1.0),
-    ];
-    let faces: [[usize; 3]; 20] = [
-        [0, 11, 5],
-        [0, 5, 1],
-        [0, 1, 7],
-        [0, 7, 10],
-        [0, 10, 11],
-        [1, 5, 9],
-        [5, 11, 4],
-        [11, 10, 2],
-        [10, 7, 6],
-        [7, 1, 8],
-        [3, 9, 4],
-        [3, 4, 2],
-        [3, 2, 6],
-        [3, 6, 8],
-        [3, 8, 9],
-        [4, 9, 5],
-        [2, 4, 11],
-        [6, 2, 10],
-        [8, 6, 7],
-        [9, 8, 1],
-    ];
+    // The icosahedron: the level-0 icosphere of the shared generators.
+    let base = icosphere(0);
+    let corners = base.positions.clone();
+    let faces: Vec<[usize; 3]> = base
+        .triangles
+        .iter()
+        .map(|t| t.map(|i| i as usize))
+        .collect();
     // Grid point with integer weights `w` on face corners `f`.
     let point = |f: [usize; 3], w: [usize; 3]| {
         let mut terms: Vec<(usize, usize)> = (0..3)
@@ -288,7 +239,7 @@ fn main() {
     let mut scenes = Vec::new();
     for (index, name) in ["soup", "sphere"].into_iter().enumerate() {
         // One independent stream per scene, so either can change alone.
-        let mut rng = Rng(seed ^ (0xA076_1D64_78BD_642F_u64.wrapping_mul(index as u64 + 1)));
+        let mut rng = Rng::new(seed ^ (0xA076_1D64_78BD_642F_u64.wrapping_mul(index as u64 + 1)));
         let triangles = match name {
             "soup" => soup(&mut rng),
             _ => geodesic_sphere(SPHERE_FREQUENCY),

@@ -598,6 +598,39 @@ impl Cx<'_> {
         Ok(Fields(entries))
     }
 
+    /// An object tagged by its `"type"` string: the type, one of `kinds`
+    /// (each with the keys it allows, `"type"` included), and its fields.
+    fn tagged<'v, 'k>(
+        &self,
+        v: &'v Json,
+        at: &At,
+        what: &str,
+        kinds: &[(&'k str, &[&str])],
+    ) -> Result<(&'k str, Fields<'v>), FileError> {
+        let names: Vec<String> = kinds.iter().map(|(k, _)| format!("{k:?}")).collect();
+        let expected = match names.split_last() {
+            Some((last, rest)) if !rest.is_empty() => format!("{} or {last}", rest.join(", ")),
+            _ => names.join(""),
+        };
+        let Json::Object(entries) = v else {
+            return Err(self.err(at, format!("expected an object, got {}", v.describe())));
+        };
+        let ty_at = at.key("type");
+        let ty = match Fields(entries).get("type") {
+            Some(t) => self.string(t, &ty_at)?,
+            None => {
+                return Err(self.err(&ty_at, format!("required but missing (one of {expected})")))
+            }
+        };
+        let Some(&(kind, keys)) = kinds.iter().find(|(k, _)| *k == ty) else {
+            return Err(self.err(
+                &ty_at,
+                format!("unknown {what} type {ty:?} (expected {expected})"),
+            ));
+        };
+        Ok((kind, self.object(v, at, keys)?))
+    }
+
     fn required<'v>(&self, f: &Fields<'v>, at: &At, key: &str) -> Result<&'v Json, FileError> {
         f.get(key)
             .ok_or_else(|| self.err(&at.key(key), "required but missing"))
@@ -703,29 +736,18 @@ impl Cx<'_> {
     }
 
     fn light(&self, v: &Json, at: &At) -> Result<Light, FileError> {
-        const TYPES: &str = "\"sphere\", \"disk\", \"rect\", \"segment\" or \"point\"";
-        let Json::Object(entries) = v else {
-            return Err(self.err(at, format!("expected an object, got {}", v.describe())));
-        };
-        let ty_at = at.key("type");
-        let ty = match Fields(entries).get("type") {
-            Some(t) => self.string(t, &ty_at)?,
-            None => return Err(self.err(&ty_at, format!("required but missing (one of {TYPES})"))),
-        };
-        let keys: &[&str] = match ty {
-            "sphere" => &["type", "center", "radius"],
-            "disk" => &["type", "center", "normal", "radius"],
-            "rect" => &["type", "center", "u", "v"],
-            "segment" => &["type", "a", "b"],
-            "point" => &["type", "position"],
-            other => {
-                return Err(self.err(
-                    &ty_at,
-                    format!("unknown light type {other:?} (expected {TYPES})"),
-                ))
-            }
-        };
-        let f = self.object(v, at, keys)?;
+        let (ty, f) = self.tagged(
+            v,
+            at,
+            "light",
+            &[
+                ("sphere", &["type", "center", "radius"]),
+                ("disk", &["type", "center", "normal", "radius"]),
+                ("rect", &["type", "center", "u", "v"]),
+                ("segment", &["type", "a", "b"]),
+                ("point", &["type", "position"]),
+            ],
+        )?;
         let vec = |key: &str| self.vec3(self.required(&f, at, key)?, &at.key(key));
         let num = |key: &str| self.number(self.required(&f, at, key)?, &at.key(key));
         let light = match ty {
@@ -880,27 +902,16 @@ impl Cx<'_> {
     }
 
     fn primitive(&self, v: &Json, at: &At) -> Result<Mesh, FileError> {
-        const TYPES: &str = "\"sphere\", \"box\" or \"quad\"";
-        let Json::Object(entries) = v else {
-            return Err(self.err(at, format!("expected an object, got {}", v.describe())));
-        };
-        let ty_at = at.key("type");
-        let ty = match Fields(entries).get("type") {
-            Some(t) => self.string(t, &ty_at)?,
-            None => return Err(self.err(&ty_at, format!("required but missing (one of {TYPES})"))),
-        };
-        let keys: &[&str] = match ty {
-            "sphere" => &["type", "center", "radius", "segments"],
-            "box" => &["type", "min", "max"],
-            "quad" => &["type", "center", "u", "v"],
-            other => {
-                return Err(self.err(
-                    &ty_at,
-                    format!("unknown primitive type {other:?} (expected {TYPES})"),
-                ))
-            }
-        };
-        let f = self.object(v, at, keys)?;
+        let (ty, f) = self.tagged(
+            v,
+            at,
+            "primitive",
+            &[
+                ("sphere", &["type", "center", "radius", "segments"]),
+                ("box", &["type", "min", "max"]),
+                ("quad", &["type", "center", "u", "v"]),
+            ],
+        )?;
         let vec = |key: &str| self.vec3(self.required(&f, at, key)?, &at.key(key));
         let mesh = match ty {
             "sphere" => {
