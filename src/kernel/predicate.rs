@@ -175,6 +175,36 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     orient3d_exact(a, b, c, d)
 }
 
+/// The value of the determinant whose sign [`orient3d`] gives
+/// (`−n · (d − a)` with `n = (b − a) × (c − a)`): its sign exact, its
+/// relative error below `2⁻⁴⁰` (the rounded determinant where its error
+/// bound allows, else the exact expansion summed). A crossing parameter
+/// `fa / (fa − fb)` formed from two such values lands on the plane even
+/// when the segment is nearly parallel to it. Same domain as [`orient3d`];
+/// `0` for non-finite input.
+#[must_use]
+pub fn orient3d_value(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
+    if !(a.is_finite() && b.is_finite() && c.is_finite() && d.is_finite()) {
+        return 0.0;
+    }
+    let (ad, bd, cd) = (a - d, b - d, c - d);
+    let bdxcdy = bd.x * cd.y;
+    let cdxbdy = cd.x * bd.y;
+    let cdxady = cd.x * ad.y;
+    let adxcdy = ad.x * cd.y;
+    let adxbdy = ad.x * bd.y;
+    let bdxady = bd.x * ad.y;
+    let det = ad.z * (bdxcdy - cdxbdy) + bd.z * (cdxady - adxcdy) + cd.z * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * ad.z.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bd.z.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cd.z.abs();
+    let bound = O3D_ERR_BOUND_A * permanent * (1u64 << 40) as f64;
+    if det > bound || -det > bound {
+        return det;
+    }
+    orient3d_expansion(a, b, c, d).approximate()
+}
+
 /// `a + b = s + e` exactly (Knuth's branch-free TwoSum).
 #[inline]
 fn two_sum(a: f64, b: f64) -> (f64, f64) {
@@ -292,6 +322,11 @@ fn orient2d_expansion(a: DVec2, b: DVec2, c: DVec2) -> Expansion<16> {
 
 #[cold]
 fn orient3d_exact(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
+    orient3d_expansion(a, b, c, d).sign()
+}
+
+/// The determinant of [`orient3d`] as an exact expansion.
+fn orient3d_expansion(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Expansion<192> {
     let ad = [diff(a.x, d.x), diff(a.y, d.y), diff(a.z, d.z)];
     let bd = [diff(b.x, d.x), diff(b.y, d.y), diff(b.z, d.z)];
     let cd = [diff(c.x, d.x), diff(c.y, d.y), diff(c.z, d.z)];
@@ -317,7 +352,7 @@ fn orient3d_exact(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
             }
         }
     }
-    sum.sign()
+    sum
 }
 
 #[cfg(test)]

@@ -60,6 +60,13 @@
 //! [`segment_disk_area`]. The tests hold it within `1e-9` of closed forms,
 //! far inside what any Monte Carlo run resolves.
 //!
+//! **Domain**: coordinates (of the receiver, the light and the triangles)
+//! within `±1e30`, so that every orientation determinant, a product of
+//! three coordinate differences, stays within the exact domain of
+//! [`orient3d`]. Beyond it the answer is still in `[0, 1]` and never NaN,
+//! but no longer exact (measured by the `exact` fuzz target: a corner at
+//! 10³⁰³ can change the answer with the order of the triangles).
+//!
 //! ## Cost
 //!
 //! The triangles are culled with the BVH to those whose bounds meet the
@@ -69,7 +76,7 @@
 
 use super::bvh::{segment_blocked, Bvh};
 use crate::kernel::disk::f64::segment_disk_area;
-use crate::kernel::predicate::{orient2d, orient2d_value, orient3d, Sign};
+use crate::kernel::predicate::{orient2d, orient2d_value, orient3d, orient3d_value, Sign};
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;
@@ -136,26 +143,16 @@ pub fn visibility_with(
             radius,
         } => {
             let (t, b) = normal.any_orthonormal_pair();
-            // A square around the disk, with margin, so that clipping
-            // happens well outside the disk.
-            let half = 1.5 * radius;
-            let view = View::new(
-                p,
-                center,
-                [t * half, b * half],
-                Plane2d::Ortho { t, b },
-                half,
-            );
+            // Orthonormal coordinates about the centre; a square around the
+            // disk, with margin, so that clipping happens well outside it.
+            let view = View::new(p, center, [t, b], 1.5 * radius);
             let covered = view.covered_area(bvh, scratch, Measure::Disk(radius));
             1.0 - covered / (PI * radius * radius)
         }
         Emitter::Rect { center, u, v } => {
-            let n = u.cross(v);
-            let plane = Plane2d::Affine {
-                su: v.cross(n) / n.length_squared(),
-                sv: n.cross(u) / n.length_squared(),
-            };
-            let view = View::new(p, center, [u, v], plane, 1.0);
+            // The rect's own affine coordinates: x = c + s u + t v, the
+            // light is the square [−1, 1]², and area ratios are kept.
+            let view = View::new(p, center, [u, v], 1.0);
             let covered = view.covered_area(bvh, scratch, Measure::Square);
             1.0 - covered / 4.0
         }
@@ -167,21 +164,34 @@ pub fn visibility_with(
 #[derive(Clone, Copy, Debug)]
 struct Tri {
     v: [DVec2; 3],
+    /// The line each edge `v[k] → v[k + 1]` was cut along, where known.
+    line: [LineKey; 3],
     lo: DVec2,
     hi: DVec2,
 }
 
+/// Identifies the line an image edge lies on: the bits of its half-plane's
+/// coefficients, sign-normalised. Two triangles sharing a mesh edge cut
+/// their images along the same line (the plane through `p` and the edge,
+/// computed canonically), so their image edges are known to be collinear
+/// although their rounded endpoints are not exactly so. `None`: unknown
+/// (the clip square's sides, which are exact anyway, and fan diagonals,
+/// which are exact copies).
+type LineKey = Option<[u64; 3]>;
+
 impl Tri {
-    /// The triangle oriented counter-clockwise; `None` when it is
-    /// degenerate (decided exactly).
-    fn new(a: DVec2, b: DVec2, c: DVec2) -> Option<Tri> {
-        let v = match orient2d(a, b, c) {
-            Sign::Positive => [a, b, c],
-            Sign::Negative => [a, c, b],
+    /// The triangle oriented counter-clockwise, with the lines of its edges
+    /// `a → b`, `b → c`, `c → a`; `None` when it is degenerate (decided
+    /// exactly).
+    fn new(a: DVec2, b: DVec2, c: DVec2, [ab, bc, ca]: [LineKey; 3]) -> Option<Tri> {
+        let (v, line) = match orient2d(a, b, c) {
+            Sign::Positive => ([a, b, c], [ab, bc, ca]),
+            Sign::Negative => ([a, c, b], [ca, bc, ab]),
             Sign::Zero => return None,
         };
         Some(Tri {
             v,
+            line,
             lo: a.min(b).min(c),
             hi: a.max(b).max(c),
         })
@@ -189,25 +199,6 @@ impl Tri {
 
     fn edge(&self, k: usize) -> (DVec2, DVec2) {
         (self.v[k], self.v[(k + 1) % 3])
-    }
-}
-
-/// How plane points map to the 2D coordinates the area is measured in.
-#[derive(Clone, Copy, Debug)]
-enum Plane2d {
-    /// An orthonormal frame of the plane (the disk).
-    Ortho { t: DVec3, b: DVec3 },
-    /// The dual basis of the rect's half-axes: `(s, t)` with
-    /// `x − c = s u + t v`.
-    Affine { su: DVec3, sv: DVec3 },
-}
-
-impl Plane2d {
-    fn coords(&self, x: DVec3) -> DVec2 {
-        match *self {
-            Plane2d::Ortho { t, b } => DVec2::new(x.dot(t), x.dot(b)),
-            Plane2d::Affine { su, sv } => DVec2::new(x.dot(su), x.dot(sv)),
-        }
     }
 }
 
@@ -230,12 +221,31 @@ impl Measure {
     }
 
     /// Whether the triangle certainly misses the measure (bounds apart).
+    /// Whether the triangle misses the measure's interior (the disk: the
+    /// centre outside it and every edge at least `r` away; so a lit
+    /// receiver gets `V = 1` exactly, with no boundary pieces to sum).
     fn misses(self, t: &Tri) -> bool {
         let r = match self {
             Measure::Disk(r) => r,
             Measure::Square => 1.0,
         };
-        t.lo.x >= r || t.lo.y >= r || t.hi.x <= -r || t.hi.y <= -r
+        if t.lo.x >= r || t.lo.y >= r || t.hi.x <= -r || t.hi.y <= -r {
+            return true;
+        }
+        let Measure::Disk(r) = self else {
+            return false;
+        };
+        let centre_outside = (0..3).any(|k| {
+            let (a, b) = t.edge(k);
+            orient2d(a, b, DVec2::ZERO) == Sign::Negative
+        });
+        centre_outside
+            && (0..3).all(|k| {
+                let (a, b) = t.edge(k);
+                let d = b - a;
+                let s = (-a.dot(d) / d.length_squared()).clamp(0.0, 1.0);
+                (a + d * s).length_squared() >= r * r
+            })
     }
 
     /// Whether the triangle alone covers the whole measure.
@@ -260,70 +270,73 @@ impl Measure {
     }
 }
 
-/// The receiver view of a disk or rect: the pyramid from `p` over a
-/// parallelogram `center ± h0 ± h1` in the light's plane.
+/// The receiver view of a disk or rect light: the light's plane with 2D
+/// coordinates `(X, Y)` for the point `center + X e₀ + Y e₁`, and the square
+/// `|X|, |Y| ≤ half` that holds the light.
+///
+/// A triangle's image is computed in that plane, not by projecting clipped
+/// 3D points: the light point `x` is hidden by the triangle exactly when the
+/// direction `x − p` lies in the cone the triangle spans from `p` (three
+/// half-spaces through `p`, one per edge) and `x` lies strictly beyond the
+/// triangle's plane (DESIGN §1's open segment). Each half-space meets the
+/// light's plane in a half-plane, so the image is the square cut by four
+/// half-planes: a convex polygon of at most eight vertices, whatever the
+/// triangle does behind the receiver or beyond the light, and however close
+/// to `p` it passes — no point near `p` is ever constructed.
 struct View {
     p: DVec3,
-    /// The light centre, relative to `p`.
     center: DVec3,
-    /// The pyramid's five planes: `(normal, offset)`, a point `d` (relative
-    /// to `p`) is inside when `normal · d + offset ≥ 0`.
-    planes: [(DVec3, f64); 5],
-    /// Unit normal of the light's plane, pointing from `p` toward it.
-    w: DVec3,
-    /// The distance from `p` to the light's plane along `w`.
-    depth: f64,
-    /// The parallelogram's corners (world space), for the cull.
-    corners: [DVec3; 4],
-    plane: Plane2d,
-    /// Half the side of the square, in the 2D coordinates, that holds every
-    /// projected point.
+    /// The plane's coordinate axes.
+    e: [DVec3; 2],
     half: f64,
 }
 
+/// A half-plane `a X + b Y + c ≥ 0` of the light's plane.
+#[derive(Clone, Copy, Debug)]
+struct Line {
+    a: f64,
+    b: f64,
+    c: f64,
+}
+
+impl Line {
+    fn at(&self, q: DVec2) -> f64 {
+        self.a * q.x + self.b * q.y + self.c
+    }
+
+    fn key(&self) -> LineKey {
+        let first = [self.a, self.b, self.c].into_iter().find(|&x| x != 0.0)?;
+        let s = if first < 0.0 { -1.0 } else { 1.0 };
+        // `+ 0.0` turns −0 into +0.
+        Some([self.a, self.b, self.c].map(|x| (x * s + 0.0).to_bits()))
+    }
+}
+
 impl View {
-    fn new(p: DVec3, center: DVec3, [h0, h1]: [DVec3; 2], plane: Plane2d, half: f64) -> View {
-        let c = center - p;
-        let n = h0.cross(h1).normalize();
-        let (w, depth) = if n.dot(c) > 0.0 {
-            (n, n.dot(c))
-        } else {
-            (-n, -n.dot(c))
-        };
-        let rel = [c + h0 + h1, c - h0 + h1, c - h0 - h1, c + h0 - h1];
-        let mut planes = [(DVec3::ZERO, 0.0); 5];
-        for k in 0..4 {
-            let m = rel[k].cross(rel[(k + 1) % 4]);
-            // Inward: toward the opposite corner.
-            let m = if m.dot(rel[(k + 2) % 4]) >= 0.0 {
-                m
-            } else {
-                -m
-            };
-            planes[k] = (m, 0.0);
-        }
-        // Stop at the light's plane: keep w · d ≤ depth.
-        planes[4] = (-w, depth);
-        View {
-            p,
-            center: c,
-            planes,
-            w,
-            depth,
-            corners: rel.map(|r| r + p),
-            plane,
-            half,
+    fn new(p: DVec3, center: DVec3, e: [DVec3; 2], half: f64) -> View {
+        View { p, center, e, half }
+    }
+
+    /// The half-plane of light points `x` with `m · (x − q) ≥ 0`, given
+    /// `center − q`.
+    fn line(&self, m: DVec3, center_minus_q: DVec3) -> Line {
+        Line {
+            a: m.dot(self.e[0]),
+            b: m.dot(self.e[1]),
+            c: m.dot(center_minus_q),
         }
     }
 
-    /// The area of the union of the projected triangles within the measure.
+    /// The area of the union of the triangles' images within the measure.
     fn covered_area(&self, bvh: &Bvh, scratch: &mut Scratch, measure: Measure) -> f64 {
+        let h = self.half;
+        let corner = |sx: f64, sy: f64| self.center + self.e[0] * (sx * h) + self.e[1] * (sy * h);
         let hull = [
             self.p,
-            self.corners[0],
-            self.corners[1],
-            self.corners[2],
-            self.corners[3],
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
         ];
         bvh.triangles_meeting_hull(&hull, &mut scratch.candidates);
         scratch.triangles.clear();
@@ -333,7 +346,7 @@ impl View {
                 continue;
             };
             let first = scratch.triangles.len();
-            self.project(tri, &mut scratch.triangles);
+            self.image(tri, &mut scratch.triangles);
             // Cull what misses the measure; stop early under a full cover.
             let mut k = first;
             while k < scratch.triangles.len() {
@@ -354,108 +367,152 @@ impl View {
         union_area(&scratch.triangles, measure, self.half, &mut scratch.union)
     }
 
-    /// Clips a world-space triangle to the pyramid, projects it onto the
-    /// light's plane and appends its fan triangles.
-    fn project(&self, tri: &[DVec3; 3], out: &mut Vec<Tri>) {
+    /// Appends the image of a triangle, split into a fan of triangles.
+    fn image(&self, tri: &[DVec3; 3], out: &mut Vec<Tri>) {
         if !tri.iter().all(|v| v.is_finite()) {
             return;
         }
-        // A triangle whose plane holds p projects to a segment.
-        if orient3d(tri[0], tri[1], tri[2], self.p) == Sign::Zero {
-            return;
-        }
-        let mut poly = Poly::new([tri[0] - self.p, tri[1] - self.p, tri[2] - self.p]);
-        for &(m, o) in &self.planes {
-            poly.clip(m, o);
-            if poly.len < 3 {
+        // σ: the sign of det[a − p, b − p, c − p]. Zero: the plane holds p,
+        // the image is a segment or a point.
+        let sigma = match orient3d(tri[0], tri[1], tri[2], self.p) {
+            Sign::Positive => 1.0,
+            Sign::Negative => -1.0,
+            Sign::Zero => return,
+        };
+        let rel = tri.map(|v| v - self.p);
+        let mut poly = Poly::square(self.half);
+        // The cone: for the edge (j, k) opposite corner i, the plane through
+        // p and the edge, oriented toward corner i (σ · rel_j × rel_k does:
+        // rel_i · (rel_j × rel_k) = det). The cross product is formed with
+        // the edge's ends in a canonical order, so the two triangles sharing
+        // an edge cut their images along the same line, bit for bit.
+        for (j, k) in [(1, 2), (2, 0), (0, 1)] {
+            let m = if lexicographic(tri[j], tri[k]) {
+                rel[j].cross(rel[k])
+            } else {
+                -rel[k].cross(rel[j])
+            };
+            poly.clip(self.line(m * sigma, self.center - self.p));
+            if poly.len == 0 {
                 return;
             }
         }
-        let mut q = [DVec2::ZERO; Poly::CAP];
-        for (qk, &d) in q.iter_mut().zip(&poly.v[..poly.len]) {
-            let z = self.w.dot(d);
-            if z.is_nan() || z <= 0.0 {
-                // Only the apex p has depth 0 in the pyramid, and a
-                // triangle through p was skipped above: this is underflow.
-                return;
-            }
-            let x = d * (self.depth / z) - self.center;
-            *qk = self.plane.coords(x);
-        }
-        for k in 1..poly.len - 1 {
-            if let Some(t) = Tri::new(q[0], q[k], q[k + 1]) {
+        // Strictly beyond the triangle's plane: σ · n · (x − a) > 0 with
+        // n = (b − a) × (c − a) (det = (a − p) · n, so p has the other sign).
+        let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
+        poly.clip(self.line(n * sigma, self.center - tri[0]));
+        let last = poly.len.saturating_sub(1);
+        for k in 1..last {
+            // Fan diagonals (from v[0]) have no known line.
+            let first = if k == 1 { poly.line[0] } else { None };
+            let closing = if k + 1 == last { poly.line[last] } else { None };
+            let keys = [first, poly.line[k], closing];
+            if let Some(t) = Tri::new(poly.v[0], poly.v[k], poly.v[k + 1], keys) {
                 out.push(t);
             }
         }
     }
 }
 
-/// A convex polygon of up to eight vertices (a triangle clipped by five
-/// planes), relative to `p`.
+/// Whether `a` precedes `b` in lexicographic order of coordinates.
+fn lexicographic(a: DVec3, b: DVec3) -> bool {
+    (a.x, a.y, a.z) <= (b.x, b.y, b.z)
+}
+
+/// A convex polygon of the light's plane with at most eight vertices (the
+/// square cut by four half-planes).
 struct Poly {
-    v: [DVec3; Poly::CAP],
+    v: [DVec2; Poly::CAP],
+    /// The line of each edge `v[k] → v[k + 1]`.
+    line: [LineKey; Poly::CAP],
     len: usize,
 }
 
 impl Poly {
     const CAP: usize = 8;
 
-    fn new(t: [DVec3; 3]) -> Poly {
-        let mut v = [DVec3::ZERO; Poly::CAP];
-        v[..3].copy_from_slice(&t);
-        Poly { v, len: 3 }
+    fn square(h: f64) -> Poly {
+        let mut v = [DVec2::ZERO; Poly::CAP];
+        v[..4].copy_from_slice(&[
+            DVec2::new(-h, -h),
+            DVec2::new(h, -h),
+            DVec2::new(h, h),
+            DVec2::new(-h, h),
+        ]);
+        Poly {
+            v,
+            line: [None; Poly::CAP],
+            len: 4,
+        }
     }
 
-    /// Sutherland–Hodgman against `m · d + o ≥ 0`. A crossing point depends
-    /// only on the edge's two endpoints taken in a canonical order, so two
-    /// triangles sharing an edge clip it to the same bits.
-    fn clip(&mut self, m: DVec3, o: f64) {
+    /// Sutherland–Hodgman against the half-plane. Nothing is left when no
+    /// vertex is strictly inside: the rest has no area (a triangle lying in
+    /// the light's own plane hides nothing, as the open segment says).
+    fn clip(&mut self, line: Line) {
         let mut f = [0.0; Poly::CAP];
-        let mut all_in = true;
+        let (mut any_in, mut all_in) = (false, true);
         for (fk, &v) in f.iter_mut().zip(&self.v[..self.len]) {
-            *fk = m.dot(v) + o;
+            *fk = line.at(v);
+            any_in |= *fk > 0.0;
             all_in &= *fk >= 0.0;
+        }
+        if !any_in {
+            self.len = 0;
+            return;
         }
         if all_in {
             return;
         }
-        let mut out = [DVec3::ZERO; Poly::CAP];
+        let new = line.key();
+        let mut out = [DVec2::ZERO; Poly::CAP];
+        let mut keys = [None; Poly::CAP];
         let mut n = 0;
-        for k in 0..self.len {
-            let j = (k + 1) % self.len;
-            let (a, fa, b, fb) = (self.v[k], f[k], self.v[j], f[j]);
-            if fa >= 0.0 && n < Poly::CAP {
-                out[n] = a;
+        let mut push = |v: DVec2, key: LineKey| {
+            if n < Poly::CAP {
+                out[n] = v;
+                keys[n] = key;
                 n += 1;
             }
-            if ((fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0)) && n < Poly::CAP {
-                out[n] = crossing(a, fa, b, fb);
-                n += 1;
+        };
+        for k in 0..self.len {
+            let j = (k + 1) % self.len;
+            let (a, fa, b, fb, old) = (self.v[k], f[k], self.v[j], f[j], self.line[k]);
+            // The edge leaving each output vertex: the old edge while it
+            // stays inside, the clip line where the polygon leaves.
+            if fa > 0.0 && fb < 0.0 {
+                push(a, old);
+                push(crossing(a, fa, b, fb), new);
+            } else if fa >= 0.0 {
+                push(a, if fb >= 0.0 { old } else { new });
+            } else if fb > 0.0 {
+                push(crossing(a, fa, b, fb), old);
             }
         }
         self.v = out;
+        self.line = keys;
         self.len = n;
     }
 }
 
-/// The point where the segment `a b` crosses the plane with values `fa`,
-/// `fb` of strictly opposite signs there; symmetric in its arguments, so
-/// two triangles sharing an edge get the same bits. Measured from the end
-/// nearer the plane (`t ≤ ½`), so that the rounding is relative to the
-/// distance from that end, not to the far end's magnitude (a corner at
-/// 10²⁴ must not blur a crossing near the light).
-fn crossing(a: DVec3, fa: f64, b: DVec3, fb: f64) -> DVec3 {
-    let a_first = match fa.abs().total_cmp(&fb.abs()) {
-        std::cmp::Ordering::Less => true,
-        std::cmp::Ordering::Greater => false,
-        std::cmp::Ordering::Equal => (a.x, a.y, a.z) <= (b.x, b.y, b.z),
-    };
-    let (a, fa, b, fb) = if a_first {
+/// The point where the segment `a b` crosses a line (or plane) with values
+/// `fa`, `fb` of strictly opposite signs at its ends; symmetric in its
+/// arguments. Measured from the end nearer the line (`t ≤ ½`), so that the
+/// rounding is relative to the distance from that end, not to the far end's
+/// magnitude.
+fn crossing<V>(a: V, fa: f64, b: V, fb: f64) -> V
+where
+    V: Copy
+        + std::ops::Add<Output = V>
+        + std::ops::Sub<Output = V>
+        + std::ops::Mul<f64, Output = V>,
+{
+    let (a, fa, b, fb) = if fa.abs() <= fb.abs() {
         (a, fa, b, fb)
     } else {
         (b, fb, a, fa)
     };
-    let t = fa / (fa - fb);
+    let t = (fa / (fa - fb)).clamp(0.0, 1.0);
     a + (b - a) * t
 }
 
@@ -487,7 +544,7 @@ fn union_area(tris: &[Tri], measure: Measure, half: f64, scratch: &mut UnionScra
                 if tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
                     return true;
                 }
-                if let Some(span) = covered_span(a, b, tj, j < i) {
+                if let Some(span) = covered_span(a, b, ti.line[k], tj, j < i) {
                     // A span of the whole edge settles it (a shared edge,
                     // a copy): nothing of the edge is on the boundary. So
                     // do spans that together cover it, checked at every
@@ -648,15 +705,19 @@ fn add_uncovered(
 /// the edge runs along an edge of `t` the rule of the module documentation
 /// applies: covered when `t` lies on the other side, or on the same side
 /// and `t_first` (it comes first in index order).
-fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
+fn covered_span(a: DVec2, b: DVec2, line: LineKey, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for k in 0..3 {
         let (f0, f1) = t.edge(k);
         // Signed areas with exact signs and accurate values: the cut of
         // this edge by `f` and the cut of `f` by this edge land on the same
-        // point even for nearly parallel edges.
-        let va = orient2d_value(f0, f1, a);
-        let vb = orient2d_value(f0, f1, b);
+        // point even for nearly parallel edges. Edges cut along the same
+        // line are collinear by construction.
+        let (va, vb) = if line.is_some() && line == t.line[k] {
+            (0.0, 0.0)
+        } else {
+            (orient2d_value(f0, f1, a), orient2d_value(f0, f1, b))
+        };
         match (Sign::of(va), Sign::of(vb)) {
             (Sign::Zero, Sign::Zero) => {
                 let same_side = (b - a).dot(f1 - f0) > 0.0;
@@ -696,6 +757,10 @@ fn segment_visibility(bvh: &Bvh, p: DVec3, a: DVec3, b: DVec3, scratch: &mut Scr
     if collinear || n == DVec3::ZERO {
         return collinear_segment_visibility(bvh, p, a, b, &scratch.candidates);
     }
+    // The plane's unit normal (scaled to its largest component first, so
+    // that neither a light of size 1e-77 nor one of 1e77 under- or overflows
+    // the products below).
+    let n = (n / n.abs().max_element()).normalize();
     scratch.intervals.clear();
     for &i in &scratch.candidates {
         let Some(tri) = triangles.get(i as usize) else {
@@ -709,7 +774,8 @@ fn segment_visibility(bvh: &Bvh, p: DVec3, a: DVec3, b: DVec3, scratch: &mut Scr
 }
 
 /// The interval of the segment light's parameter `s ∈ [0, 1]` (the point
-/// `a + s (b − a)`) that the triangle blocks from `p`; `n = (a−p) × (b−p)`.
+/// `a + s (b − a)`) that the triangle blocks from `p`; `n` the unit normal
+/// along `(a − p) × (b − p)`.
 fn blocked_interval(
     p: DVec3,
     a: DVec3,
@@ -720,14 +786,24 @@ fn blocked_interval(
     if !tri.iter().all(|v| v.is_finite()) {
         return None;
     }
-    // Which side of the plane (p, a, b) each corner is on, exactly.
-    let side = tri.map(|v| orient3d(p, a, b, v));
+    // A triangle whose plane holds p (a receiver on it), or holds the
+    // light: every open segment (p, x) meets its plane at most at an end.
+    let [t0, t1, t2] = *tri;
+    if orient3d(t0, t1, t2, p) == Sign::Zero
+        || (orient3d(t0, t1, t2, a) == Sign::Zero && orient3d(t0, t1, t2, b) == Sign::Zero)
+    {
+        return None;
+    }
+    // Each corner's side of the plane (p, a, b): exact signs, and values
+    // accurate enough that an edge crossing the plane is cut on it even
+    // when the edge is within ulps of the plane.
+    let dist = tri.map(|v| orient3d_value(p, a, b, v));
+    let side = dist.map(Sign::of);
     if side.iter().all(|&s| s == Sign::Zero) {
         // In the plane: the open segments graze it and are not blocked.
         return None;
     }
     let rel = tri.map(|v| v - p);
-    let dist = rel.map(|v| n.dot(v));
     // The triangle's trace on the plane: corners on it and edge crossings.
     let mut pts = [DVec3::ZERO; 3];
     let mut m = 0;

@@ -18,6 +18,8 @@ use std::time::Instant;
 const GRID: usize = 32;
 /// Monte Carlo samples per receiver.
 const SAMPLES: u32 = 4096;
+/// How far from 0 and 1 a receiver's `V` must be to count as penumbra.
+const PENUMBRA: f64 = 1e-9;
 /// Family-wise false-failure rate of the agreement check.
 const ALPHA: f64 = 1e-3;
 
@@ -45,12 +47,14 @@ fn references(scene: &Scene) -> bool {
     let t = Instant::now();
     let exact_all = exact::visibility_many(&bvh, light, &grid);
     let exact_seconds = t.elapsed().as_secs_f64();
-    // The penumbra: where the exact answer is strictly between 0 and 1.
+    // The penumbra: where the exact answer is between 0 and 1 by more than
+    // its accuracy (1e-9 by its tests; sums of boundary pieces that cancel
+    // leave ~1e-16 where the light is fully covered by several triangles).
     let (points, exact): (Vec<DVec3>, Vec<f64>) = grid
         .iter()
         .zip(&exact_all)
         .filter_map(|(&p, v)| match v {
-            Ok(v) if *v > 0.0 && *v < 1.0 => Some((p, *v)),
+            Ok(v) if *v > PENUMBRA && *v < 1.0 - PENUMBRA => Some((p, *v)),
             _ => None,
         })
         .unzip();
