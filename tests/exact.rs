@@ -488,3 +488,31 @@ fn a_corner_at_1e24_does_not_blur_the_clip() {
     assert!(v < 1.0, "the triangle occludes: {v}");
     assert!((v - near).abs() < TOL, "{v} vs {near}");
 }
+
+#[test]
+fn regression_a_reversed_copy_of_an_edge_on_triangle_hides_nothing_more() {
+    // Found by the exhaustive agreement run (case 1344) against a version
+    // that treated image edges cut along the same line as exactly collinear:
+    // a triangle seen almost edge-on and its reversed copy have sliver
+    // images whose edges are all nearly parallel, and the union lost 2% of
+    // the light. A copy adds nothing to the union.
+    let light = Light::disk(
+        DVec3::new(
+            0.24228870057354202,
+            -0.014625219130459666,
+            3.4835479087872185,
+        ),
+        DVec3::new(0.2409468577944913, 0.7357575689366647, -0.6329339708621827),
+        1.086338817185422,
+    )
+    .unwrap();
+    let p = DVec3::new(0.1725959837440283, -0.3129531061370666, -0.089098867141522);
+    let t = [
+        DVec3::new(-0.6281095243697802, -0.7374790244553864, 0.5248311458061575),
+        DVec3::new(-1.4288150324835887, -1.1620049427737063, 1.138761158753837),
+        DVec3::new(0.19741910676641178, -0.30770247492838787, 2.746847229629692),
+    ];
+    let alone = visibility(&bvh(vec![t]), &light, p).unwrap();
+    let both = visibility(&bvh(vec![t, [t[2], t[1], t[0]]]), &light, p).unwrap();
+    assert!((both - alone).abs() < 1e-12, "{both} vs {alone}");
+}

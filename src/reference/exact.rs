@@ -164,34 +164,21 @@ pub fn visibility_with(
 #[derive(Clone, Copy, Debug)]
 struct Tri {
     v: [DVec2; 3],
-    /// The line each edge `v[k] → v[k + 1]` was cut along, where known.
-    line: [LineKey; 3],
     lo: DVec2,
     hi: DVec2,
 }
 
-/// Identifies the line an image edge lies on: the bits of its half-plane's
-/// coefficients, sign-normalised. Two triangles sharing a mesh edge cut
-/// their images along the same line (the plane through `p` and the edge,
-/// computed canonically), so their image edges are known to be collinear
-/// although their rounded endpoints are not exactly so. `None`: unknown
-/// (the clip square's sides, which are exact anyway, and fan diagonals,
-/// which are exact copies).
-type LineKey = Option<[u64; 3]>;
-
 impl Tri {
-    /// The triangle oriented counter-clockwise, with the lines of its edges
-    /// `a → b`, `b → c`, `c → a`; `None` when it is degenerate (decided
-    /// exactly).
-    fn new(a: DVec2, b: DVec2, c: DVec2, [ab, bc, ca]: [LineKey; 3]) -> Option<Tri> {
-        let (v, line) = match orient2d(a, b, c) {
-            Sign::Positive => ([a, b, c], [ab, bc, ca]),
-            Sign::Negative => ([a, c, b], [ca, bc, ab]),
+    /// The triangle oriented counter-clockwise; `None` when it is
+    /// degenerate (decided exactly).
+    fn new(a: DVec2, b: DVec2, c: DVec2) -> Option<Tri> {
+        let v = match orient2d(a, b, c) {
+            Sign::Positive => [a, b, c],
+            Sign::Negative => [a, c, b],
             Sign::Zero => return None,
         };
         Some(Tri {
             v,
-            line,
             lo: a.min(b).min(c),
             hi: a.max(b).max(c),
         })
@@ -303,13 +290,6 @@ impl Line {
     fn at(&self, q: DVec2) -> f64 {
         self.a * q.x + self.b * q.y + self.c
     }
-
-    fn key(&self) -> LineKey {
-        let first = [self.a, self.b, self.c].into_iter().find(|&x| x != 0.0)?;
-        let s = if first < 0.0 { -1.0 } else { 1.0 };
-        // `+ 0.0` turns −0 into +0.
-        Some([self.a, self.b, self.c].map(|x| (x * s + 0.0).to_bits()))
-    }
 }
 
 impl View {
@@ -401,13 +381,8 @@ impl View {
         // n = (b − a) × (c − a) (det = (a − p) · n, so p has the other sign).
         let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
         poly.clip(self.line(n * sigma, self.center - tri[0]));
-        let last = poly.len.saturating_sub(1);
-        for k in 1..last {
-            // Fan diagonals (from v[0]) have no known line.
-            let first = if k == 1 { poly.line[0] } else { None };
-            let closing = if k + 1 == last { poly.line[last] } else { None };
-            let keys = [first, poly.line[k], closing];
-            if let Some(t) = Tri::new(poly.v[0], poly.v[k], poly.v[k + 1], keys) {
+        for k in 1..poly.len.saturating_sub(1) {
+            if let Some(t) = Tri::new(poly.v[0], poly.v[k], poly.v[k + 1]) {
                 out.push(t);
             }
         }
@@ -423,8 +398,6 @@ fn lexicographic(a: DVec3, b: DVec3) -> bool {
 /// square cut by four half-planes).
 struct Poly {
     v: [DVec2; Poly::CAP],
-    /// The line of each edge `v[k] → v[k + 1]`.
-    line: [LineKey; Poly::CAP],
     len: usize,
 }
 
@@ -439,11 +412,7 @@ impl Poly {
             DVec2::new(h, h),
             DVec2::new(-h, h),
         ]);
-        Poly {
-            v,
-            line: [None; Poly::CAP],
-            len: 4,
-        }
+        Poly { v, len: 4 }
     }
 
     /// Sutherland–Hodgman against the half-plane. Nothing is left when no
@@ -464,33 +433,25 @@ impl Poly {
         if all_in {
             return;
         }
-        let new = line.key();
         let mut out = [DVec2::ZERO; Poly::CAP];
-        let mut keys = [None; Poly::CAP];
         let mut n = 0;
-        let mut push = |v: DVec2, key: LineKey| {
+        let mut push = |v: DVec2| {
             if n < Poly::CAP {
                 out[n] = v;
-                keys[n] = key;
                 n += 1;
             }
         };
         for k in 0..self.len {
             let j = (k + 1) % self.len;
-            let (a, fa, b, fb, old) = (self.v[k], f[k], self.v[j], f[j], self.line[k]);
-            // The edge leaving each output vertex: the old edge while it
-            // stays inside, the clip line where the polygon leaves.
-            if fa > 0.0 && fb < 0.0 {
-                push(a, old);
-                push(crossing(a, fa, b, fb), new);
-            } else if fa >= 0.0 {
-                push(a, if fb >= 0.0 { old } else { new });
-            } else if fb > 0.0 {
-                push(crossing(a, fa, b, fb), old);
+            let (a, fa, b, fb) = (self.v[k], f[k], self.v[j], f[j]);
+            if fa >= 0.0 {
+                push(a);
+            }
+            if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
+                push(crossing(a, fa, b, fb));
             }
         }
         self.v = out;
-        self.line = keys;
         self.len = n;
     }
 }
@@ -544,7 +505,7 @@ fn union_area(tris: &[Tri], measure: Measure, half: f64, scratch: &mut UnionScra
                 if tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
                     return true;
                 }
-                if let Some(span) = covered_span(a, b, ti.line[k], tj, j < i) {
+                if let Some(span) = covered_span(a, b, tj, j < i) {
                     // A span of the whole edge settles it (a shared edge,
                     // a copy): nothing of the edge is on the boundary. So
                     // do spans that together cover it, checked at every
@@ -705,19 +666,14 @@ fn add_uncovered(
 /// the edge runs along an edge of `t` the rule of the module documentation
 /// applies: covered when `t` lies on the other side, or on the same side
 /// and `t_first` (it comes first in index order).
-fn covered_span(a: DVec2, b: DVec2, line: LineKey, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
+fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
     let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
     for k in 0..3 {
         let (f0, f1) = t.edge(k);
         // Signed areas with exact signs and accurate values: the cut of
         // this edge by `f` and the cut of `f` by this edge land on the same
-        // point even for nearly parallel edges. Edges cut along the same
-        // line are collinear by construction.
-        let (va, vb) = if line.is_some() && line == t.line[k] {
-            (0.0, 0.0)
-        } else {
-            (orient2d_value(f0, f1, a), orient2d_value(f0, f1, b))
-        };
+        // point even for nearly parallel edges.
+        let (va, vb) = (orient2d_value(f0, f1, a), orient2d_value(f0, f1, b));
         match (Sign::of(va), Sign::of(vb)) {
             (Sign::Zero, Sign::Zero) => {
                 let same_side = (b - a).dot(f1 - f0) > 0.0;
