@@ -145,7 +145,7 @@ pub fn visibility_with(
             let (t, b) = normal.any_orthonormal_pair();
             // Orthonormal coordinates about the centre; a square around the
             // disk, with margin, so that clipping happens well outside it.
-            let view = View::new(p, center, [t, b], 1.5 * radius);
+            let view = View::orthonormal(p, center, [t, b], 1.5 * radius);
             let covered = view.covered_area(bvh, scratch, Measure::Disk(radius));
             1.0 - covered / (PI * radius * radius)
         }
@@ -276,6 +276,9 @@ struct View {
     /// The plane's coordinate axes.
     e: [DVec3; 2],
     half: f64,
+    /// For orthonormal axes (a disk): the unit normal toward the light and
+    /// the light's depth from `p` along it, for projecting corners directly.
+    depth: Option<(DVec3, f64)>,
 }
 
 /// A half-plane `a X + b Y + c ≥ 0` of the light's plane.
@@ -294,7 +297,47 @@ impl Line {
 
 impl View {
     fn new(p: DVec3, center: DVec3, e: [DVec3; 2], half: f64) -> View {
-        View { p, center, e, half }
+        View {
+            p,
+            center,
+            e,
+            half,
+            depth: None,
+        }
+    }
+
+    /// A view with orthonormal axes: triangles wholly between `p` and the
+    /// light whose corners project inside the square take a fast path (the
+    /// projected corners themselves, the same bits in every triangle that
+    /// shares them, so shared edges coincide exactly).
+    fn orthonormal(p: DVec3, center: DVec3, e: [DVec3; 2], half: f64) -> View {
+        let n = e[0].cross(e[1]);
+        let d = n.dot(center - p);
+        let (w, depth) = if d >= 0.0 { (n, d) } else { (-n, -d) };
+        View {
+            depth: Some((w, depth)),
+            ..View::new(p, center, e, half)
+        }
+    }
+
+    /// The corners' images when all three lie strictly between `p` and the
+    /// light's plane and project inside the square.
+    fn projected(&self, rel: &[DVec3; 3]) -> Option<[DVec2; 3]> {
+        let (w, depth) = self.depth?;
+        let c = self.center - self.p;
+        let mut out = [DVec2::ZERO; 3];
+        for (q, &d) in out.iter_mut().zip(rel) {
+            let z = w.dot(d);
+            if !(z > 0.0 && z < depth) {
+                return None;
+            }
+            let x = d * (depth / z) - c;
+            *q = DVec2::new(x.dot(self.e[0]), x.dot(self.e[1]));
+            if !(q.x.abs() < self.half && q.y.abs() < self.half) {
+                return None;
+            }
+        }
+        Some(out)
     }
 
     /// The half-plane of light points `x` with `m · (x − q) ≥ 0`, given
@@ -360,6 +403,10 @@ impl View {
             Sign::Zero => return,
         };
         let rel = tri.map(|v| v - self.p);
+        if let Some([a, b, c]) = self.projected(&rel) {
+            out.extend(Tri::new(a, b, c));
+            return;
+        }
         let mut poly = Poly::square(self.half);
         // The cone: for the edge (j, k) opposite corner i, the plane through
         // p and the edge, oriented toward corner i (σ · rel_j × rel_k does:
