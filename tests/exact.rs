@@ -516,3 +516,52 @@ fn regression_a_reversed_copy_of_an_edge_on_triangle_hides_nothing_more() {
     let both = visibility(&bvh(vec![t, [t[2], t[1], t[0]]]), &light, p).unwrap();
     assert!((both - alone).abs() < 1e-12, "{both} vs {alone}");
 }
+
+#[test]
+fn regression_a_corner_at_7e20_keeps_the_triangle_plane_accurate() {
+    // Found by the `exact` fuzz target: the triangle's plane was measured
+    // from its first corner, 7.5·10²⁰ away, and its normal formed from the
+    // two edges meeting there: the cancellation made the triangle vanish
+    // (V = 1) in one vertex order and not in the other (V = 0.70, which
+    // Monte Carlo confirms). Both orders must agree.
+    let light = Light::disk(
+        DVec3::new(0.3329592203149254, -0.40433893164610357, 2.686565543356959),
+        DVec3::new(
+            -0.46723623659311575,
+            -0.6226485195740882,
+            -0.6276934923085459,
+        ),
+        0.24796050684795604,
+    )
+    .unwrap();
+    let p = DVec3::new(
+        -0.06139231555519831,
+        -0.3042699162691742,
+        -0.026615398730202605,
+    );
+    let t = [
+        DVec3::new(
+            7.477080264543605e20,
+            7.477080264543605e20,
+            0.9059241559237401,
+        ),
+        DVec3::new(
+            -0.04086515762816606,
+            -0.44172320310071567,
+            0.6811930019404149,
+        ),
+        DVec3::new(
+            -0.010580173356917001,
+            -0.4967476192073033,
+            0.7440439450160307,
+        ),
+    ];
+    let v = visibility(&bvh(vec![t]), &light, p).unwrap();
+    let w = visibility(&bvh(vec![[t[2], t[1], t[0]]]), &light, p).unwrap();
+    let u = visibility(&bvh(vec![[t[1], t[2], t[0]]]), &light, p).unwrap();
+    assert!(v < 0.8, "the triangle occludes: {v}");
+    assert!(
+        (v - w).abs() < 1e-12 && (v - u).abs() < 1e-12,
+        "{v} {w} {u}"
+    );
+}

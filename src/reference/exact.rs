@@ -426,8 +426,22 @@ impl View {
         }
         // Strictly beyond the triangle's plane: σ · n · (x − a) > 0 with
         // n = (b − a) × (c − a) (det = (a − p) · n, so p has the other sign).
-        let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-        poly.clip(self.line(n * sigma, self.center - tri[0]));
+        // n is formed from the two shortest edges and the plane is measured
+        // from the corner nearest the light, so that a far corner (10²⁰
+        // away) costs no cancellation.
+        let e = [tri[1] - tri[0], tri[2] - tri[1], tri[0] - tri[2]];
+        let len = e.map(|v| v.abs().max_element());
+        let longest = (0..3).fold(0, |m, k| if len[k] > len[m] { k } else { m });
+        let n = e[(longest + 1) % 3].cross(e[(longest + 2) % 3]);
+        let nearest = (0..3).fold(0, |m, k| {
+            let d = |i: usize| (self.center - tri[i]).abs().max_element();
+            if d(k) < d(m) {
+                k
+            } else {
+                m
+            }
+        });
+        poly.clip(self.line(n * sigma, self.center - tri[nearest]));
         for k in 1..poly.len.saturating_sub(1) {
             if let Some(t) = Tri::new(poly.v[0], poly.v[k], poly.v[k + 1]) {
                 out.push(t);
