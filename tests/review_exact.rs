@@ -1,5 +1,9 @@
-//! Review of `reference::exact` (defects found; each test fails on the
-//! reviewed commit 342beb7). Monte Carlo with `1 << 20` samples and the
+//! Regressions from a review of `reference::exact`: six defects, each test
+//! failed on the reviewed commit 342beb7 and passes since the fixes (an
+//! occluder in the light's own plane; segment lights with the receiver on
+//! a tilted triangle, or an edge within ulps of the plane (p, a, b); an
+//! occluder a hair in front of the receiver; lights of size 1e77; thin
+//! parallelogram rect lights). Monte Carlo with `1 << 20` samples and the
 //! Student-t/Šidák tolerance of `reference::stats` is the referee where it
 //! resolves the question; where the question sits at the rounding level of
 //! MC's own sample points (an occluder edge within ulps of the plane
