@@ -3,22 +3,26 @@
 //! For a receiver `p` and the measure `M` a light presents to it
 //! ([`Light::emitter`]):
 //!
-//! - **Disk, sphere (facing disk), rect.** Every triangle is clipped to the
-//!   pyramid with apex `p` over the light (the four planes through `p` and
-//!   the sides of a square around the disk, or of the rect itself, and the
-//!   light's plane), so that only the part between `p` and the light is
-//!   projected — projecting unclipped triangles is the classic bug, and
-//!   clipping to the pyramid rather than to the slab keeps every projected
-//!   point finite. The clipped polygons are projected centrally from `p`
-//!   onto the light's plane and split into triangles, each oriented
-//!   counter-clockwise by the exact [`orient2d`]. Then
-//!   `V = 1 − area(∪ projected triangles ∩ M) / area(M)`, where the area of
-//!   the union is Green's theorem over the union's boundary: every edge of
-//!   every projected triangle is cut at the parameters where it enters and
-//!   leaves each other triangle, and the pieces inside no other triangle
-//!   are summed with [`segment_disk_area`] (the disk) or `½ a × b` (the
-//!   rect, in the rect's own affine coordinates, where it is the square
-//!   `[−1, 1]²` and area ratios are unchanged).
+//! - **Disk, sphere (facing disk), rect.** A light point `x` is hidden by
+//!   a triangle exactly when the direction `x − p` lies in the cone the
+//!   triangle spans from `p` and `x` lies strictly beyond the triangle's
+//!   plane. Each of those four half-spaces meets the light's plane in a
+//!   half-plane, so a triangle's *image* on the light's plane is a square
+//!   around the light cut by four half-planes: only what lies between `p`
+//!   and the light occludes (projecting unclipped triangles is the classic
+//!   bug), and no point near `p` or behind it is ever constructed. A
+//!   triangle wholly between `p` and a disk light whose corners project
+//!   inside the square takes a fast path: its projected corners, the same
+//!   bits in every triangle sharing them. Images are split into triangles,
+//!   each oriented counter-clockwise by the exact [`orient2d`]. Then
+//!   `V = 1 − area(∪ images ∩ M) / area(M)`, where the area of the union is
+//!   Green's theorem over the union's boundary: every edge of every image
+//!   triangle is cut at the parameters where it enters and leaves each
+//!   other one, and the pieces inside no other are summed with
+//!   [`segment_disk_area`] (the disk) or `½ a × b` (the rect, in its own
+//!   affine coordinates `x = c + s u + t v`, where it is the square
+//!   `[−1, 1]²` and area ratios are unchanged; no normal of the rect's
+//!   plane is ever computed).
 //! - **Segment.** The plane through `p` and the segment cuts each triangle
 //!   in a segment; clipped to the triangle `(p, a, b)` and projected from
 //!   `p` onto the light it blocks one interval of the light's parameter.
@@ -29,36 +33,38 @@
 //!
 //! DESIGN §9 allows a direct boundary-edge construction in place of
 //! `spade`'s arrangement. It is chosen because every topological decision
-//! in it is an exact predicate on the projected vertices — which side of
-//! an edge's line an endpoint lies on, and whether two edges are collinear
-//! — and no decision is ever taken on a rounded intersection point. A
-//! rounded crossing parameter only moves a cut along its edge, changing
-//! the area by the rounding of that parameter. The arrangement route
-//! would instead insert rounded split points as vertices, which is the
-//! failure spade's own documentation warns of.
+//! in it is an exact predicate — which side of a triangle's plane `p` lies
+//! on, which side of an edge's line an endpoint lies on, whether two edges
+//! are collinear — and no decision is taken on a rounded intersection
+//! point. Where two edges cross, the cut parameters come from
+//! [`orient2d_value`] (exact sign, relative error below `2⁻⁴⁰`), so the
+//! two edges are cut at the same point even when nearly parallel; a
+//! rounded cut only moves along its edge. The arrangement route would
+//! instead insert rounded split points as vertices, which is the failure
+//! spade's own documentation warns of.
 //!
 //! Degenerate input is defined, not avoided:
 //!
-//! - Edges that coincide after projection (the shared edge of two adjacent
-//!   triangles projects to the same two points bit for bit: projection and
-//!   clipping are functions of each vertex and of each edge's endpoints in a
-//!   canonical order) are detected exactly. A piece where two triangles lie
-//!   on opposite sides is interior to the union and dropped from both; a
-//!   piece where they lie on the same side is kept once, on the triangle
-//!   with the lowest index.
-//! - Triangles that project to a segment or a point (seen edge-on, or
-//!   through `p`: a receiver lying on a triangle) cover nothing, exactly as
+//! - Edges that coincide exactly (copies of a triangle, fast-path images
+//!   sharing corners, the clip square's sides) are detected by the exact
+//!   predicate. A piece where two triangles lie on opposite sides is
+//!   interior to the union and dropped from both; a piece where they lie on
+//!   the same side is kept once, on the triangle with the lowest index.
+//!   Edges that coincide only to rounding are cut consistently and leave
+//!   slivers of rounding size.
+//! - Triangles whose plane holds `p` (seen edge-on from a receiver lying on
+//!   them), or that lie in the light's own plane, hide nothing, exactly as
 //!   the open segment `(p, x)` of §1 meets them in at most a null set of
 //!   light points.
 //! - Touching at a point, and edges through a vertex, change no area.
 //!
 //! ## Accuracy
 //!
-//! The answer is exact up to the rounding of the clip, projection and
-//! crossing parameters (relative `O(ε)` of the light's size as seen from
-//! `p`, magnified by the depth ratio) and the documented accuracy of
-//! [`segment_disk_area`]. The tests hold it within `1e-9` of closed forms,
-//! far inside what any Monte Carlo run resolves.
+//! The answer is exact up to the rounding of the half-planes, the crossing
+//! parameters and the documented accuracy of [`segment_disk_area`]: about
+//! `1e-15` absolute in `V` on ordinary scenes (so a fully covered light may
+//! give `1e-16` rather than `0`), held within `1e-9` of closed forms by
+//! the tests (`docs/accuracy/references.md`).
 //!
 //! **Domain**: coordinates (of the receiver, the light and the triangles)
 //! within `±1e30`, so that every orientation determinant, a product of
@@ -70,9 +76,10 @@
 //! ## Cost
 //!
 //! The triangles are culled with the BVH to those whose bounds meet the
-//! pyramid; the union is quadratic in the number `n` of projected triangles
-//! that overlap the light's square, with a bounding-box reject in the inner
-//! loop (see `benches/README.md` for measured costs against `n`).
+//! pyramid from `p` over the light's square; the union tests each image
+//! edge against the images sharing a cell of a uniform grid with it, and
+//! stops at the first that covers it whole (see `benches/README.md` for
+//! measured costs against the number of occluders).
 
 use super::bvh::{segment_blocked, Bvh};
 use crate::kernel::disk::f64::segment_disk_area;
