@@ -565,3 +565,35 @@ fn regression_a_corner_at_7e20_keeps_the_triangle_plane_accurate() {
         "{v} {w} {u}"
     );
 }
+
+#[test]
+fn regression_a_segment_light_trace_from_a_corner_at_7e20() {
+    // Found by the `exact` fuzz target: a triangle with corners 7.5·10²⁰
+    // away crossing the plane (p, a, b) of a segment light; its trace was
+    // clipped with cuts measured from the far end and the blocked interval
+    // depended on the vertex order (0.78 against 0.31). Monte Carlo says
+    // V = 0.5325 for the triangle alone; both orders must give one answer.
+    let light = Light::segment(
+        DVec3::new(0.5835126007434747, 0.30498416326103595, 3.2182045502519876),
+        DVec3::new(0.3283614363182715, 0.13300270141614876, 3.2140211553384055),
+    )
+    .unwrap();
+    let p = DVec3::new(
+        0.10125993198452987,
+        -0.38831968776426284,
+        -0.12458378780924512,
+    );
+    let t = [
+        DVec3::new(
+            7.477084378872997e20,
+            7.477080264543605e20,
+            7.477080264543605e20,
+        ),
+        DVec3::new(7.477080264543605e20, 0.0, 0.0),
+        DVec3::new(0.0, -0.19158139821089032, 0.9478002889754145),
+    ];
+    let v = visibility(&bvh(vec![t]), &light, p).unwrap();
+    let w = visibility(&bvh(vec![[t[2], t[1], t[0]]]), &light, p).unwrap();
+    assert!(v < 0.9, "the triangle occludes: {v}");
+    assert!((v - w).abs() < 1e-12, "{v} vs {w}");
+}

@@ -844,27 +844,27 @@ fn blocked_interval(
     if m < 2 {
         return None;
     }
-    let (q0, q1) = (pts[0], pts[1]);
+    let (mut e0, mut e1) = (pts[0], pts[1]);
     let (ra, rb) = (a - p, b - p);
     // In the plane, with p at the origin: f ≥ 0 on b's side of the ray to
     // a, g ≥ 0 on a's side of the ray to b, h ≥ 0 on p's side of the light.
     let f = |q: DVec3| n.dot(ra.cross(q));
     let g = |q: DVec3| n.dot(q.cross(rb));
     let h = |q: DVec3| n.dot((rb - ra).cross(q - ra));
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    // Clip the trace to the triangle (p, a, b); each cut measured from the
+    // end nearer the cutting line (a trace end 10²⁰ away must not set the
+    // rounding of a cut near the light).
     for fun in [&f as &dyn Fn(DVec3) -> f64, &g, &h] {
-        let (v0, v1) = (fun(q0), fun(q1));
-        if v0 < 0.0 && v1 < 0.0 {
+        let (v0, v1) = (fun(e0), fun(e1));
+        if v0.is_nan() || v1.is_nan() || (v0 < 0.0 && v1 < 0.0) || (v0 <= 0.0 && v1 <= 0.0) {
+            // Outside, or on the line: nothing of positive length is left.
             return None;
         }
         if v0 < 0.0 {
-            t0 = t0.max(v0 / (v0 - v1));
+            e0 = crossing(e0, v0, e1, v1);
         } else if v1 < 0.0 {
-            t1 = t1.min(v0 / (v0 - v1));
+            e1 = crossing(e0, v0, e1, v1);
         }
-    }
-    if t0 >= t1 || t0.is_nan() || t1.is_nan() {
-        return None;
     }
     // Project both ends from p onto the light: s = f / (f + g).
     let param = |q: DVec3| {
@@ -872,8 +872,6 @@ fn blocked_interval(
         let den = fq + gq;
         (den > 0.0).then(|| (fq / den).clamp(0.0, 1.0))
     };
-    let e0 = q0 + (q1 - q0) * t0;
-    let e1 = q0 + (q1 - q0) * t1;
     let (s0, s1) = match (param(e0), param(e1)) {
         (Some(x), Some(y)) => (x, y),
         // An end at p itself: the trace runs along a ray from p, one point.
