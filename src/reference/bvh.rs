@@ -522,15 +522,21 @@ impl Bvh {
     /// build and at query (so bit-identical), and the build chose each `q`
     /// so that the decoded plane lies on or outside the `f32` box, itself
     /// rounded outward from the `f64` triangles: `B` contains every
-    /// triangle below the lane exactly (`tests::decoded_boxes_contain_their_triangles`
-    /// checks it). So if the true segment meets `B` at `t*`, the exact `f32` ray lies inside `B` grown by `δ` for all `t`
-    /// within `δᵢ/|dᵢ| ≥ 2⁻²²` of `t*` (clipped to `[0, 1]`): the slab
-    /// intervals overlap by a width of at least `2⁻²²`. The slab test grows
-    /// the box by `δ` through the origins it subtracts (`o ± δ` rounded
-    /// outward), and each rounded `t = (plane − origin) · (1/d)` carries at
-    /// most three roundings (relative error `γ₃ ≈ 3·2⁻²⁴`, sign exact; the
-    /// decoded plane is an exact input, not a rounding), so
-    /// comparing `t_near ≤ min(t_far, 1) · (1 + 2⁻²⁰)` (Ize, "Robust BVH Ray
+    /// triangle below the lane exactly (checked by
+    /// `tests::decoded_boxes_contain_their_triangles`). So if the true
+    /// segment meets `B` at `t*`, the exact `f32` ray lies inside `B` grown
+    /// by `δ` for all `t` within `δᵢ/|dᵢ| ≥ 2⁻²²` of `t*` (clipped to
+    /// `[0, 1]`): the slab intervals overlap by a width of at least `2⁻²²`.
+    /// The slab test grows the box by at least `δ` through the origins it
+    /// subtracts: `o ± δ′` with `δ′ = δ (1 + 2⁻²²) + |o| 2⁻²³`, rounded to
+    /// nearest `f32`, lies on or beyond `o ± δ`, since rounding moves it by
+    /// at most `2⁻²⁴ (|o| + δ′)`, less than the added `δ 2⁻²² + |o| 2⁻²³`
+    /// (with room for the `f64` arithmetic); where that passes `±f32::MAX`
+    /// it is clamped there, still beyond every plane. Each rounded
+    /// `t = (plane − origin) · (1/d)` carries at most three roundings
+    /// (relative error `γ₃ ≈ 3·2⁻²⁴`, sign exact; the decoded plane is an
+    /// exact input, not a rounding), so comparing
+    /// `t_near ≤ min(t_far, 1) · (1 + 2⁻²⁰)` (Ize, "Robust BVH Ray
     /// Traversal", 2013) cannot reject a box the true segment meets.
     ///
     /// Endpoints with a non-finite coordinate: `true` (no triangle meets
@@ -693,7 +699,12 @@ impl Ray32 {
             }
             let delta =
                 (p[i].abs() + d[i].abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
-            let (up, down) = (f32_up(o + delta), f32_down(o - delta));
+            // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
+            // (see `Bvh::segment_unoccluded`): no branch per rounding.
+            let wide =
+                delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o.abs() / f64::from(1u32 << 23);
+            let up = ((o + wide) as f32).clamp(-f32::MAX, f32::MAX);
+            let down = ((o - wide) as f32).clamp(-f32::MAX, f32::MAX);
             ray.entry[i] = usize::from(di < 0.0);
             ray.inv[i] = 1.0 / di;
             (ray.near[i], ray.far[i]) = if di < 0.0 { (down, up) } else { (up, down) };
@@ -898,6 +909,50 @@ mod tests {
             let bvh = Bvh::new(Occluders::from_triangles(triangles));
             assert_eq!(bvh.triangles.len(), count);
             check_subtree(&bvh, 0, 0);
+        }
+    }
+
+    #[test]
+    fn ray_origins_are_padded_outward() {
+        // `near`/`far` bracket `fl32(p) ± δ` (the argument of
+        // `Bvh::segment_unoccluded`), over many decades and at the edge of
+        // the `f32` range.
+        let mut rng = Rng::new(13);
+        for _ in 0..100_000 {
+            let mut point = || {
+                DVec3::new(
+                    rng.log_uniform(-40.0, 38.5) * rng.sign(),
+                    if rng.chance(0.1) {
+                        0.0
+                    } else {
+                        rng.log_uniform(-40.0, 38.5) * rng.sign()
+                    },
+                    coordinate(&mut rng, 1.0, 1e-3),
+                )
+            };
+            let (p, x) = (point(), point());
+            let Some(ray) = Ray32::new(p, x) else {
+                continue;
+            };
+            let d = x - p;
+            for i in 0..3 {
+                let o = f64::from(p[i] as f32);
+                let delta = (p[i].abs() + d[i].abs()) / f64::from(1u32 << 21);
+                let max = f64::from(f32::MAX);
+                let (lo, hi) = if ray.entry[i] == 1 {
+                    (ray.near[i], ray.far[i])
+                } else {
+                    (ray.far[i], ray.near[i])
+                };
+                assert!(
+                    f64::from(hi) >= (o + delta).min(max),
+                    "{p:?} {x:?} axis {i}"
+                );
+                assert!(
+                    f64::from(lo) <= (o - delta).max(-max),
+                    "{p:?} {x:?} axis {i}"
+                );
+            }
         }
     }
 
