@@ -518,7 +518,8 @@ impl Bvh {
     /// `2⁻⁵³`, the substitution `2⁻¹⁰⁰` — a factor-2 margin above `δᵢ/2`
     /// absorbs the `f64` arithmetic computing `δ` and `o ± δ`. Let `B` be a
     /// lane's decoded box: its planes are the `f32` values
-    /// [`decode`]`(origin, q, scale)`, computed with the same operations at
+    /// `origin + q · scale` (the node's 8-bit `q` on its power-of-two grid,
+    /// one rounding), computed with the same operations at
     /// build and at query (so bit-identical), and the build chose each `q`
     /// so that the decoded plane lies on or outside the `f32` box, itself
     /// rounded outward from the `f64` triangles: `B` contains every
