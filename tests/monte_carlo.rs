@@ -256,6 +256,25 @@ proptest! {
     }
 
     #[test]
+    fn deep_traversal_agrees_with_brute_force(seed in any::<u64>()) {
+        // Several soups in one tree (up to 320 triangles, several levels of
+        // quantised nodes), each soup near or far from the origin, queried
+        // by every soup's segments.
+        let mut rng = Rng::new(seed);
+        let (mut triangles, mut ends) = (Vec::new(), Vec::new());
+        for _ in 0..1 + rng.below(8) {
+            let (t, p, x) = soup(&mut rng);
+            triangles.extend(t);
+            ends.extend([(p, x), (x, p)]);
+        }
+        let b = bvh(triangles.clone());
+        for (p, x) in ends {
+            let brute = !triangles.iter().any(|t| segment_blocked(p, x, t));
+            prop_assert_eq!(b.segment_unoccluded(p, x), brute, "p {:?} x {:?}", p, x);
+        }
+    }
+
+    #[test]
     fn culling_returns_a_superset(seed in any::<u64>()) {
         let mut rng = Rng::new(seed);
         let (triangles, apex, centre) = soup(&mut rng);

@@ -6,9 +6,10 @@
 //!
 //! The tree is built by `obvhs` (PLOC with reinsertion, `Bvh2`) over boxes
 //! computed in `f64` and rounded *outward* to `f32`, then collapsed into a
-//! 4-wide tree of our own whose traversal is conservative (see
-//! [`Bvh::segment_unoccluded`]): the `f32` tree only ever prunes boxes the true
-//! `f64` segment cannot meet. Every triangle the traversal reaches is decided
+//! 4-wide tree of our own — one 64-byte node per four children, boxes
+//! quantised outward to 8 bits per plane — whose traversal is conservative
+//! (see [`Bvh::segment_unoccluded`]): the `f32` tree only ever prunes boxes
+//! the true `f64` segment cannot meet. Every triangle the traversal reaches is decided
 //! exactly by [`segment_blocked`], in `f64` with the exact
 //! [`orient3d`]. The answer is therefore
 //! exactly DESIGN §1's: the light point `x` is visible from `p` iff the open
@@ -33,6 +34,7 @@ use crate::kernel::predicate::{orient3d, Sign};
 use glam::{DVec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::bvh2::Bvh2;
 use obvhs::BvhBuildParams;
 use std::fmt;
@@ -161,19 +163,137 @@ fn segment_blocked_filtered(p: DVec3, x: DVec3, t: &[DVec3; 3]) -> Option<bool> 
     Some(sp != sx)
 }
 
-/// A node of the 4-wide tree: child boxes in structure-of-arrays form (the
-/// slab test runs over the four lanes at once).
+/// A node of the 4-wide tree, one 64-byte cache line: the four child boxes
+/// quantised to 8 bits per plane on a per-axis power-of-two grid (the
+/// compressed wide nodes of Ylitie, Karras and Laine, "Efficient
+/// Incoherent Ray Traversal on GPUs Through Compressed Wide BVHs", 2017),
+/// in structure-of-arrays form (the slab test runs over the four lanes at
+/// once).
+///
+/// A plane decodes to [`decode`]`(origin, q, scale)`, one `f32` product (exact:
+/// `q < 2⁸`, `scale` a power of two) and one rounded sum; the build chooses
+/// each `q` by evaluating that very expression, so the decoded box contains
+/// the child's `f32` box — rounding included, the traversal computes the
+/// same bits.
 #[derive(Clone, Copy)]
+#[repr(C, align(64))]
 struct Node {
-    /// `lo[axis][lane]`: box minima; `+∞` for an empty lane.
-    lo: [[f32; WIDTH]; 3],
-    /// `hi[axis][lane]`: box maxima; `−∞` for an empty lane.
-    hi: [[f32; WIDTH]; 3],
-    /// Inner child: its node index. Leaf: its first triangle in
-    /// `Bvh::triangles`. Empty lane: [`EMPTY`].
+    /// Per axis: the grid's origin (the least child minimum).
+    origin: [f32; 3],
+    /// Per axis: the grid step, a power of two `2ᵉ`, `e ∈ [−126, 127]`.
+    scale: [f32; 3],
+    /// `q[side][axis][lane]`: quantised box minima (`side` 0; each decodes
+    /// to at most the `f32` minimum) and maxima (`side` 1; at least the
+    /// maximum).
+    q: [[[u8; WIDTH]; 3]; 2],
+    /// Inner child: its node index. Leaf: [`LEAF`] `|` its triangle's index
+    /// in `Bvh::triangles`. Empty lane: [`EMPTY`].
     child: [u32; WIDTH],
-    /// Triangles in a leaf child; `0` for an inner child.
-    count: [u32; WIDTH],
+}
+
+/// The flag of a leaf in [`Node::child`].
+const LEAF: u32 = 1 << 31;
+
+/// A decoded plane: `origin + q · scale`. The one definition the build and
+/// the traversal share, so both round alike (Rust never contracts to FMA).
+#[inline(always)]
+fn decode(origin: f32, q: u8, scale: f32) -> f32 {
+    origin + f32::from(q) * scale
+}
+
+impl Node {
+    const EMPTY_NODE: Node = Node {
+        origin: [0.0; 3],
+        scale: [1.0; 3],
+        q: [[[0; WIDTH]; 3]; 2],
+        child: [EMPTY; WIDTH],
+    };
+
+    /// Quantises `boxes` (at most [`WIDTH`]; `f32` boxes with `lo ≤ hi`,
+    /// finite) into lanes `0..boxes.len()`, conservatively (see [`Node`]).
+    fn quantised(boxes: &[([f32; 3], [f32; 3])]) -> Node {
+        let mut node = Node::EMPTY_NODE;
+        for axis in 0..3 {
+            let origin = boxes
+                .iter()
+                .map(|b| b.0[axis])
+                .fold(f32::INFINITY, f32::min);
+            let top = boxes
+                .iter()
+                .map(|b| b.1[axis])
+                .fold(f32::NEG_INFINITY, f32::max);
+            let extent = f64::from(top) - f64::from(origin);
+            let guess = (extent / 255.0).log2().ceil();
+            let mut e = if guess.is_finite() {
+                guess as i32
+            } else {
+                -126
+            }
+            .clamp(-126, 127);
+            // `decode(origin, 255, 2¹²⁷)` is `+∞`: the loop ends.
+            while decode(origin, 255, pow2(e)) < top {
+                e += 1;
+            }
+            let scale = pow2(e);
+            node.origin[axis] = origin;
+            node.scale[axis] = scale;
+            for (lane, b) in boxes.iter().enumerate() {
+                // `decode` is nondecreasing in `q`; `decode(·, 0, ·)` is
+                // `origin ≤ lo` and `decode(·, 255, ·) ≥ top ≥ hi`.
+                let (lo, hi) = (b.0[axis], b.1[axis]);
+                let fit = |q: f64| q.clamp(0.0, 255.0) as u8;
+                let mut q = fit(((f64::from(lo) - f64::from(origin)) / f64::from(scale)).floor());
+                while q > 0 && decode(origin, q, scale) > lo {
+                    q -= 1;
+                }
+                while q < 255 && decode(origin, q + 1, scale) <= lo {
+                    q += 1;
+                }
+                node.q[0][axis][lane] = q;
+                let mut q = fit(((f64::from(hi) - f64::from(origin)) / f64::from(scale)).ceil());
+                while q < 255 && decode(origin, q, scale) < hi {
+                    q += 1;
+                }
+                while q > 0 && decode(origin, q - 1, scale) >= hi {
+                    q -= 1;
+                }
+                node.q[1][axis][lane] = q;
+            }
+        }
+        node
+    }
+
+    /// The decoded box of `lane`: `(lo, hi)`.
+    fn lane_box(&self, lane: usize) -> (DVec3, DVec3) {
+        let plane = |q: &[[u8; WIDTH]; 3], axis: usize| {
+            f64::from(decode(self.origin[axis], q[axis][lane], self.scale[axis]))
+        };
+        (
+            DVec3::new(
+                plane(&self.q[0], 0),
+                plane(&self.q[0], 1),
+                plane(&self.q[0], 2),
+            ),
+            DVec3::new(
+                plane(&self.q[1], 0),
+                plane(&self.q[1], 1),
+                plane(&self.q[1], 2),
+            ),
+        )
+    }
+}
+
+/// `2ᵉ` for `e ∈ [−126, 127]` (normal `f32`).
+fn pow2(e: i32) -> f32 {
+    f32::from_bits(((e + 127) as u32) << 23)
+}
+
+/// An entry of a node under construction: an obvhs node, or a run of
+/// `primitive_indices` (a leaf of more than one triangle, split in halves).
+#[derive(Clone, Copy)]
+enum Item {
+    Node(usize),
+    Prims(usize, usize),
 }
 
 /// A BVH over a scene's occluders (owns them). Immutable once built, `Sync`:
@@ -220,7 +340,7 @@ fn in_f32_range(v: DVec3) -> bool {
 }
 
 impl Bvh {
-    /// Builds the hierarchy (single-threaded; about 0.1 s per 100k
+    /// Builds the hierarchy (single-threaded; about 0.3 s per 100k
     /// triangles).
     ///
     /// Each triangle's box is computed in `f64` and rounded outward to `f32`,
@@ -250,82 +370,128 @@ impl Bvh {
             ids: Vec::with_capacity(kept.len()),
             stack_need: 1,
         };
+        if kept.len() >= LEAF as usize {
+            // Beyond the leaf encoding (2³¹ triangles, 144 GiB of corners):
+            // no tree, every query tests every triangle.
+            for &id in &kept {
+                bvh.ids.push(id);
+                bvh.triangles.push(bvh.occluders.triangles()[id as usize]);
+            }
+            return bvh;
+        }
         if boxes.is_empty() {
             return bvh;
         }
         // One triangle per leaf: the 4-wide node test then culls single
         // triangles, cheaper than their exact test (measured: 1.2–2× the
-        // rays/s of 4 or 8 per leaf on benches/rays.rs).
+        // rays/s of 4 or 8 per leaf on benches/rays.rs). obvhs's slowest
+        // preset: its two full reinsertion passes visit 16 % fewer nodes
+        // per ray than `medium_build` on the 100k-triangle soup of
+        // `examples/ray_corpus.rs` (soup rays/s 1.26×), for a build about
+        // 4× as long. The passes run here rather than in `build_bvh2`,
+        // whose debug-build validation rejects their result when many
+        // boxes coincide (a stale `max_depth`, which only obvhs's own
+        // traversal uses).
+        let preset = BvhBuildParams::very_slow_build();
         let params = BvhBuildParams {
             max_prims_per_leaf: 1,
-            ..BvhBuildParams::medium_build()
+            reinsertion_batch_ratio: 0.0,
+            ..preset
         };
-        let tree = build_bvh2(&boxes, params, &mut Duration::default());
-        bvh.collapse(&tree, &kept);
+        let mut tree = build_bvh2(&boxes, params, &mut Duration::default());
+        let mut reinsertion = ReinsertionOptimizer::default();
+        let ratio = preset.reinsertion_batch_ratio;
+        reinsertion.run(&mut tree, ratio, None);
+        reinsertion.run(
+            &mut tree,
+            ratio * preset.post_collapse_reinsertion_batch_ratio_multiplier,
+            None,
+        );
+        bvh.collapse(&tree, &boxes, &kept);
         bvh
     }
 
     /// Turns obvhs's binary tree into ours: each node takes up to [`WIDTH`]
-    /// descendants (repeatedly opening the inner child of largest area), and
-    /// the triangles are copied in leaf order.
-    fn collapse(&mut self, tree: &Bvh2, kept: &[u32]) {
-        let empty = Node {
-            lo: [[f32::INFINITY; WIDTH]; 3],
-            hi: [[f32::NEG_INFINITY; WIDTH]; 3],
-            child: [EMPTY; WIDTH],
-            count: [0; WIDTH],
+    /// descendants (repeatedly opening the entry of largest area), every
+    /// leaf lane holds one triangle, and the triangles are copied in leaf
+    /// order.
+    fn collapse(&mut self, tree: &Bvh2, boxes: &[Aabb], kept: &[u32]) {
+        let prims = &tree.primitive_indices;
+        let aabb = |item: Item| -> Aabb {
+            match item {
+                Item::Node(n) => *tree.nodes[n].aabb(),
+                Item::Prims(first, count) => prims[first..first + count]
+                    .iter()
+                    .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize])),
+            }
         };
-        let root = &tree.nodes[0];
-        // (obvhs node, our node, depth of our node)
-        let mut work = vec![(0usize, 0usize, 1usize)];
-        self.nodes.push(empty);
+        // An obvhs leaf is the run of its primitives.
+        let normal = |item: Item| match item {
+            Item::Node(n) if tree.nodes[n].is_leaf() => {
+                let node = &tree.nodes[n];
+                Item::Prims(node.first_index as usize, node.prim_count as usize)
+            }
+            other => other,
+        };
+        let children = |item: Item| -> Option<[Item; 2]> {
+            match item {
+                Item::Node(n) => {
+                    let first = tree.nodes[n].first_index as usize;
+                    Some([normal(Item::Node(first)), normal(Item::Node(first + 1))])
+                }
+                Item::Prims(first, count) if count > 1 => {
+                    let half = count / 2;
+                    Some([
+                        Item::Prims(first, half),
+                        Item::Prims(first + half, count - half),
+                    ])
+                }
+                Item::Prims(..) => None,
+            }
+        };
+        // (entry, our node, depth of our node)
+        let mut work = vec![(normal(Item::Node(0)), 0usize, 1usize)];
+        self.nodes.push(Node::EMPTY_NODE);
         let mut depth = 1;
         while let Some((src, dst, level)) = work.pop() {
             depth = depth.max(level);
-            let mut lanes: Vec<usize> = if src == 0 && root.is_leaf() {
-                vec![0]
-            } else {
-                let first = tree.nodes[src].first_index as usize;
-                vec![first, first + 1]
-            };
+            let mut lanes = vec![src];
             while lanes.len() < WIDTH {
                 let widest = lanes
                     .iter()
                     .enumerate()
-                    .filter(|(_, &n)| !tree.nodes[n].is_leaf())
-                    .max_by(|(_, &a), (_, &b)| {
-                        let area = |n: usize| tree.nodes[n].aabb().half_area();
-                        area(a).total_cmp(&area(b))
-                    })
+                    .filter(|(_, &item)| children(item).is_some())
+                    .max_by(|(_, &a), (_, &b)| aabb(a).half_area().total_cmp(&aabb(b).half_area()))
                     .map(|(k, _)| k);
                 let Some(k) = widest else { break };
-                let first = tree.nodes[lanes[k]].first_index as usize;
-                lanes[k] = first;
-                lanes.push(first + 1);
+                let [left, right] = children(lanes[k]).expect("filtered");
+                lanes[k] = left;
+                lanes.push(right);
             }
-            let mut node = empty;
-            for (lane, &n) in lanes.iter().enumerate() {
-                let src_node = &tree.nodes[n];
-                let b = src_node.aabb();
-                for axis in 0..3 {
-                    node.lo[axis][lane] = b.min[axis];
-                    node.hi[axis][lane] = b.max[axis];
-                }
-                if src_node.is_leaf() {
-                    let first = src_node.first_index as usize;
-                    let count = src_node.prim_count as usize;
-                    node.child[lane] = self.triangles.len() as u32;
-                    node.count[lane] = count as u32;
-                    for &prim in &tree.primitive_indices[first..first + count] {
-                        let id = kept[prim as usize];
+            // (obvhs leaves are never empty; an empty run would not end.)
+            lanes.retain(|item| !matches!(item, Item::Prims(_, 0)));
+            let lane_boxes: Vec<([f32; 3], [f32; 3])> = lanes
+                .iter()
+                .map(|&item| {
+                    let b = aabb(item);
+                    (b.min.to_array(), b.max.to_array())
+                })
+                .collect();
+            let mut node = Node::quantised(&lane_boxes);
+            for (lane, &item) in lanes.iter().enumerate() {
+                node.child[lane] = match item {
+                    Item::Prims(first, 1) => {
+                        let id = kept[prims[first] as usize];
                         self.ids.push(id);
                         self.triangles.push(self.occluders.triangles()[id as usize]);
+                        LEAF | (self.triangles.len() - 1) as u32
                     }
-                } else {
-                    node.child[lane] = self.nodes.len() as u32;
-                    work.push((n, self.nodes.len(), level + 1));
-                    self.nodes.push(empty);
-                }
+                    _ => {
+                        work.push((item, self.nodes.len(), level + 1));
+                        self.nodes.push(Node::EMPTY_NODE);
+                        (self.nodes.len() - 1) as u32
+                    }
+                };
             }
             self.nodes[dst] = node;
         }
@@ -350,15 +516,28 @@ impl Bvh {
     /// axis, where `δᵢ = 2⁻²¹ (|pᵢ| + |xᵢ − pᵢ|) + 2⁻⁹⁸`: the two roundings to
     /// `f32` contribute at most `2⁻²⁴` relative each, the `f64` difference
     /// `2⁻⁵³`, the substitution `2⁻¹⁰⁰` — a factor-2 margin above `δᵢ/2`
-    /// absorbs the `f64` arithmetic computing `δ` and `o ± δ`. So if the true
-    /// segment meets a box `B` (which contains its triangles exactly) at
-    /// `t*`, the exact `f32` ray lies inside `B` grown by `δ` for all `t`
-    /// within `δᵢ/|dᵢ| ≥ 2⁻²²` of `t*` (clipped to `[0, 1]`): the slab
-    /// intervals overlap by a width of at least `2⁻²²`. The slab test grows
-    /// the box by `δ` through the origins it subtracts (`o ± δ` rounded
-    /// outward), and each rounded `t = (plane − origin) · (1/d)` carries at
-    /// most three roundings (relative error `γ₃ ≈ 3·2⁻²⁴`, sign exact), so
-    /// comparing `t_near ≤ min(t_far, 1) · (1 + 2⁻²⁰)` (Ize, "Robust BVH Ray
+    /// absorbs the `f64` arithmetic computing `δ` and `o ± δ`. Let `B` be a
+    /// lane's decoded box: its planes are the `f32` values
+    /// `origin + q · scale` (the node's 8-bit `q` on its power-of-two grid,
+    /// one rounding), computed with the same operations at
+    /// build and at query (so bit-identical), and the build chose each `q`
+    /// so that the decoded plane lies on or outside the `f32` box, itself
+    /// rounded outward from the `f64` triangles: `B` contains every
+    /// triangle below the lane exactly (checked by
+    /// `tests::decoded_boxes_contain_their_triangles`). So if the true
+    /// segment meets `B` at `t*`, the exact `f32` ray lies inside `B` grown
+    /// by `δ` for all `t` within `δᵢ/|dᵢ| ≥ 2⁻²²` of `t*` (clipped to
+    /// `[0, 1]`): the slab intervals overlap by a width of at least `2⁻²²`.
+    /// The slab test grows the box by at least `δ` through the origins it
+    /// subtracts: `o ± δ′` with `δ′ = δ (1 + 2⁻²²) + |o| 2⁻²³`, rounded to
+    /// nearest `f32`, lies on or beyond `o ± δ`, since rounding moves it by
+    /// at most `2⁻²⁴ (|o| + δ′)`, less than the added `δ 2⁻²² + |o| 2⁻²³`
+    /// (with room for the `f64` arithmetic); where that passes `±f32::MAX`
+    /// it is clamped there, still beyond every plane. Each rounded
+    /// `t = (plane − origin) · (1/d)` carries at most three roundings
+    /// (relative error `γ₃ ≈ 3·2⁻²⁴`, sign exact; the decoded plane is an
+    /// exact input, not a rounding), so comparing
+    /// `t_near ≤ min(t_far, 1) · (1 + 2⁻²⁰)` (Ize, "Robust BVH Ray
     /// Traversal", 2013) cannot reject a box the true segment meets.
     ///
     /// Endpoints with a non-finite coordinate: `true` (no triangle meets
@@ -366,10 +545,11 @@ impl Bvh {
     /// `f32::MAX`: every triangle is tested.
     #[must_use]
     pub fn segment_unoccluded(&self, p: DVec3, x: DVec3) -> bool {
-        if self.nodes.is_empty() || !(p.is_finite() && x.is_finite()) {
+        if !(p.is_finite() && x.is_finite()) {
             return true;
         }
-        let Some(ray) = Ray32::new(p, x) else {
+        let ray = Ray32::new(p, x).filter(|_| !self.nodes.is_empty());
+        let Some(ray) = ray else {
             return !self.triangles.iter().any(|t| segment_blocked(p, x, t));
         };
         let mut small = [0u32; STACK];
@@ -382,25 +562,42 @@ impl Bvh {
         };
         let mut top = 0;
         let mut node = 0u32;
+        // A value read from each child node and leaf triangle as soon as
+        // its box is hit: the loads start while this node's other lanes and
+        // leaves are handled (the crate forbids the `unsafe` prefetch
+        // intrinsic), and `black_box` keeps them. Measured: soup rays/s
+        // 1.07× on `examples/ray_corpus.rs`.
+        let mut touched = 0u32;
         loop {
             let n = &self.nodes[node as usize];
-            let mut mask = ray.hits(n);
-            while mask != 0 {
-                let lane = mask.trailing_zeros() as usize;
-                mask &= mask - 1;
-                let (child, count) = (n.child[lane], n.count[lane]);
-                if count == 0 {
+            let mask = ray.hits(n);
+            let mut leaves = 0u32;
+            let mut rest = mask;
+            while rest != 0 {
+                let lane = rest.trailing_zeros() as usize;
+                rest &= rest - 1;
+                let child = n.child[lane];
+                if child & LEAF == 0 {
                     stack[top] = child;
                     top += 1;
+                    touched = touched.wrapping_add(self.nodes[child as usize].child[0]);
                 } else {
-                    let first = child as usize;
-                    let tris = &self.triangles[first..first + count as usize];
-                    if tris.iter().any(|t| segment_blocked(p, x, t)) {
-                        return false;
-                    }
+                    leaves |= 1 << lane;
+                    let t = &self.triangles[(child & !LEAF) as usize];
+                    touched = touched.wrapping_add(t[0].x.to_bits() as u32);
+                }
+            }
+            while leaves != 0 {
+                let lane = leaves.trailing_zeros() as usize;
+                leaves &= leaves - 1;
+                let t = &self.triangles[(n.child[lane] & !LEAF) as usize];
+                if segment_blocked(p, x, t) {
+                    std::hint::black_box(touched);
+                    return false;
                 }
             }
             if top == 0 {
+                std::hint::black_box(touched);
                 return true;
             }
             top -= 1;
@@ -430,10 +627,10 @@ impl Bvh {
     /// are never reported (they block nothing).
     pub fn triangles_meeting_hull(&self, points: &[DVec3], out: &mut Vec<u32>) {
         out.clear();
-        if points.is_empty() || self.nodes.is_empty() {
+        if points.is_empty() {
             return;
         }
-        if !points.iter().all(|&v| in_f32_range(v)) {
+        if self.nodes.is_empty() || !points.iter().all(|&v| in_f32_range(v)) {
             out.extend_from_slice(&self.ids);
             out.sort_unstable();
             return;
@@ -443,15 +640,14 @@ impl Bvh {
         while let Some(node) = stack.pop() {
             let n = &self.nodes[node as usize];
             for lane in 0..WIDTH {
-                let (child, count) = (n.child[lane], n.count[lane]);
+                let child = n.child[lane];
                 if child == EMPTY || hull.separated(n, lane) {
                     continue;
                 }
-                if count == 0 {
+                if child & LEAF == 0 {
                     stack.push(child);
                 } else {
-                    let first = child as usize;
-                    out.extend_from_slice(&self.ids[first..first + count as usize]);
+                    out.push(self.ids[(child & !LEAF) as usize]);
                 }
             }
         }
@@ -473,8 +669,9 @@ struct Ray32 {
     far: [f32; 3],
     /// `1/d` per axis.
     inv: [f32; 3],
-    /// `dᵢ < 0`: the entry plane is the box's maximum.
-    negative: [bool; 3],
+    /// The side (index of [`Node::q`]) of the entry plane of each axis: `1`
+    /// (the maximum) where `dᵢ < 0`.
+    entry: [usize; 3],
 }
 
 /// `1 + 2⁻²⁰`: covers the `(1 + γ₃)/(1 − γ₃)` of three roundings on each side
@@ -493,7 +690,7 @@ impl Ray32 {
             near: [0.0; 3],
             far: [0.0; 3],
             inv: [0.0; 3],
-            negative: [false; 3],
+            entry: [0; 3],
         };
         for i in 0..3 {
             let o = f64::from(p[i] as f32);
@@ -503,14 +700,15 @@ impl Ray32 {
             }
             let delta =
                 (p[i].abs() + d[i].abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
-            let (up, down) = (f32_up(o + delta), f32_down(o - delta));
-            ray.negative[i] = di < 0.0;
+            // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
+            // (see `Bvh::segment_unoccluded`): no branch per rounding.
+            let wide =
+                delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o.abs() / f64::from(1u32 << 23);
+            let up = ((o + wide) as f32).clamp(-f32::MAX, f32::MAX);
+            let down = ((o - wide) as f32).clamp(-f32::MAX, f32::MAX);
+            ray.entry[i] = usize::from(di < 0.0);
             ray.inv[i] = 1.0 / di;
-            (ray.near[i], ray.far[i]) = if ray.negative[i] {
-                (down, up)
-            } else {
-                (up, down)
-            };
+            (ray.near[i], ray.far[i]) = if di < 0.0 { (down, up) } else { (up, down) };
         }
         Some(ray)
     }
@@ -519,14 +717,15 @@ impl Ray32 {
     #[inline(always)]
     fn hits(&self, n: &Node) -> u32 {
         let mut t_near = [0.0f32; WIDTH];
-        let mut t_far = [f32::INFINITY; WIDTH];
+        let mut t_far = [1.0f32; WIDTH];
         for axis in 0..3 {
-            let (entry, exit) = if self.negative[axis] {
-                (&n.hi[axis], &n.lo[axis])
-            } else {
-                (&n.lo[axis], &n.hi[axis])
-            };
+            let side = self.entry[axis];
+            let (entry, exit) = (&n.q[side][axis], &n.q[1 - side][axis]);
             let (near, far, inv) = (self.near[axis], self.far[axis], self.inv[axis]);
+            let (origin, scale) = (n.origin[axis], n.scale[axis]);
+            let entry: [f32; WIDTH] =
+                std::array::from_fn(|lane| decode(origin, entry[lane], scale));
+            let exit: [f32; WIDTH] = std::array::from_fn(|lane| decode(origin, exit[lane], scale));
             for lane in 0..WIDTH {
                 // Comparisons rather than `f32::max`: no NaN arises (see
                 // above), and these map to `maxps`/`minps`.
@@ -537,8 +736,8 @@ impl Ray32 {
         }
         let mut mask = 0;
         for lane in 0..WIDTH {
-            let limit = t_far[lane].min(1.0) * T_SLACK;
-            mask |= u32::from(t_near[lane] <= limit) << lane;
+            let hit = (t_near[lane] <= t_far[lane] * T_SLACK) & (n.child[lane] != EMPTY);
+            mask |= u32::from(hit) << lane;
         }
         mask
     }
@@ -617,16 +816,7 @@ impl Hull {
 
     /// Whether lane `lane` of `n` is certainly disjoint from the hull.
     fn separated(&self, n: &Node, lane: usize) -> bool {
-        let lo = DVec3::new(
-            f64::from(n.lo[0][lane]),
-            f64::from(n.lo[1][lane]),
-            f64::from(n.lo[2][lane]),
-        );
-        let hi = DVec3::new(
-            f64::from(n.hi[0][lane]),
-            f64::from(n.hi[1][lane]),
-            f64::from(n.hi[2][lane]),
-        );
+        let (lo, hi) = n.lane_box(lane);
         if lo.cmpgt(self.hi).any() || hi.cmplt(self.lo).any() {
             return true;
         }
@@ -646,4 +836,161 @@ impl Hull {
 fn dot_bounded(n: DVec3, q: DVec3, a: DVec3) -> (f64, f64) {
     let d = q - a;
     (n.dot(d), GAMMA6 * n.abs().dot(d.abs()))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arbitrary::Rng;
+
+    /// A coordinate near `centre`, `scale` across, with now and then a value
+    /// clamped by the `f32` range or a repeated one.
+    fn coordinate(rng: &mut Rng, centre: f64, scale: f64) -> f64 {
+        match rng.below(8) {
+            0 => f64::from(f32::MAX) * rng.sign(),
+            1 => centre,
+            _ => centre + rng.uniform(-1.0, 1.0) * scale,
+        }
+    }
+
+    /// The invariant the traversal's conservativeness rests on: every
+    /// decoded lane box contains, exactly, every corner of every triangle
+    /// below it (clamped to the `f32` range). Returns the subtree's corner
+    /// bounds.
+    fn check_subtree(bvh: &Bvh, node: u32, depth: usize) -> (DVec3, DVec3) {
+        let clamp = |v: DVec3| {
+            v.clamp(
+                DVec3::splat(-f64::from(f32::MAX)),
+                DVec3::splat(f64::from(f32::MAX)),
+            )
+        };
+        let n = &bvh.nodes[node as usize];
+        let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+        for lane in 0..WIDTH {
+            let child = n.child[lane];
+            if child == EMPTY {
+                continue;
+            }
+            let (c_lo, c_hi) = if child & LEAF == 0 {
+                check_subtree(bvh, child, depth + 1)
+            } else {
+                let t = bvh.triangles[(child & !LEAF) as usize].map(clamp);
+                (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]))
+            };
+            let (b_lo, b_hi) = n.lane_box(lane);
+            assert!(
+                b_lo.cmple(c_lo).all() && b_hi.cmpge(c_hi).all(),
+                "lane {lane} of node {node} (depth {depth}): box {b_lo:?}..{b_hi:?} misses {c_lo:?}..{c_hi:?}"
+            );
+            lo = lo.min(c_lo);
+            hi = hi.max(c_hi);
+        }
+        (lo, hi)
+    }
+
+    #[test]
+    fn decoded_boxes_contain_their_triangles() {
+        let mut rng = Rng::new(11);
+        for case in 0..300 {
+            let centre = rng.log_uniform(-30.0, 30.0) * rng.sign();
+            let scale = centre.abs() * rng.log_uniform(-12.0, 0.5) + rng.log_uniform(-40.0, -20.0);
+            let count = 1 + rng.below(if case % 10 == 0 { 3000 } else { 300 }) as usize;
+            let triangles: Vec<[DVec3; 3]> = (0..count)
+                .map(|_| {
+                    let mut corner = || {
+                        DVec3::new(
+                            coordinate(&mut rng, centre, scale),
+                            coordinate(&mut rng, centre, scale),
+                            coordinate(&mut rng, centre, scale),
+                        )
+                    };
+                    [corner(), corner(), corner()]
+                })
+                .collect();
+            let bvh = Bvh::new(Occluders::from_triangles(triangles));
+            assert_eq!(bvh.triangles.len(), count);
+            check_subtree(&bvh, 0, 0);
+        }
+    }
+
+    #[test]
+    fn ray_origins_are_padded_outward() {
+        // `near`/`far` bracket `fl32(p) ± δ` (the argument of
+        // `Bvh::segment_unoccluded`), over many decades and at the edge of
+        // the `f32` range.
+        let mut rng = Rng::new(13);
+        for _ in 0..100_000 {
+            let mut point = || {
+                DVec3::new(
+                    rng.log_uniform(-40.0, 38.5) * rng.sign(),
+                    if rng.chance(0.1) {
+                        0.0
+                    } else {
+                        rng.log_uniform(-40.0, 38.5) * rng.sign()
+                    },
+                    coordinate(&mut rng, 1.0, 1e-3),
+                )
+            };
+            let (p, x) = (point(), point());
+            let Some(ray) = Ray32::new(p, x) else {
+                continue;
+            };
+            let d = x - p;
+            for i in 0..3 {
+                let o = f64::from(p[i] as f32);
+                let delta = (p[i].abs() + d[i].abs()) / f64::from(1u32 << 21);
+                let max = f64::from(f32::MAX);
+                let (lo, hi) = if ray.entry[i] == 1 {
+                    (ray.near[i], ray.far[i])
+                } else {
+                    (ray.far[i], ray.near[i])
+                };
+                assert!(
+                    f64::from(hi) >= (o + delta).min(max),
+                    "{p:?} {x:?} axis {i}"
+                );
+                assert!(
+                    f64::from(lo) <= (o - delta).max(-max),
+                    "{p:?} {x:?} axis {i}"
+                );
+            }
+        }
+    }
+
+    #[test]
+    fn quantisation_is_tight_on_its_grid() {
+        // Each plane is the nearest grid value on the safe side.
+        let mut rng = Rng::new(12);
+        for _ in 0..2000 {
+            let centre = rng.log_uniform(-20.0, 20.0) * rng.sign();
+            let scale = centre.abs() * rng.log_uniform(-9.0, 1.0);
+            let boxes: Vec<([f32; 3], [f32; 3])> = (0..1 + rng.below(WIDTH as u64) as usize)
+                .map(|_| {
+                    let a: [f32; 3] =
+                        std::array::from_fn(|_| coordinate(&mut rng, centre, scale) as f32);
+                    let b: [f32; 3] =
+                        std::array::from_fn(|_| coordinate(&mut rng, centre, scale) as f32);
+                    (
+                        std::array::from_fn(|i| a[i].min(b[i])),
+                        std::array::from_fn(|i| a[i].max(b[i])),
+                    )
+                })
+                .collect();
+            let node = Node::quantised(&boxes);
+            for (lane, (lo, hi)) in boxes.iter().enumerate() {
+                for axis in 0..3 {
+                    let (o, s) = (node.origin[axis], node.scale[axis]);
+                    let (ql, qh) = (node.q[0][axis][lane], node.q[1][axis][lane]);
+                    assert!(
+                        decode(o, ql, s) <= lo[axis]
+                            && (ql == 255 || decode(o, ql + 1, s) > lo[axis])
+                    );
+                    assert!(
+                        decode(o, qh, s) >= hi[axis]
+                            && (qh == 0 || decode(o, qh - 1, s) < hi[axis])
+                    );
+                }
+            }
+        }
+    }
 }
