@@ -102,15 +102,12 @@ pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return Sign::Zero;
     }
-    let (acx, bcy, acy, bcx) = (a.x - c.x, b.y - c.y, a.y - c.y, b.x - c.x);
-    let detleft = acx * bcy;
-    let detright = acy * bcx;
-    let det = detleft - detright;
+    let (det, detleft, detright, exact_zero) = orient2d_rounded(a, b, c);
     let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs());
     if det > bound || -det > bound {
         return Sign::of(det);
     }
-    if exact_zero(acx, bcy, acy, bcx) {
+    if exact_zero {
         return Sign::Zero;
     }
     orient2d_exact(a, b, c)
@@ -128,16 +125,13 @@ pub fn orient2d_value(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return 0.0;
     }
-    let (acx, bcy, acy, bcx) = (a.x - c.x, b.y - c.y, a.y - c.y, b.x - c.x);
-    let detleft = acx * bcy;
-    let detright = acy * bcx;
-    let det = detleft - detright;
+    let (det, detleft, detright, exact_zero) = orient2d_rounded(a, b, c);
     // |det − exact| ≤ bound, so the relative error is below 2⁻⁴⁰ here.
     let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) * (1u64 << 40) as f64;
     if det > bound || -det > bound {
         return det;
     }
-    if exact_zero(acx, bcy, acy, bcx) {
+    if exact_zero {
         return 0.0;
     }
     orient2d_expansion(a, b, c).approximate()
@@ -157,17 +151,7 @@ pub fn orient3d(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite() && d.is_finite()) {
         return Sign::Zero;
     }
-    let (ad, bd, cd) = (a - d, b - d, c - d);
-    let bdxcdy = bd.x * cd.y;
-    let cdxbdy = cd.x * bd.y;
-    let cdxady = cd.x * ad.y;
-    let adxcdy = ad.x * cd.y;
-    let adxbdy = ad.x * bd.y;
-    let bdxady = bd.x * ad.y;
-    let det = ad.z * (bdxcdy - cdxbdy) + bd.z * (cdxady - adxcdy) + cd.z * (adxbdy - bdxady);
-    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * ad.z.abs()
-        + (cdxady.abs() + adxcdy.abs()) * bd.z.abs()
-        + (adxbdy.abs() + bdxady.abs()) * cd.z.abs();
+    let (det, permanent) = orient3d_rounded(a, b, c, d);
     let bound = O3D_ERR_BOUND_A * permanent;
     if det > bound || -det > bound {
         return Sign::of(det);
@@ -187,17 +171,7 @@ pub fn orient3d_value(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     if !(a.is_finite() && b.is_finite() && c.is_finite() && d.is_finite()) {
         return 0.0;
     }
-    let (ad, bd, cd) = (a - d, b - d, c - d);
-    let bdxcdy = bd.x * cd.y;
-    let cdxbdy = cd.x * bd.y;
-    let cdxady = cd.x * ad.y;
-    let adxcdy = ad.x * cd.y;
-    let adxbdy = ad.x * bd.y;
-    let bdxady = bd.x * ad.y;
-    let det = ad.z * (bdxcdy - cdxbdy) + bd.z * (cdxady - adxcdy) + cd.z * (adxbdy - bdxady);
-    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * ad.z.abs()
-        + (cdxady.abs() + adxcdy.abs()) * bd.z.abs()
-        + (adxbdy.abs() + bdxady.abs()) * cd.z.abs();
+    let (det, permanent) = orient3d_rounded(a, b, c, d);
     let bound = O3D_ERR_BOUND_A * permanent * (1u64 << 40) as f64;
     if det > bound || -det > bound {
         return det;
@@ -279,14 +253,37 @@ impl<const N: usize> Expansion<N> {
     }
 }
 
-/// Whether `acx·bcy − acy·bcx` is exactly zero because a factor of each
-/// product is: a computed difference is zero only when its operands are
-/// equal (gradual underflow), so this holds for the exact differences too.
-/// The common degenerate case — a shared vertex, `a = c` or `b = c` — and
-/// axis-aligned collinear points skip the expansion.
+/// The rounded `(a − c) × (b − c)`, its two products, and whether it is
+/// exactly zero because a factor of each product is: a computed difference
+/// is zero only when its operands are equal (gradual underflow), so this
+/// holds for the exact differences too. The common degenerate case — a
+/// shared vertex, `a = c` or `b = c` — and axis-aligned collinear points
+/// then skip the expansion.
 #[inline]
-fn exact_zero(acx: f64, bcy: f64, acy: f64, bcx: f64) -> bool {
-    (acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0)
+fn orient2d_rounded(a: DVec2, b: DVec2, c: DVec2) -> (f64, f64, f64, bool) {
+    let (acx, bcy, acy, bcx) = (a.x - c.x, b.y - c.y, a.y - c.y, b.x - c.x);
+    let detleft = acx * bcy;
+    let detright = acy * bcx;
+    let exact_zero = (acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0);
+    (detleft - detright, detleft, detright, exact_zero)
+}
+
+/// The rounded determinant of [`orient3d`] and its permanent (the sum of
+/// the magnitudes of its terms), which scales the filter's error bound.
+#[inline]
+fn orient3d_rounded(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> (f64, f64) {
+    let (ad, bd, cd) = (a - d, b - d, c - d);
+    let bdxcdy = bd.x * cd.y;
+    let cdxbdy = cd.x * bd.y;
+    let cdxady = cd.x * ad.y;
+    let adxcdy = ad.x * cd.y;
+    let adxbdy = ad.x * bd.y;
+    let bdxady = bd.x * ad.y;
+    let det = ad.z * (bdxcdy - cdxbdy) + bd.z * (cdxady - adxcdy) + cd.z * (adxbdy - bdxady);
+    let permanent = (bdxcdy.abs() + cdxbdy.abs()) * ad.z.abs()
+        + (cdxady.abs() + adxcdy.abs()) * bd.z.abs()
+        + (adxbdy.abs() + bdxady.abs()) * cd.z.abs();
+    (det, permanent)
 }
 
 /// An exact difference `a − b` as the pair `(hi, lo)`.
