@@ -23,9 +23,10 @@
 //! # Domain
 //!
 //! Exact for every triangle corner and endpoint coordinate that is zero or of
-//! magnitude in `[1e-90, 1e90]` (the domain of `orient3d`); the `f32` tree
-//! covers coordinates up to `f32::MAX` (`3.4e38`), and queries reaching
-//! beyond it fall back to testing every triangle (slow, still exact).
+//! magnitude in `[1e-90, 1e90]` (the domain of `orient3d`). The `f32` tree
+//! holds triangles within `±2⁶⁰` (`1.2e18`; see `TREE_RANGE`); farther ones
+//! are tested by every query, and queries reaching beyond `f32::MAX`
+//! (`3.4e38`) test every triangle (slow, still exact).
 //! Triangles with a non-finite corner are left out at build and block
 //! nothing; zero-area triangles block nothing (the predicate says so).
 
@@ -307,7 +308,19 @@ pub struct Bvh {
     ids: Vec<u32>,
     /// Stack entries a traversal can need.
     stack_need: usize,
+    /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
+    /// tree and tested by every query, and their indices in `occluders`.
+    outliers: Vec<[DVec3; 3]>,
+    outlier_ids: Vec<u32>,
 }
+
+/// The largest coordinate magnitude a triangle in the tree may have, 2⁶⁰:
+/// the builder works with `f32` surface areas, and any box within
+/// `±2⁶⁰` has a finite one (a side of at most 2⁶¹, an area below 2¹²⁴).
+/// Beyond it areas overflow to ∞, their differences are NaN, and obvhs's
+/// PLOC builder can pair a node with itself (found by the `exact` fuzz
+/// target). Far triangles are rare; they are tested by every query.
+const TREE_RANGE: f64 = (1u64 << 60) as f64;
 
 impl fmt::Debug for Bvh {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
@@ -352,8 +365,14 @@ impl Bvh {
     pub fn new(occluders: Occluders) -> Bvh {
         let mut boxes = Vec::with_capacity(occluders.len());
         let mut kept = Vec::with_capacity(occluders.len());
+        let (mut outliers, mut outlier_ids) = (Vec::new(), Vec::new());
         for (i, t) in occluders.triangles().iter().enumerate() {
             if !t.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            if t.iter().any(|v| v.abs().max_element() > TREE_RANGE) {
+                outliers.push(*t);
+                outlier_ids.push(i as u32);
                 continue;
             }
             let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
@@ -369,6 +388,8 @@ impl Bvh {
             triangles: Vec::with_capacity(kept.len()),
             ids: Vec::with_capacity(kept.len()),
             stack_need: 1,
+            outliers,
+            outlier_ids,
         };
         if kept.len() >= LEAF as usize {
             // Beyond the leaf encoding (2³¹ triangles, 144 GiB of corners):
@@ -548,6 +569,9 @@ impl Bvh {
         if !(p.is_finite() && x.is_finite()) {
             return true;
         }
+        if self.outliers.iter().any(|t| segment_blocked(p, x, t)) {
+            return false;
+        }
         let ray = Ray32::new(p, x).filter(|_| !self.nodes.is_empty());
         let Some(ray) = ray else {
             return !self.triangles.iter().any(|t| segment_blocked(p, x, t));
@@ -623,13 +647,15 @@ impl Bvh {
     /// two sums need `γ₄`).
     ///
     /// No points: `out` is empty. A non-finite point, or one beyond
-    /// `f32::MAX`: every indexed triangle. Triangles with a non-finite corner
-    /// are never reported (they block nothing).
+    /// `f32::MAX`: every indexed triangle. Triangles beyond `±2⁶⁰`, kept out
+    /// of the tree, are always reported; triangles with a non-finite corner
+    /// never (they block nothing).
     pub fn triangles_meeting_hull(&self, points: &[DVec3], out: &mut Vec<u32>) {
         out.clear();
         if points.is_empty() {
             return;
         }
+        out.extend_from_slice(&self.outlier_ids);
         if self.nodes.is_empty() || !points.iter().all(|&v| in_f32_range(v)) {
             out.extend_from_slice(&self.ids);
             out.sort_unstable();
