@@ -957,4 +957,3 @@ impl Sum {
         self.sum + self.c
     }
 }
-
