@@ -69,4 +69,6 @@ pub mod arbitrary;
 pub mod kernel;
 #[cfg(feature = "reference")]
 pub mod reference;
+#[cfg(feature = "render")]
+pub mod render;
 pub mod scene;

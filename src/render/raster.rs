@@ -1,0 +1,1 @@
+//! The light-view rasterizer (placeholder; built on its own branch).
