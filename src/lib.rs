@@ -67,6 +67,8 @@
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;
 pub mod kernel;
+#[cfg(feature = "render")]
+pub mod method;
 #[cfg(feature = "reference")]
 pub mod reference;
 #[cfg(feature = "render")]

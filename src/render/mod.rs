@@ -1,5 +1,22 @@
 //! The scalar renderer (feature `render`): receivers from the camera, the
 //! light-view rasterizer, the lazily built stages every method draws on, and
 //! image output. DESIGN.md §5.
+//!
+//! - [`Frame`]: the receivers, one per pixel of a camera image
+//!   ([`Frame::from_camera`], primary rays through the BVH) or one per
+//!   point of a points file ([`Frame::from_receivers`]).
+//! - [`Stages`]: the BVH, mesh topology, light frame and light maps, built
+//!   lazily and once, timed into [`Stats`].
+//! - [`raster`]: the light-view rasterizer every shadow-map method uses.
+//! - [`image`]: shading (DESIGN §1), the error heat-map, error summaries
+//!   and PNG files.
+//!
+//! The methods themselves are in [`crate::method`].
 
+mod frame;
+pub mod image;
 pub mod raster;
+mod stages;
+
+pub use frame::{Frame, Receiver, BACKGROUND, RECEIVER_OFFSET};
+pub use stages::{Needs, Progress, SharedMaps, StageTime, Stages, Stats};

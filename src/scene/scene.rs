@@ -130,6 +130,48 @@ impl Camera {
     pub fn resolution(&self) -> (u32, u32) {
         (self.width, self.height)
     }
+
+    /// The same camera with an image of `width × height` pixels (the field
+    /// of view is kept: it is vertical).
+    ///
+    /// # Errors
+    /// [`CameraError::EmptyImage`] when either is zero.
+    pub fn with_resolution(&self, width: u32, height: u32) -> Result<Camera, CameraError> {
+        if width == 0 || height == 0 {
+            return Err(CameraError::EmptyImage);
+        }
+        Ok(Camera {
+            width,
+            height,
+            ..*self
+        })
+    }
+
+    /// The primary ray through the centre of pixel `(col, row)` (row 0 at
+    /// the top, column 0 at the left): `(eye, direction)`, the direction not
+    /// normalised. Pinhole model: `forward = target − eye` normalised,
+    /// `right = forward × up` normalised, `up′ = right × forward`; pixel
+    /// centres at `x = (2(col + ½)/width − 1) · tan(fov/2) · width/height`,
+    /// `y = (1 − 2(row + ½)/height) · tan(fov/2)`, direction
+    /// `forward + x · right + y · up′`. Pixels outside the image give rays
+    /// outside the field of view (no error).
+    #[must_use]
+    pub fn primary_ray(&self, col: u32, row: u32) -> (DVec3, DVec3) {
+        let (forward, right, up) = self.basis();
+        let half = (self.fov_y_deg.to_radians() * 0.5).tan();
+        let (w, h) = (f64::from(self.width), f64::from(self.height));
+        let x = (2.0 * (f64::from(col) + 0.5) / w - 1.0) * half * (w / h);
+        let y = (1.0 - 2.0 * (f64::from(row) + 0.5) / h) * half;
+        (self.eye, forward + right * x + up * y)
+    }
+
+    /// `forward`, `right`, `up′` of [`Camera::primary_ray`], orthonormal
+    /// (the constructor rejected the views where they are not defined).
+    fn basis(&self) -> (DVec3, DVec3, DVec3) {
+        let forward = (self.target - self.eye).normalize();
+        let right = forward.cross(self.up).normalize();
+        (forward, right, right.cross(forward))
+    }
 }
 
 /// A scene: named occluder meshes (object id = index in [`Scene::meshes`]),
@@ -233,5 +275,19 @@ mod tests {
             Err(CameraError::NonFinite { field: "up" })
         );
         assert!(c(DVec3::Z, DVec3::Y, 45.0, 4).is_ok());
+    }
+
+    #[test]
+    fn primary_rays_span_the_field_of_view() {
+        // 90° vertical, 2:1 image: the top and bottom pixel edges are at
+        // ±45°, the left and right ones at ±atan(2).
+        let camera = Camera::new(DVec3::Z, DVec3::ZERO, DVec3::Y, 90.0, 200, 100).unwrap();
+        let (eye, d) = camera.primary_ray(100, 50);
+        assert_eq!(eye, DVec3::Z);
+        // Just below and right of the centre by half a pixel.
+        assert!((d - DVec3::new(0.01, -0.01, -1.0)).length() < 1e-12);
+        let (_, top_left) = camera.primary_ray(0, 0);
+        let expected = DVec3::new(-2.0 + 0.01, 1.0 - 0.01, -1.0);
+        assert!((top_left - expected).length() < 1e-12, "{top_left}");
     }
 }

@@ -1,8 +1,12 @@
 //! The `softshadow` command-line program (DESIGN.md §8).
 //!
-//! - `softshadow` (or `softshadow check`): the main job until the renderer
-//!   lands — the kernel self-check against closed forms, then the exact and
-//!   Monte Carlo references side by side on the embedded default scene.
+//! - `softshadow`: the main job — the default scene rendered with every
+//!   available method, a table of time and error against the exact answer.
+//! - `softshadow render --scene NAME|FILE --method M [--out DIR] [--width W
+//!   --height H] [--stats]`: one method, PNG files (visibility, shaded, error
+//!   heat-map) and its errors.
+//! - `softshadow check`: the kernel self-check against closed forms, then the
+//!   exact and Monte Carlo references side by side on the default scene.
 //! - `softshadow visibility --scene NAME|FILE --points FILE --method M
 //!   [--seed S]`: the visibility of each receiver point as JSON on stdout.
 //!
@@ -11,6 +15,7 @@
 
 mod check;
 mod progress;
+mod render;
 mod selfcheck;
 mod visibility;
 
@@ -31,9 +36,10 @@ struct Cli {
 
 #[derive(Subcommand)]
 enum Command {
-    /// The kernel self-check and the references on the default scene (what
-    /// `softshadow` with no arguments runs).
+    /// The kernel self-check and the references on the default scene.
     Check,
+    /// Render a scene with one method: PNG images and errors against exact.
+    Render(render::Args),
     /// The visibility V(p) of each receiver of a points file, as JSON.
     Visibility(visibility::Args),
 }
@@ -65,14 +71,17 @@ fn main() -> ExitCode {
             return ExitCode::from(BAD_INPUT);
         }
     };
-    match cli.command.unwrap_or(Command::Check) {
-        Command::Check => check::run(),
-        Command::Visibility(args) => match visibility::run(&args) {
-            Ok(()) => ExitCode::SUCCESS,
-            Err(message) => {
-                eprintln!("softshadow: {message}");
-                ExitCode::from(BAD_INPUT)
-            }
-        },
+    let result = match cli.command {
+        None => render::default_run(),
+        Some(Command::Check) => return check::run(),
+        Some(Command::Render(args)) => render::run(&args),
+        Some(Command::Visibility(args)) => visibility::run(&args),
+    };
+    match result {
+        Ok(()) => ExitCode::SUCCESS,
+        Err(message) => {
+            eprintln!("softshadow: {message}");
+            ExitCode::from(BAD_INPUT)
+        }
     }
 }

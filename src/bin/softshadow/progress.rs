@@ -3,19 +3,21 @@
 
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
 use std::io::IsTerminal;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::time::{Duration, Instant};
 
-/// Counts finished items; draws only once a second has passed.
+/// Counts finished items; draws only once a second has passed. Shared
+/// between threads (`inc` takes `&self`).
 pub struct Progress {
     bar: ProgressBar,
     start: Instant,
-    shown: bool,
+    shown: AtomicBool,
     terminal: bool,
 }
 
 impl Progress {
     /// A hidden bar over `total` items.
-    pub fn new(total: usize, what: &'static str) -> Progress {
+    pub fn new(total: usize, what: String) -> Progress {
         let bar = ProgressBar::with_draw_target(Some(total as u64), ProgressDrawTarget::hidden());
         if let Ok(style) =
             ProgressStyle::with_template("{msg} {wide_bar} {pos}/{len} receivers, {eta} left")
@@ -26,18 +28,21 @@ impl Progress {
         Progress {
             bar,
             start: Instant::now(),
-            shown: false,
+            shown: AtomicBool::new(false),
             terminal: std::io::stderr().is_terminal(),
         }
     }
 
-    /// `done` items are finished.
-    pub fn set(&mut self, done: usize) {
-        if !self.shown && self.terminal && self.start.elapsed() > Duration::from_secs(1) {
+    /// `n` more items are finished.
+    pub fn inc(&self, n: usize) {
+        if self.terminal
+            && !self.shown.load(Ordering::Relaxed)
+            && self.start.elapsed() > Duration::from_secs(1)
+            && !self.shown.swap(true, Ordering::Relaxed)
+        {
             self.bar.set_draw_target(ProgressDrawTarget::stderr());
-            self.shown = true;
         }
-        self.bar.set_position(done as u64);
+        self.bar.inc(n as u64);
     }
 
     /// Removes the bar.

@@ -1,0 +1,180 @@
+//! `softshadow render` (one method, PNG files) and the default run (every
+//! available method on the default scene, a table of errors against the
+//! exact answer).
+
+use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_method};
+use softshadow::method::{self, Exact, Method};
+use softshadow::render::image::{error_heat_map, shaded, visibility_image, ErrorSummary};
+use softshadow::render::{Frame, Stages, Stats};
+use softshadow::scene::Scene;
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+/// Arguments of `softshadow render`.
+#[derive(clap::Args)]
+pub struct Args {
+    /// A built-in scene name (default, comb, …) or a scene file (JSON) with
+    /// a camera.
+    #[arg(long)]
+    scene: String,
+    /// The method: exact, mc:N, hard, pcss.
+    #[arg(long, value_parser = parse_method)]
+    method: String,
+    /// The directory the PNG files are written to (created if missing).
+    #[arg(long, default_value = "out")]
+    out: PathBuf,
+    /// Image width (default: the scene camera's).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    width: Option<u32>,
+    /// Image height (default: the scene camera's).
+    #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
+    height: Option<u32>,
+    /// Seed of the Monte Carlo samples.
+    #[arg(long, default_value_t = 0)]
+    seed: u64,
+    /// Print each stage's time and what was built.
+    #[arg(long)]
+    stats: bool,
+}
+
+/// The scene's camera at the requested size, and the receivers it sees.
+fn camera_frame(
+    scene: &Scene,
+    stages: &Stages,
+    name: &str,
+    width: Option<u32>,
+    height: Option<u32>,
+) -> Result<Frame, String> {
+    let camera = scene
+        .camera()
+        .ok_or_else(|| format!("--scene {name}: the scene has no camera; rendering needs one"))?;
+    let (w, h) = camera.resolution();
+    let camera = camera
+        .with_resolution(width.unwrap_or(w), height.unwrap_or(h))
+        .map_err(|e| format!("--width/--height: {e}"))?;
+    let bvh = stages.bvh();
+    Ok(stages.timed("receivers", || {
+        let frame = Frame::from_camera(&camera, bvh);
+        let (w, h) = frame.size();
+        let detail = format!(
+            "{w}×{h} primary rays, {} receivers",
+            frame.receivers().len()
+        );
+        (frame, detail)
+    }))
+}
+
+/// A file name part for a method name (`mc:64` → `mc64`).
+fn file_part(name: &str) -> String {
+    name.chars()
+        .filter(|c| c.is_ascii_alphanumeric() || *c == '-')
+        .collect()
+}
+
+pub fn run(args: &Args) -> Result<(), String> {
+    let scene = resolve_scene(&args.scene)?;
+    let method = method_with_seed(&args.method, args.seed)?;
+    let stages = Stages::new(&scene);
+    let frame = camera_frame(&scene, &stages, &args.scene, args.width, args.height)?;
+    let fail = |e: method::MethodError| format!("--method {}: {e}", args.method);
+    let run = run_method(method.as_ref(), &stages, &frame).map_err(fail)?;
+    let exact = if run.method == "exact" {
+        run.clone()
+    } else {
+        run_method(&Exact, &stages, &frame).map_err(|e| format!("the exact reference: {e}"))?
+    };
+    std::fs::create_dir_all(&args.out).map_err(|e| format!("--out {}: {e}", args.out.display()))?;
+    let stem = format!(
+        "{}-{}",
+        Path::new(&args.scene)
+            .file_stem()
+            .map_or("scene".into(), |s| s.to_string_lossy()),
+        file_part(&run.method)
+    );
+    let v = &run.output.visibility;
+    let images = [
+        ("visibility", visibility_image(&frame, v)),
+        ("shaded", shaded(&scene, &frame, v)),
+        ("error", error_heat_map(&frame, v, &exact.output.visibility)),
+    ];
+    for (kind, image) in &images {
+        let path = args.out.join(format!("{stem}-{kind}.png"));
+        image
+            .write_png(&path)
+            .map_err(|e| format!("{}: {e}", path.display()))?;
+        println!("wrote {}", path.display());
+    }
+    print_table(&frame, &exact, &[run.clone()]);
+    if args.stats {
+        println!("\nstages:\n{}", stages.stats());
+    }
+    Ok(())
+}
+
+/// The default run: the default scene at its camera's resolution, every
+/// available method, one table.
+pub fn default_run() -> Result<(), String> {
+    let start = Instant::now();
+    let scene = resolve_scene("default")?;
+    let stages = Stages::new(&scene);
+    let frame = camera_frame(&scene, &stages, "default", None, None)?;
+    let (w, h) = frame.size();
+    println!(
+        "softshadow: the default scene (Stanford bunny over a floor, sphere light r = 0.5), {w}×{h}, {} receivers, {} threads",
+        frame.receivers().len(),
+        rayon::current_num_threads()
+    );
+    let exact = run_method(&Exact, &stages, &frame).map_err(|e| format!("exact: {e}"))?;
+    let mut runs = Vec::new();
+    for m in method::default_set() {
+        if m.name() == "exact" {
+            runs.push(exact.clone());
+            continue;
+        }
+        runs.push(
+            run_method(m.as_ref(), &stages, &frame).map_err(|e| format!("{}: {e}", m.name()))?,
+        );
+    }
+    print_table(&frame, &exact, &runs);
+    let shared: Stats = stages.stats();
+    println!(
+        "\nshared stages (not in the times above): bvh {:.1} ms, receivers {:.1} ms; total run {:.2} s",
+        shared.seconds("bvh") * 1e3,
+        shared.seconds("receivers") * 1e3,
+        start.elapsed().as_secs_f64()
+    );
+    println!("render one method to PNG: softshadow render --scene default --method pcss --out out");
+    Ok(())
+}
+
+/// Errors of each run against `exact`, over all receivers and over the
+/// penumbra (receivers whose exact `V` is strictly between 0 and 1).
+fn print_table(frame: &Frame, exact: &method::Run, runs: &[method::Run]) {
+    let reference = &exact.output.visibility;
+    let penumbra = |i: usize| reference[i] > 0.0 && reference[i] < 1.0;
+    println!(
+        "\n{} receivers, {} in the exact penumbra; errors of V against exact\n",
+        frame.receivers().len(),
+        (0..reference.len()).filter(|&i| penumbra(i)).count()
+    );
+    println!("| method | time (ms) | mean abs | RMSE | max | mean signed | RMSE penumbra |");
+    println!("|---|---:|---:|---:|---:|---:|---:|");
+    for run in runs {
+        let v = &run.output.visibility;
+        let all = ErrorSummary::new(v, reference, |_| true);
+        let pen = ErrorSummary::new(v, reference, penumbra);
+        println!(
+            "| {} | {:.1} | {:.5} | {:.5} | {:.4} | {:+.5} | {:.5} |",
+            run.method,
+            run.seconds * 1e3,
+            all.mean_abs,
+            all.rmse,
+            all.max_abs,
+            all.mean_signed,
+            pen.rmse
+        );
+    }
+}
+
+#[allow(dead_code)]
+fn _assert_object_safe(_: &dyn Method) {}

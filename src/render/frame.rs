@@ -1,0 +1,202 @@
+//! Receivers: the points every method computes `V` at, one per pixel of a
+//! camera image or one per point of a points file.
+
+use crate::reference::bvh::Bvh;
+use crate::scene::Camera;
+use glam::DVec3;
+use rayon::prelude::*;
+use std::sync::atomic::{AtomicU64, Ordering};
+
+/// A receiver: a point where `V` is wanted, with what is known of the
+/// surface it lies on.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Receiver {
+    /// The point, finite.
+    pub position: DVec3,
+    /// The unit geometric normal of the surface, on the side the point is
+    /// seen from, when known. Camera receivers always have one.
+    pub normal: Option<DVec3>,
+    /// The object id (mesh index) of the surface, when known. Camera
+    /// receivers always have one.
+    pub object: Option<u32>,
+}
+
+/// The pixel value of a background pixel in [`Frame::pixels`].
+pub const BACKGROUND: u32 = u32::MAX;
+
+/// A set of receivers laid out as an image: `width × height` pixels, each
+/// either a receiver (an index into [`Frame::receivers`]) or
+/// [`BACKGROUND`]. Methods compute one value per receiver; background pixels
+/// are never shaded as receivers.
+#[derive(Clone, Debug)]
+pub struct Frame {
+    id: u64,
+    width: u32,
+    height: u32,
+    pixels: Vec<u32>,
+    receivers: Vec<Receiver>,
+}
+
+/// Frames are told apart by a process-wide counter, so that stages fitted to
+/// one frame's receivers (light maps, receiver grids) are not reused for
+/// another.
+static NEXT_FRAME: AtomicU64 = AtomicU64::new(0);
+
+/// How far a camera receiver is moved off its surface, relative to the
+/// magnitude of its coordinates plus the scene's extent: `2⁻³²`.
+///
+/// The hit point `eye + t·d` is rounded, so it can land a few ulps behind
+/// the surface it is on, where that surface's own triangle would occlude
+/// part of the light. Moving it by `2⁻³²` of the scene's scale toward the
+/// side the camera sees (far more than the rounding, far less than any
+/// feature of a scene) puts it strictly in front, for every method alike.
+pub const RECEIVER_OFFSET: f64 = 1.0 / 4_294_967_296.0;
+
+impl Frame {
+    /// The receivers seen by `camera`, one per pixel: the nearest point of
+    /// any triangle of `bvh` on the pixel's [primary
+    /// ray](Camera::primary_ray) (closest hit, watertight), moved off the
+    /// surface by [`RECEIVER_OFFSET`] along the geometric normal facing the
+    /// camera; pixels whose ray meets nothing are [`BACKGROUND`]. `width`
+    /// and `height` override the camera's resolution (the field of view is
+    /// kept). Parallel over rows; the result does not depend on the number
+    /// of threads.
+    #[must_use]
+    pub fn from_camera(camera: &Camera, bvh: &Bvh) -> Frame {
+        let (width, height) = camera.resolution();
+        let extent = bvh_extent(bvh);
+        let rows: Vec<Vec<Option<Receiver>>> = (0..height)
+            .into_par_iter()
+            .map(|row| {
+                (0..width)
+                    .map(|col| {
+                        let (eye, d) = camera.primary_ray(col, row);
+                        let hit = bvh.closest_hit(eye, d, f64::INFINITY)?;
+                        let p = eye + d * hit.t;
+                        let scale = p.abs().max_element() + extent;
+                        Some(Receiver {
+                            position: p + hit.normal * (scale * RECEIVER_OFFSET),
+                            normal: Some(hit.normal),
+                            object: Some(hit.object),
+                        })
+                    })
+                    .collect()
+            })
+            .collect();
+        let mut pixels = Vec::with_capacity(width as usize * height as usize);
+        let mut receivers = Vec::new();
+        for r in rows.into_iter().flatten() {
+            match r {
+                Some(r) if r.position.is_finite() => {
+                    pixels.push(receivers.len() as u32);
+                    receivers.push(r);
+                }
+                _ => pixels.push(BACKGROUND),
+            }
+        }
+        Frame {
+            id: NEXT_FRAME.fetch_add(1, Ordering::Relaxed),
+            width,
+            height,
+            pixels,
+            receivers,
+        }
+    }
+
+    /// Receivers given directly (a points file), laid out as one row.
+    #[must_use]
+    pub fn from_receivers(receivers: Vec<Receiver>) -> Frame {
+        let n = receivers.len();
+        Frame {
+            id: NEXT_FRAME.fetch_add(1, Ordering::Relaxed),
+            width: n as u32,
+            height: u32::from(n > 0),
+            pixels: (0..n as u32).collect(),
+            receivers,
+        }
+    }
+
+    /// A number unique to this frame within the process.
+    #[must_use]
+    pub fn id(&self) -> u64 {
+        self.id
+    }
+
+    /// Width and height in pixels.
+    #[must_use]
+    pub fn size(&self) -> (u32, u32) {
+        (self.width, self.height)
+    }
+
+    /// Per pixel, row-major from the top-left: the receiver's index, or
+    /// [`BACKGROUND`].
+    #[must_use]
+    pub fn pixels(&self) -> &[u32] {
+        &self.pixels
+    }
+
+    /// The receivers.
+    #[must_use]
+    pub fn receivers(&self) -> &[Receiver] {
+        &self.receivers
+    }
+
+    /// The receivers' positions, in order.
+    #[must_use]
+    pub fn positions(&self) -> Vec<DVec3> {
+        self.receivers.iter().map(|r| r.position).collect()
+    }
+
+    /// Per-receiver `values` spread over the pixels, `background` where
+    /// there is none. `values.len()` must be the receiver count; missing
+    /// values read as `background`.
+    #[must_use]
+    pub fn to_image<T: Copy>(&self, values: &[T], background: T) -> Vec<T> {
+        self.pixels
+            .iter()
+            .map(|&i| values.get(i as usize).copied().unwrap_or(background))
+            .collect()
+    }
+}
+
+/// The largest coordinate magnitude of the BVH's triangles (0 when empty):
+/// the scene's scale for [`RECEIVER_OFFSET`].
+fn bvh_extent(bvh: &Bvh) -> f64 {
+    bvh.occluders()
+        .triangles()
+        .iter()
+        .flatten()
+        .map(|v| v.abs().max_element())
+        .filter(|m| m.is_finite())
+        .fold(0.0, f64::max)
+}
+
+// TEMPORARY until the BVH's closest-hit query lands: brute force.
+struct Hit {
+    t: f64,
+    object: u32,
+    normal: DVec3,
+}
+trait TempClosest {
+    fn closest_hit(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<Hit>;
+}
+impl TempClosest for Bvh {
+    fn closest_hit(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<Hit> {
+        let occ = self.occluders();
+        let mut best: Option<Hit> = None;
+        for (i, t) in occ.triangles().iter().enumerate() {
+            let far = best.as_ref().map_or(t_max.min(1e30), |h| h.t);
+            if crate::reference::bvh::segment_blocked(o, o + d * far, t) {
+                let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
+                let th = n.dot(t[0] - o) / n.dot(d);
+                let n = if n.dot(d) > 0.0 { -n } else { n };
+                best = Some(Hit {
+                    t: th.clamp(0.0, far),
+                    object: occ.objects()[i],
+                    normal: n,
+                });
+            }
+        }
+        best
+    }
+}

@@ -1,0 +1,302 @@
+//! Pictures and numbers from a visibility buffer: shading (DESIGN §1), the
+//! visibility itself, the signed error heat-map against a reference with
+//! its legend, error summaries, and PNG files.
+//!
+//! Images are 8-bit sRGB, row-major from the top-left, three bytes per
+//! pixel ([`Rgb`]).
+
+use super::frame::{Frame, BACKGROUND};
+use crate::scene::{Light, Scene};
+use glam::DVec3;
+use std::io;
+use std::path::Path;
+
+/// An 8-bit sRGB image, row-major from the top-left.
+#[derive(Clone, Debug, PartialEq, Eq)]
+pub struct Rgb {
+    /// Width in pixels.
+    pub width: u32,
+    /// Height in pixels.
+    pub height: u32,
+    /// `3 · width · height` bytes: red, green, blue per pixel.
+    pub data: Vec<u8>,
+}
+
+/// The colour of background pixels (no receiver).
+pub const BACKGROUND_RGB: [u8; 3] = [28, 32, 44];
+
+/// How many units of signed error the heat-map's colour scale spans on each
+/// side of zero: errors beyond `±HEAT_RANGE` saturate.
+pub const HEAT_RANGE: f64 = 0.25;
+
+impl Rgb {
+    fn new(width: u32, height: u32, fill: [u8; 3]) -> Rgb {
+        Rgb {
+            width,
+            height,
+            data: fill.repeat(width as usize * height as usize),
+        }
+    }
+
+    fn set(&mut self, x: u32, y: u32, c: [u8; 3]) {
+        if x < self.width && y < self.height {
+            let i = 3 * (y as usize * self.width as usize + x as usize);
+            self.data[i..i + 3].copy_from_slice(&c);
+        }
+    }
+
+    /// Writes the image as a PNG file.
+    ///
+    /// # Errors
+    /// The file's I/O errors, and the encoder's as [`io::ErrorKind::Other`].
+    pub fn write_png(&self, path: &Path) -> io::Result<()> {
+        let file = io::BufWriter::new(std::fs::File::create(path)?);
+        let mut encoder = png::Encoder::new(file, self.width, self.height);
+        encoder.set_color(png::ColorType::Rgb);
+        encoder.set_depth(png::BitDepth::Eight);
+        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+        let mut writer = encoder.write_header().map_err(io::Error::other)?;
+        writer
+            .write_image_data(&self.data)
+            .map_err(io::Error::other)?;
+        writer.finish().map_err(io::Error::other)
+    }
+}
+
+/// Linear `[0, 1]` to an 8-bit sRGB code (IEC 61966-2-1).
+#[must_use]
+pub fn srgb8(linear: f64) -> u8 {
+    let c = linear.clamp(0.0, 1.0);
+    let s = if c <= 0.003_130_8 {
+        12.92 * c
+    } else {
+        1.055 * c.powf(1.0 / 2.4) - 0.055
+    };
+    (s * 255.0).round() as u8
+}
+
+/// The unshadowed irradiance factor of DESIGN §1 at `p` with normal `n`:
+/// `max(0, n·l̂) · cos θ_l / |l|²`, `l` from `p` to the light's centre,
+/// with `cos θ_l` the cosine at the light (1 for a sphere, a segment and a
+/// point; `|n_light · l̂|` for a disk or rect, which emit on both sides).
+#[must_use]
+pub fn irradiance_factor(light: &Light, p: DVec3, n: DVec3) -> f64 {
+    let l = light.center() - p;
+    let d2 = l.length_squared();
+    let Some(dir) = l.try_normalize() else {
+        return 0.0;
+    };
+    let cos_light = match *light {
+        Light::Disk { normal, .. } => normal.dot(dir).abs(),
+        Light::Rect { u, v, .. } => u.cross(v).normalize_or_zero().dot(dir).abs(),
+        _ => 1.0,
+    };
+    let e = n.dot(dir).max(0.0) * cos_light / d2;
+    if e.is_finite() {
+        e
+    } else {
+        0.0
+    }
+}
+
+/// The frame shaded by DESIGN §1 with `Φ = 1`: `E = irradiance_factor · V`,
+/// exposed so that the brightest unshadowed receiver is white, sRGB-encoded;
+/// background pixels [`BACKGROUND_RGB`]. Receivers without a normal are
+/// shaded as if facing the light.
+#[must_use]
+pub fn shaded(scene: &Scene, frame: &Frame, visibility: &[f64]) -> Rgb {
+    let light = scene.light();
+    let unshadowed: Vec<f64> = frame
+        .receivers()
+        .iter()
+        .map(|r| {
+            let n = r
+                .normal
+                .unwrap_or_else(|| (light.center() - r.position).normalize_or_zero());
+            irradiance_factor(light, r.position, n)
+        })
+        .collect();
+    let top = unshadowed.iter().copied().fold(0.0, f64::max);
+    let scale = if top > 0.0 { 1.0 / top } else { 0.0 };
+    paint(frame, |i| {
+        let v = srgb8(unshadowed[i] * scale * visibility.get(i).copied().unwrap_or(0.0));
+        [v, v, v]
+    })
+}
+
+/// The visibility itself as grey levels (linear `V`, sRGB-encoded).
+#[must_use]
+pub fn visibility_image(frame: &Frame, visibility: &[f64]) -> Rgb {
+    paint(frame, |i| {
+        let v = srgb8(visibility.get(i).copied().unwrap_or(0.0));
+        [v, v, v]
+    })
+}
+
+/// The colour of a signed error `e = V − V_ref` on the heat-map scale:
+/// white at 0, toward blue where the method is too dark (`e < 0`), toward
+/// red where it is too bright, saturating at `±`[`HEAT_RANGE`].
+#[must_use]
+pub fn heat_colour(e: f64) -> [u8; 3] {
+    let t = if e.is_finite() {
+        (e.abs() / HEAT_RANGE).min(1.0)
+    } else {
+        1.0
+    };
+    let full: [f64; 3] = if e < 0.0 {
+        [0.05, 0.25, 0.85]
+    } else {
+        [0.85, 0.08, 0.05]
+    };
+    let mix = |c: f64| srgb8(1.0 + (c - 1.0) * t);
+    [mix(full[0]), mix(full[1]), mix(full[2])]
+}
+
+/// Rows of the legend under the heat-map.
+const LEGEND_ROWS: u32 = 18;
+/// The least image width that holds the legend.
+const LEGEND_WIDTH: u32 = 64;
+
+/// The signed error `V − V_ref` per pixel ([`heat_colour`]), with a legend
+/// strip below the picture: the colour bar from `−HEAT_RANGE` to
+/// `+HEAT_RANGE` and its labels (`-.25`, `0`, `+.25`). The image is at least
+/// 64 pixels wide so the legend fits; the picture sits at the top-left.
+#[must_use]
+pub fn error_heat_map(frame: &Frame, visibility: &[f64], reference: &[f64]) -> Rgb {
+    let picture = paint(frame, |i| {
+        let e =
+            visibility.get(i).copied().unwrap_or(0.0) - reference.get(i).copied().unwrap_or(0.0);
+        heat_colour(e)
+    });
+    let width = picture.width.max(LEGEND_WIDTH);
+    let mut out = Rgb::new(width, picture.height + LEGEND_ROWS, [0, 0, 0]);
+    for y in 0..picture.height {
+        let from = 3 * (y * picture.width) as usize;
+        let to = 3 * (y * width) as usize;
+        let n = 3 * picture.width as usize;
+        out.data[to..to + n].copy_from_slice(&picture.data[from..from + n]);
+    }
+    // The bar: 6 rows, the full width less a 2-pixel margin.
+    let top = picture.height + 2;
+    let (left, right) = (2, width - 3);
+    for x in left..=right {
+        let e = HEAT_RANGE * (2.0 * f64::from(x - left) / f64::from(right - left) - 1.0);
+        for y in top..top + 6 {
+            out.set(x, y, heat_colour(e));
+        }
+    }
+    let labels = top + 8;
+    let white = [255, 255, 255];
+    draw_text(&mut out, left, labels, "-.25", white);
+    let mid = (left + right) / 2;
+    draw_text(&mut out, mid - 1, labels, "0", white);
+    draw_text(
+        &mut out,
+        right + 1 - text_width("+.25"),
+        labels,
+        "+.25",
+        white,
+    );
+    out
+}
+
+/// An image of `frame`'s size, `colour(i)` at receiver `i`'s pixel,
+/// [`BACKGROUND_RGB`] elsewhere.
+fn paint(frame: &Frame, colour: impl Fn(usize) -> [u8; 3]) -> Rgb {
+    let (width, height) = frame.size();
+    let mut data = Vec::with_capacity(3 * frame.pixels().len());
+    for &i in frame.pixels() {
+        data.extend_from_slice(&if i == BACKGROUND {
+            BACKGROUND_RGB
+        } else {
+            colour(i as usize)
+        });
+    }
+    Rgb {
+        width,
+        height,
+        data,
+    }
+}
+
+/// A 3 × 5 pixel font for the legend: rows top to bottom, bit 2 the left.
+fn glyph(c: char) -> [u8; 5] {
+    match c {
+        '0' => [7, 5, 5, 5, 7],
+        '1' => [2, 6, 2, 2, 7],
+        '2' => [7, 1, 7, 4, 7],
+        '5' => [7, 4, 7, 1, 7],
+        '.' => [0, 0, 0, 0, 2],
+        '-' => [0, 0, 7, 0, 0],
+        '+' => [0, 2, 7, 2, 0],
+        _ => [0; 5],
+    }
+}
+
+fn text_width(s: &str) -> u32 {
+    4 * s.chars().count() as u32 - 1
+}
+
+fn draw_text(img: &mut Rgb, x: u32, y: u32, s: &str, colour: [u8; 3]) {
+    for (k, c) in s.chars().enumerate() {
+        for (dy, bits) in glyph(c).iter().enumerate() {
+            for dx in 0..3 {
+                if bits >> (2 - dx) & 1 == 1 {
+                    img.set(x + 4 * k as u32 + dx, y + dy as u32, colour);
+                }
+            }
+        }
+    }
+}
+
+/// Error statistics of values against a reference (DESIGN §7).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct ErrorSummary {
+    /// How many values were compared.
+    pub count: usize,
+    /// Mean of `|e|`.
+    pub mean_abs: f64,
+    /// `√(mean e²)`.
+    pub rmse: f64,
+    /// The 99th percentile of `|e|` (nearest rank).
+    pub p99_abs: f64,
+    /// The largest `|e|`.
+    pub max_abs: f64,
+    /// Mean of `e` (the bias: negative is too dark).
+    pub mean_signed: f64,
+    /// The share of values with `|e| > 0.05`.
+    pub share_over_0_05: f64,
+}
+
+impl ErrorSummary {
+    /// The statistics of `e = values[i] − reference[i]` over the indices
+    /// `i` where `keep(i)`; all zero when none is kept. The slices must have
+    /// the same length (the shorter one bounds the comparison).
+    #[must_use]
+    pub fn new(values: &[f64], reference: &[f64], keep: impl Fn(usize) -> bool) -> ErrorSummary {
+        let errors: Vec<f64> = values
+            .iter()
+            .zip(reference)
+            .enumerate()
+            .filter(|&(i, _)| keep(i))
+            .map(|(_, (v, r))| v - r)
+            .collect();
+        let count = errors.len();
+        if count == 0 {
+            return ErrorSummary::default();
+        }
+        let n = count as f64;
+        let mut abs: Vec<f64> = errors.iter().map(|e| e.abs()).collect();
+        abs.sort_unstable_by(f64::total_cmp);
+        let rank = ((0.99 * n).ceil() as usize).clamp(1, count) - 1;
+        ErrorSummary {
+            count,
+            mean_abs: abs.iter().sum::<f64>() / n,
+            rmse: (errors.iter().map(|e| e * e).sum::<f64>() / n).sqrt(),
+            p99_abs: abs[rank],
+            max_abs: abs[count - 1],
+            mean_signed: errors.iter().sum::<f64>() / n,
+            share_over_0_05: abs.iter().filter(|&&a| a > 0.05).count() as f64 / n,
+        }
+    }
+}

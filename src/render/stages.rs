@@ -1,0 +1,385 @@
+//! The stages methods draw on — BVH, mesh topology, light frame, light maps,
+//! and whatever a method builds for itself — built lazily, once, and timed
+//! into [`Stats`].
+
+use super::frame::Frame;
+use super::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
+use crate::kernel::silhouette::MeshTopology;
+use crate::reference::bvh::Bvh;
+use crate::reference::Occluders;
+use crate::scene::{LightFrame, Scene};
+use glam::DVec3;
+use std::fmt;
+use std::sync::{Arc, Mutex, OnceLock};
+use std::time::{Duration, Instant};
+
+/// What a method needs built before it runs (a method may also build more
+/// for itself, lazily; these are the shared stages). Combine with `|`.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Needs(u32);
+
+impl Needs {
+    /// Nothing shared.
+    pub const NONE: Needs = Needs(0);
+    /// The BVH over every triangle ([`Stages::bvh`]).
+    pub const BVH: Needs = Needs(1);
+    /// Per-mesh edge topology ([`Stages::topology`]), for silhouettes.
+    pub const TOPOLOGY: Needs = Needs(2);
+    /// The light frame of DESIGN §2 ([`Stages::light_frame`]).
+    pub const LIGHT_FRAME: Needs = Needs(4);
+    /// A light-view depth/object map fitted to the frame's receivers and the
+    /// occluders ([`Stages::light_maps`]); the resolution is the method's.
+    pub const LIGHT_MAPS: Needs = Needs(8);
+
+    /// Whether every stage of `other` is in `self`.
+    #[must_use]
+    pub fn contains(self, other: Needs) -> bool {
+        self.0 & other.0 == other.0
+    }
+
+    /// The names of the stages, for printing.
+    #[must_use]
+    pub fn names(self) -> Vec<&'static str> {
+        [
+            (Needs::BVH, "bvh"),
+            (Needs::TOPOLOGY, "topology"),
+            (Needs::LIGHT_FRAME, "light frame"),
+            (Needs::LIGHT_MAPS, "light maps"),
+        ]
+        .into_iter()
+        .filter(|&(n, _)| self.contains(n))
+        .map(|(_, s)| s)
+        .collect()
+    }
+}
+
+impl std::ops::BitOr for Needs {
+    type Output = Needs;
+    fn bitor(self, rhs: Needs) -> Needs {
+        Needs(self.0 | rhs.0)
+    }
+}
+
+/// Light maps as [`Stages::light_maps`] hands them out.
+pub type SharedMaps = Arc<Result<LightMaps, RasterError>>;
+
+/// One timed stage: what was built, for how long.
+#[derive(Clone, Debug, PartialEq)]
+pub struct StageTime {
+    /// The stage's name (`"bvh"`, `"light maps"`, `"receivers"`, a method's
+    /// own stage such as `"pcss filter"`).
+    pub name: String,
+    /// What was built (sizes, counts), for people.
+    pub detail: String,
+    /// Wall time.
+    pub seconds: f64,
+}
+
+/// What was built and how long it took, plus the counters methods keep
+/// (e.g. how often a clamp fired). Printed by `softshadow render --stats`.
+#[derive(Clone, Debug, Default, PartialEq)]
+pub struct Stats {
+    /// The stages, in the order they were built or run.
+    pub stages: Vec<StageTime>,
+    /// Named counters, in the order first counted.
+    pub counters: Vec<(String, u64)>,
+}
+
+impl Stats {
+    /// Adds `n` to the counter `name` (created at 0).
+    pub fn count(&mut self, name: &str, n: u64) {
+        match self.counters.iter_mut().find(|(k, _)| k == name) {
+            Some((_, v)) => *v += n,
+            None => self.counters.push((name.to_owned(), n)),
+        }
+    }
+
+    /// The counter `name`, 0 when never counted.
+    #[must_use]
+    pub fn counter(&self, name: &str) -> u64 {
+        self.counters
+            .iter()
+            .find(|(k, _)| k == name)
+            .map_or(0, |&(_, v)| v)
+    }
+
+    /// The total time of the stages called `name`.
+    #[must_use]
+    pub fn seconds(&self, name: &str) -> f64 {
+        self.stages
+            .iter()
+            .filter(|s| s.name == name)
+            .map(|s| s.seconds)
+            .sum()
+    }
+
+    /// The entries recorded after `earlier` (a snapshot of the same log).
+    fn since(&self, earlier: &Stats) -> Stats {
+        let stages = self.stages[earlier.stages.len().min(self.stages.len())..].to_vec();
+        let counters = self
+            .counters
+            .iter()
+            .filter_map(|(k, v)| {
+                let before = earlier.counter(k);
+                (*v > before).then(|| (k.clone(), v - before))
+            })
+            .collect();
+        Stats { stages, counters }
+    }
+}
+
+impl fmt::Display for Stats {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        for s in &self.stages {
+            writeln!(
+                f,
+                "  {:<22} {:>10.3} ms  {}",
+                s.name,
+                s.seconds * 1e3,
+                s.detail
+            )?;
+        }
+        for (k, v) in &self.counters {
+            writeln!(f, "  {k:<22} {v:>10}")?;
+        }
+        Ok(())
+    }
+}
+
+/// The lazily built stages of one scene, shared by every method run on it.
+///
+/// Each accessor builds its stage on first use (thread-safe, once) and
+/// records the time in the stage log; [`Stages::stats`] returns the log.
+/// Nothing is built that no method asked for: a method on a point light
+/// never touches a penumbra stage.
+pub struct Stages<'a> {
+    scene: &'a Scene,
+    bvh: OnceLock<Bvh>,
+    topology: OnceLock<Vec<Option<MeshTopology>>>,
+    light_frame: OnceLock<LightFrame>,
+    /// Light maps by (frame id, width, height).
+    light_maps: Mutex<Vec<((u64, u32, u32), SharedMaps)>>,
+    log: Mutex<Stats>,
+    progress: Mutex<Option<Progress<'a>>>,
+}
+
+/// A progress callback: called with the number of receivers just finished.
+pub type Progress<'a> = Arc<dyn Fn(usize) + Send + Sync + 'a>;
+
+impl fmt::Debug for Stages<'_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Stages")
+            .field("stats", &*self.lock_log())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'a> Stages<'a> {
+    /// No stage built yet.
+    #[must_use]
+    pub fn new(scene: &'a Scene) -> Stages<'a> {
+        Stages {
+            scene,
+            bvh: OnceLock::new(),
+            topology: OnceLock::new(),
+            light_frame: OnceLock::new(),
+            light_maps: Mutex::new(Vec::new()),
+            log: Mutex::new(Stats::default()),
+            progress: Mutex::new(None),
+        }
+    }
+
+    /// From now on, calls `f(n)` as receivers are finished, `n` at a time
+    /// (for progress bars on long runs; methods that work per receiver
+    /// report it); `None` stops reporting.
+    pub fn set_progress(&self, f: Option<Progress<'a>>) {
+        *self
+            .progress
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner) = f;
+    }
+
+    /// Reports `n` more receivers finished to the progress callback.
+    pub fn advance(&self, n: usize) {
+        let f = self
+            .progress
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+            .clone();
+        if let Some(f) = f {
+            f(n);
+        }
+    }
+
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> &'a Scene {
+        self.scene
+    }
+
+    /// Builds every stage in `needs` that is not built yet.
+    ///
+    /// # Errors
+    /// The light maps' [`RasterError`] (only with [`Needs::LIGHT_MAPS`],
+    /// which needs a frame: use [`Stages::light_maps`] directly).
+    pub fn prepare(&self, needs: Needs) {
+        if needs.contains(Needs::BVH) {
+            self.bvh();
+        }
+        if needs.contains(Needs::TOPOLOGY) {
+            self.topology();
+        }
+        if needs.contains(Needs::LIGHT_FRAME) {
+            self.light_frame();
+        }
+    }
+
+    /// The BVH over every mesh's triangles (object id = mesh index).
+    pub fn bvh(&self) -> &Bvh {
+        self.bvh.get_or_init(|| {
+            self.timed("bvh", || {
+                let bvh = Bvh::new(Occluders::from_scene(self.scene));
+                let detail = format!("{} triangles", bvh.occluders().len());
+                (bvh, detail)
+            })
+        })
+    }
+
+    /// Per mesh, its edge topology (`None` for a mesh the topology rejects,
+    /// e.g. one with an out-of-range index — which a validated
+    /// [`Mesh`](crate::scene::Mesh) never has).
+    pub fn topology(&self) -> &[Option<MeshTopology>] {
+        self.topology.get_or_init(|| {
+            self.timed("topology", || {
+                let t: Vec<_> = self
+                    .scene
+                    .meshes()
+                    .iter()
+                    .map(|m| MeshTopology::new(m.triangles(), m.positions().len()).ok())
+                    .collect();
+                let edges: usize = t.iter().flatten().map(|t| t.edges().len()).sum();
+                (t, format!("{edges} edges"))
+            })
+        })
+    }
+
+    /// The light frame of DESIGN §2: at the light's centre, `+z` toward the
+    /// centre of the scene's bounding box; when the scene has no triangle or
+    /// that centre is the light's, `+z` is world `−y` (down).
+    pub fn light_frame(&self) -> LightFrame {
+        *self.light_frame.get_or_init(|| {
+            let c = self.scene.light().center();
+            let toward = self
+                .scene
+                .bounds()
+                .and_then(|(lo, hi)| LightFrame::toward(c, (lo + hi) * 0.5).ok());
+            // A validated light has a finite centre, so the fallback exists.
+            toward.unwrap_or_else(|| {
+                LightFrame::toward(c, c - DVec3::Y).expect("a finite light centre")
+            })
+        })
+    }
+
+    /// The light-view depth and object maps of `width × height` texels, over
+    /// the window that holds every receiver of `frame` and every occluder
+    /// vertex in front of the light (depth at least `near`, see
+    /// [`LightView::fit`]), built once per frame and size.
+    ///
+    /// # Errors
+    /// [`RasterError`] from fitting the view, e.g. when nothing is in front
+    /// of the light.
+    pub fn light_maps(&self, frame: &Frame, width: u32, height: u32) -> SharedMaps {
+        let key = (frame.id(), width, height);
+        let mut cache = self
+            .light_maps
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner);
+        if let Some((_, m)) = cache.iter().find(|(k, _)| *k == key) {
+            return Arc::clone(m);
+        }
+        let light_frame = self.light_frame();
+        let bvh = self.bvh();
+        let maps = self.timed("light maps", || {
+            let occluders = bvh.occluders();
+            let points = frame
+                .receivers()
+                .iter()
+                .map(|r| r.position)
+                .chain(occluders.triangles().iter().flatten().copied());
+            let near = near_depth(light_frame, occluders.triangles(), frame);
+            let maps = LightView::fit(light_frame, points, width, height, near)
+                .map(|view| rasterize_occluders(&view, occluders));
+            let detail = match &maps {
+                Ok(_) => format!("{width}×{height}, near {near:.3e}"),
+                Err(e) => format!("not built: {e}"),
+            };
+            (maps, detail)
+        });
+        let maps = Arc::new(maps);
+        cache.push((key, Arc::clone(&maps)));
+        maps
+    }
+
+    /// Runs `build`, which returns a value and a description of what it
+    /// built, and logs it as the stage `name`.
+    pub fn timed<T>(&self, name: &str, build: impl FnOnce() -> (T, String)) -> T {
+        let start = Instant::now();
+        let (value, detail) = build();
+        self.record(name, detail, start.elapsed());
+        value
+    }
+
+    /// Logs a stage that took `elapsed`.
+    pub fn record(&self, name: &str, detail: String, elapsed: Duration) {
+        self.lock_log().stages.push(StageTime {
+            name: name.to_owned(),
+            detail,
+            seconds: elapsed.as_secs_f64(),
+        });
+    }
+
+    /// Adds `n` to the counter `name` in the log.
+    pub fn count(&self, name: &str, n: u64) {
+        self.lock_log().count(name, n);
+    }
+
+    /// Everything logged so far.
+    #[must_use]
+    pub fn stats(&self) -> Stats {
+        self.lock_log().clone()
+    }
+
+    /// What was logged since `earlier` (an earlier [`Stages::stats`]).
+    #[must_use]
+    pub fn stats_since(&self, earlier: &Stats) -> Stats {
+        self.lock_log().since(earlier)
+    }
+
+    fn lock_log(&self) -> std::sync::MutexGuard<'_, Stats> {
+        self.log
+            .lock()
+            .unwrap_or_else(std::sync::PoisonError::into_inner)
+    }
+}
+
+/// The near depth of a light view: the least light-frame depth of any
+/// occluder vertex or receiver in front of the light, halved (so nothing of
+/// interest is clipped), and at least `2⁻²⁰` of the greatest such depth
+/// (so the perspective stays well conditioned); `1` when nothing is in
+/// front.
+fn near_depth(frame: LightFrame, triangles: &[[DVec3; 3]], receivers: &Frame) -> f64 {
+    let depths = triangles
+        .iter()
+        .flatten()
+        .copied()
+        .chain(receivers.receivers().iter().map(|r| r.position))
+        .map(|p| frame.to_light(p).z)
+        .filter(|z| z.is_finite() && *z > 0.0);
+    let (lo, hi) = depths.fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
+        (lo.min(z), hi.max(z))
+    });
+    if hi == 0.0 {
+        return 1.0;
+    }
+    (lo * 0.5).max(hi * (1.0 / 1_048_576.0))
+}
