@@ -60,6 +60,9 @@ impl std::ops::BitOr for Needs {
     }
 }
 
+/// The cache key of light maps: (frame id, width, height).
+type MapKey = (u64, u32, u32);
+
 /// Light maps as [`Stages::light_maps`] hands them out.
 pub type SharedMaps = Arc<Result<LightMaps, RasterError>>;
 
@@ -158,7 +161,7 @@ pub struct Stages<'a> {
     topology: OnceLock<Vec<Option<MeshTopology>>>,
     light_frame: OnceLock<LightFrame>,
     /// Light maps by (frame id, width, height).
-    light_maps: Mutex<Vec<((u64, u32, u32), SharedMaps)>>,
+    light_maps: Mutex<Vec<(MapKey, SharedMaps)>>,
     log: Mutex<Stats>,
     progress: Mutex<Option<Progress<'a>>>,
 }
