@@ -104,7 +104,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             .map_err(|e| format!("{}: {e}", path.display()))?;
         println!("wrote {}", path.display());
     }
-    print_table(&frame, &exact, &[run.clone()]);
+    print_table(&frame, &exact, std::slice::from_ref(&run));
     if args.stats {
         println!("\nstages:\n{}", stages.stats());
     }
