@@ -47,39 +47,47 @@ pub struct Pcss {
     pub blocker_samples: u32,
     /// Points read by the filter; default 64.
     pub filter_samples: u32,
-    /// How a texel is judged nearer than the receiver; default
-    /// [`PcssBias::ReceiverPlane`] with `relative = 1e-3`.
+    /// Which depth a texel is compared with; default
+    /// [`PcssBias::ReceiverPlane`].
     pub bias: PcssBias,
+    /// The margin below that depth, relative to the receiver's depth `z_p`,
+    /// for rounding and curvature; default `1e-3`.
+    pub bias_relative: f64,
+    /// The margin below that depth in texels: `bias_texels · t · z_p`, `t`
+    /// the texel's side on the light image plane (so `t · z_p` is its width
+    /// at the receiver); covers a faceted or curved receiver leaving its
+    /// tangent plane within the texel the sample falls in; default `1`.
+    pub bias_texels: f64,
 }
 
-/// How PCSS decides that a depth-map texel at depth `d` blocks the receiver.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Which depth PCSS compares a depth-map texel with to decide that it blocks
+/// the receiver: the texel at depth `d` blocks when `d < z − m`, with the
+/// margin `m = z_p (bias_relative + bias_texels · t)` of [`Pcss`].
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub enum PcssBias {
-    /// `d < z (1 − relative)` where `z` is the depth, at the texel's centre,
-    /// of the receiver's tangent plane (the plane through the receiver with
-    /// its normal): the receiver's own surface is never its blocker however
-    /// wide the filter, on any slope ("receiver plane depth bias", a known
-    /// improvement on a constant bias). Needs receiver normals.
-    ReceiverPlane {
-        /// The relative margin, for curvature and rounding.
-        relative: f64,
-    },
-    /// `d < z_p (1 − relative)`: the classic constant (here relative) bias,
-    /// which needs no normal but lets a sloped receiver shadow itself under
-    /// a wide filter.
-    Constant {
-        /// The relative margin.
-        relative: f64,
-    },
+    /// `z` is the depth, at the texel's centre, of the receiver's tangent
+    /// plane (the plane through the receiver with its normal): the
+    /// receiver's own surface is never its blocker however wide the filter,
+    /// on any slope ("receiver plane depth bias", a known improvement on a
+    /// constant bias). Needs receiver normals. A receiver whose normal faces
+    /// away from the light's centre is compared with its own depth instead,
+    /// as under [`PcssBias::Constant`].
+    ReceiverPlane,
+    /// `z = z_p`, the receiver's own depth: the classic constant bias, which
+    /// needs no normal but lets a sloped receiver shadow itself under a wide
+    /// filter.
+    Constant,
 }
 
 impl Default for Pcss {
     fn default() -> Pcss {
         Pcss {
-            resolution: 1024,
+            resolution: 128,
             blocker_samples: 32,
             filter_samples: 64,
-            bias: PcssBias::ReceiverPlane { relative: 1e-3 },
+            bias: PcssBias::ReceiverPlane,
+            bias_relative: 1e-3,
+            bias_texels: 1.0,
         }
     }
 }
@@ -114,7 +122,8 @@ struct Lookup<'a> {
     p: DVec3,
     /// Its light-frame normal, when the receiver-plane bias is used.
     normal: Option<DVec3>,
-    relative: f64,
+    /// The margin `m` of [`PcssBias`].
+    margin: f64,
 }
 
 impl Lookup<'_> {
@@ -145,7 +154,7 @@ impl Lookup<'_> {
             }
             None => self.p.z,
         };
-        (d < z * (1.0 - self.relative)).then_some(d)
+        (d < z - self.margin).then_some(d)
     }
 }
 
@@ -169,12 +178,12 @@ impl Method for Pcss {
         if self.blocker_samples == 0 || self.filter_samples == 0 {
             return Err(invalid("sample counts must be at least 1"));
         }
-        let (plane, relative) = match self.bias {
-            PcssBias::ReceiverPlane { relative } => (true, relative),
-            PcssBias::Constant { relative } => (false, relative),
-        };
-        if !(0.0..1.0).contains(&relative) {
-            return Err(invalid("the relative bias must be in [0, 1)"));
+        let plane = self.bias == PcssBias::ReceiverPlane;
+        if !(self.bias_relative >= 0.0
+            && self.bias_texels >= 0.0
+            && self.bias_relative + self.bias_texels < 1e6)
+        {
+            return Err(invalid("the bias margins must be finite and at least 0"));
         }
         if plane {
             if let Some(index) = frame.receivers().iter().position(|r| r.normal.is_none()) {
@@ -205,6 +214,7 @@ impl Method for Pcss {
             .copied()
             .filter(|d| d.is_finite())
             .fold(f64::INFINITY, f64::min);
+        let texel = view.texel_size().max_element();
         let search = vogel(self.blocker_samples);
         let filter = vogel(self.filter_samples);
         let visibility = per_receiver(
@@ -219,9 +229,14 @@ impl Method for Pcss {
                 if !(p.z >= view.near() && z_min < p.z) {
                     return Ok(1.0);
                 }
+                // The tangent plane stands for the receiver's own surface
+                // only where that surface faces the light's centre; a
+                // receiver facing away is compared with its own depth (its
+                // own surface, between it and the light, blocks it there).
                 let normal = if plane {
                     rec.normal
                         .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)))
+                        .filter(|n| n.dot(p) < 0.0)
                 } else {
                     None
                 };
@@ -229,7 +244,7 @@ impl Method for Pcss {
                     maps,
                     p,
                     normal,
-                    relative,
+                    margin: p.z * (self.bias_relative + self.bias_texels * texel),
                 };
                 let s = DVec2::new(p.x / p.z, p.y / p.z);
                 // 1. Blocker search.

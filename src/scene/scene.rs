@@ -206,6 +206,13 @@ impl Scene {
         self
     }
 
+    /// Replaces the light.
+    #[must_use]
+    pub fn with_light(mut self, light: Light) -> Scene {
+        self.light = light;
+        self
+    }
+
     /// Sets the camera.
     #[must_use]
     pub fn with_camera(mut self, camera: Camera) -> Scene {
