@@ -150,7 +150,10 @@ impl fmt::Display for RasterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         match self {
             RasterError::NonFiniteWindow => {
-                write!(f, "light view window is not finite (or beyond {MAX_COORD:e})")
+                write!(
+                    f,
+                    "light view window is not finite (or beyond {MAX_COORD:e})"
+                )
             }
             RasterError::EmptyWindow => write!(f, "light view window is empty (lo ≥ hi)"),
             RasterError::Resolution { width, height } => write!(
@@ -260,9 +263,10 @@ impl LightView {
     /// The view whose window just contains the projections of the finite
     /// `points` at light-frame depth `≥ near` (typically the receivers and
     /// the occluders' vertices a method is given), grown by one pixel on
-    /// each side: with `n` the width, the pixel size is `extent / (n − 2)`
-    /// for `n ≥ 3` (`extent / n` for `n ≤ 2`) and the window extends one
-    /// pixel beyond the extreme projections. Pixels need not be square.
+    /// each side: per axis, with `n` pixels, the pixel size is
+    /// `extent / (n − 2)` for `n ≥ 3` and the window extends one pixel
+    /// beyond the extreme projections (for `n ≤ 2`, by `extent / n`, which
+    /// is `n / (n + 2)` of a pixel). Pixels need not be square.
     /// Points behind `near` are ignored. An extent below
     /// [`MIN_FIT_EXTENT`]` · max(1, |coordinate|)` (all points projecting
     /// to one point or onto one line) is widened to that, centred.
@@ -403,11 +407,9 @@ impl LightView {
     #[must_use]
     pub fn pixel_of(&self, point: DVec2) -> Option<(u32, u32)> {
         let p = self.to_pixel(point).floor();
-        let inside = p.x >= 0.0
-            && p.y >= 0.0
-            && p.x < f64::from(self.width)
-            && p.y < f64::from(self.height);
-        inside.then(|| (p.x as u32, p.y as u32))
+        let inside =
+            p.x >= 0.0 && p.y >= 0.0 && p.x < f64::from(self.width) && p.y < f64::from(self.height);
+        inside.then_some((p.x as u32, p.y as u32))
     }
 
     /// The row-major index `row·width + col` of pixel `(col, row)`, `None`
@@ -485,7 +487,8 @@ impl LightMaps {
     /// the maps.
     #[must_use]
     pub fn depth_at(&self, col: u32, row: u32) -> f64 {
-        self.index(col, row).map_or(f64::INFINITY, |i| self.depth[i])
+        self.index(col, row)
+            .map_or(f64::INFINITY, |i| self.depth[i])
     }
 
     /// The object id of the nearest triangle at pixel `(col, row)`;
