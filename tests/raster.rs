@@ -22,7 +22,8 @@ use robust::Coord;
 use softshadow::arbitrary::Rng;
 use softshadow::reference::Occluders;
 use softshadow::render::raster::{
-    rasterize, rasterize_occluders, rasterize_triangle, LightMaps, LightView, RasterError,
+    rasterize, rasterize_into, rasterize_occluders, rasterize_triangle, LightMaps, LightView,
+    RasterError,
 };
 use softshadow::scene::LightFrame;
 
@@ -1055,4 +1056,36 @@ fn an_edge_cut_by_the_near_plane_is_cut_at_the_same_point_from_both_sides() {
         }
     }
     assert!(checked > 1000, "{checked}");
+}
+
+#[test]
+fn rasterize_into_reuses_maps_and_matches_rasterize() {
+    let mut rng = Rng::new(17);
+    let frame = random_frame(&mut rng);
+    let tris: Vec<[DVec3; 3]> = (0..40)
+        .map(|_| {
+            [0; 3].map(|_| {
+                frame.to_world(DVec3::new(
+                    rng.uniform(-2.0, 2.0),
+                    rng.uniform(-2.0, 2.0),
+                    rng.uniform(0.2, 3.0),
+                ))
+            })
+        })
+        .collect();
+    let objects: Vec<u32> = (0..40).collect();
+    let mut maps = LightMaps::empty(3, 5);
+    for (w, h) in [(17, 9), (40, 33), (1, 1), (17, 9)] {
+        let view = LightView::new(frame, DVec2::splat(-1.0), DVec2::splat(1.0), w, h, 0.5).unwrap();
+        rasterize_into(&view, &tris, &objects, &mut maps).unwrap();
+        assert_eq!(maps, rasterize(&view, &tris, &objects).unwrap());
+        assert_eq!(
+            rasterize_into(&view, &tris, &objects[1..], &mut maps),
+            Err(RasterError::LengthMismatch {
+                triangles: 40,
+                objects: 39
+            })
+        );
+        assert_eq!(maps, LightMaps::empty(w, h));
+    }
 }

@@ -5,7 +5,8 @@
 //!
 //! A [`LightView`] is a light frame, an axis-aligned window `[lo, hi]` on the
 //! light image plane `z = 1`, a resolution and a near depth. [`rasterize`]
-//! (or [`rasterize_occluders`]) fills [`LightMaps`]: per pixel, the depth of
+//! (or [`rasterize_occluders`], or [`rasterize_into`] reusing storage)
+//! fills [`LightMaps`]: per pixel, the depth of
 //! the nearest triangle on the ray from the light's centre through the pixel
 //! centre, that triangle's object id and its index. [`rasterize_triangle`]
 //! hands every covered pixel of one triangle to a callback, for methods that
@@ -465,6 +466,19 @@ impl LightMaps {
         }
     }
 
+    /// Resizes to `width × height` and clears to the empty state, keeping
+    /// the storage.
+    pub fn reset(&mut self, width: u32, height: u32) {
+        let n = width as usize * height as usize;
+        (self.width, self.height) = (width, height);
+        for (v, x) in [(&mut self.object, u32::MAX), (&mut self.triangle, u32::MAX)] {
+            v.clear();
+            v.resize(n, x);
+        }
+        self.depth.clear();
+        self.depth.resize(n, f64::INFINITY);
+    }
+
     /// The number of columns.
     #[must_use]
     pub fn width(&self) -> u32 {
@@ -553,6 +567,36 @@ pub fn rasterize(
         return Err(RasterError::TooManyTriangles);
     }
     let mut maps = LightMaps::empty(view.width, view.height);
+    fill_maps(view, triangles, objects, &mut maps);
+    Ok(maps)
+}
+
+/// [`rasterize`] into existing maps, reusing their storage (resized to the
+/// view and cleared first): for a method that rasterises every frame.
+///
+/// # Errors
+/// As [`rasterize`]; `maps` is left cleared then.
+pub fn rasterize_into(
+    view: &LightView,
+    triangles: &[[DVec3; 3]],
+    objects: &[u32],
+    maps: &mut LightMaps,
+) -> Result<(), RasterError> {
+    maps.reset(view.width, view.height);
+    if objects.len() != triangles.len() {
+        return Err(RasterError::LengthMismatch {
+            triangles: triangles.len(),
+            objects: objects.len(),
+        });
+    }
+    if triangles.len() >= u32::MAX as usize {
+        return Err(RasterError::TooManyTriangles);
+    }
+    fill_maps(view, triangles, objects, maps);
+    Ok(())
+}
+
+fn fill_maps(view: &LightView, triangles: &[[DVec3; 3]], objects: &[u32], maps: &mut LightMaps) {
     let w = view.width as usize;
     for (i, (tri, &object)) in triangles.iter().zip(objects).enumerate() {
         rasterize_triangle(view, tri, |f| {
@@ -565,7 +609,6 @@ pub fn rasterize(
             }
         });
     }
-    Ok(maps)
 }
 
 /// [`rasterize`] for a scene's [`Occluders`] (which always have one object
@@ -726,6 +769,16 @@ impl Edge {
 }
 
 /// Emits the pixels whose centres the projected triangle covers.
+///
+/// Per row the covered centres form one run of columns: each edge's test is
+/// the exact sign of a function linear in `x`, and pixel centres increase
+/// with the column. So a row is found from a guess of its first column
+/// (where the left edges cross the row, in floating point): when the exact
+/// test accepts the guess, the run starts at the first column to its left
+/// that the test rejects; when it rejects the guess, the row is scanned
+/// from the left of the bounding box as if there were no guess. Either way
+/// every decision is the exact test's, and the run ends at the first
+/// rejected column.
 fn fill(view: &LightView, t: [DVec2; 3], plane: &Plane, emit: &mut impl FnMut(Fragment)) {
     let [a, mut b, mut c] = t;
     match orient2d(a, b, c) {
@@ -744,26 +797,54 @@ fn fill(view: &LightView, t: [DVec2; 3], plane: &Plane, emit: &mut impl FnMut(Fr
     let Some((r0, r1)) = span(min.y, max.y, view.lo.y, view.texel.y, view.height) else {
         return;
     };
+    let inside = |x: f64, y: f64| {
+        let p = DVec2::new(x, y);
+        x >= min.x && x <= max.x && edges.iter().all(|e| e.admits(p))
+    };
+    // The left edges (interior on their +x side: going down, counter-
+    // clockwise) as x = x0 + (y − y0)·slope, for the guess only.
+    let mut left = [(0.0, 0.0, 0.0); 3];
+    let mut lefts = 0;
+    for e in edges.iter().filter(|e| e.b.y < e.a.y) {
+        left[lefts] = (e.a.x, e.a.y, (e.b.x - e.a.x) / (e.b.y - e.a.y));
+        lefts += 1;
+    }
+    let left = &left[..lefts];
+    let xs = &view.xs[..];
     for row in r0..=r1 {
         let y = view.ys[row as usize];
         if y < min.y || y > max.y {
             continue;
         }
-        let mut seen = false;
-        for col in c0..=c1 {
-            let x = view.xs[col as usize];
-            let p = DVec2::new(x, y);
-            if x >= min.x && x <= max.x && edges.iter().all(|e| e.admits(p)) {
-                seen = true;
-                emit(Fragment {
-                    col,
-                    row,
-                    depth: plane.depth(p),
-                });
-            } else if seen {
-                // A triangle meets a row in one interval.
+        let xl = left
+            .iter()
+            .map(|&(x0, y0, k)| x0 + (y - y0) * k)
+            .fold(min.x, f64::max);
+        let g = ((xl - view.lo.x) / view.texel.x - 0.5).ceil();
+        // NaN saturates to 0 in the cast; clamp to the box.
+        let mut col = (g.max(0.0) as u32).clamp(c0, c1);
+        if inside(xs[col as usize], y) {
+            while col > c0 && inside(xs[col as usize - 1], y) {
+                col -= 1;
+            }
+        } else {
+            match (c0..=c1).find(|&k| inside(xs[k as usize], y)) {
+                Some(k) => col = k,
+                None => continue,
+            }
+        }
+        // `col` is covered and starts the run.
+        loop {
+            let x = xs[col as usize];
+            emit(Fragment {
+                col,
+                row,
+                depth: plane.depth(DVec2::new(x, y)),
+            });
+            if col == c1 || !inside(xs[col as usize + 1], y) {
                 break;
             }
+            col += 1;
         }
     }
 }
