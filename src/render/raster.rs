@@ -75,8 +75,9 @@
 //! `n = (b − a) × (c − a)` in light-frame coordinates, clamped to the range
 //! of the (clipped) polygon's depths (the exact value lies in it). Relative
 //! error a few ulps times the conditioning `|n|·|(u,v,1)| / |n·(u,v,1)|`
-//! (grazing triangles lose digits; the test suite measures below `1e-12`
-//! against an independent ray cast). The nearest triangle wins; at equal
+//! (grazing triangles lose digits). Against an independent Möller–Trumbore
+//! ray cast over random, non-grazing triangles (`tests/raster.rs`) the
+//! worst relative difference is `9.3e-15` over about 14 000 pixels. The nearest triangle wins; at equal
 //! depth the lower triangle index.
 //!
 //! **Domain.** No input panics or produces NaN. Triangles with a non-finite
@@ -122,7 +123,8 @@ const CCW_ERR_BOUND_A: f64 = (3.0 + 16.0 * EPS) * EPS;
 pub enum RasterError {
     /// A window corner is not finite or exceeds [`MAX_COORD`] in magnitude.
     NonFiniteWindow,
-    /// The window is empty: `lo ≥ hi` on some axis.
+    /// The window is empty: `lo ≥ hi` on some axis, or so narrow that a
+    /// pixel is smaller than [`MIN_COORD`].
     EmptyWindow,
     /// A width or height is 0 or larger than [`MAX_RESOLUTION`].
     Resolution {
@@ -214,7 +216,8 @@ impl LightView {
     ///
     /// # Errors
     /// [`RasterError::NonFiniteWindow`] (a corner not finite or beyond
-    /// [`MAX_COORD`]), [`RasterError::EmptyWindow`] (`lo ≥ hi` on an axis),
+    /// [`MAX_COORD`]), [`RasterError::EmptyWindow`] (`lo ≥ hi` on an axis,
+    /// or pixels smaller than [`MIN_COORD`]),
     /// [`RasterError::Resolution`] (a size 0 or above [`MAX_RESOLUTION`]),
     /// [`RasterError::Near`] (`near` not finite and positive).
     pub fn new(
@@ -243,6 +246,11 @@ impl LightView {
             (hi.x - lo.x) / f64::from(width),
             (hi.y - lo.y) / f64::from(height),
         );
+        // Pixels narrower than MIN_COORD would have centres flushed
+        // together (and underflowing pixel coordinates).
+        if !(texel.x >= MIN_COORD && texel.y >= MIN_COORD) {
+            return Err(RasterError::EmptyWindow);
+        }
         let centers = |lo: f64, s: f64, n: u32| -> Vec<f64> {
             (0..n)
                 .map(|k| flush(lo + (f64::from(k) + 0.5) * s))
@@ -612,7 +620,8 @@ fn fill_maps(view: &LightView, triangles: &[[DVec3; 3]], objects: &[u32], maps: 
 }
 
 /// [`rasterize`] for a scene's [`Occluders`] (which always have one object
-/// id per triangle).
+/// id per triangle; past `u32::MAX − 1` triangles, which no `Occluders` of
+/// this crate can hold in memory, the maps would be empty).
 #[must_use]
 pub fn rasterize_occluders(view: &LightView, occluders: &Occluders) -> LightMaps {
     rasterize(view, occluders.triangles(), occluders.objects())
