@@ -4,13 +4,16 @@
 //! draws on it.
 //!
 //! A [`LightView`] is a light frame, an axis-aligned window `[lo, hi]` on the
-//! light image plane `z = 1`, a resolution and a near depth. [`rasterize`]
-//! (or [`rasterize_occluders`], or [`rasterize_into`] reusing storage)
-//! fills [`LightMaps`]: per pixel, the depth of
-//! the nearest triangle on the ray from the light's centre through the pixel
-//! centre, that triangle's object id and its index. [`rasterize_triangle`]
-//! hands every covered pixel of one triangle to a callback, for methods that
-//! rasterise something other than a depth map.
+//! light image plane `z = 1`, a resolution and a near depth;
+//! [`LightView::fit`] fits the window to a set of points. [`rasterize`] (or
+//! [`rasterize_occluders`], or [`rasterize_into`] reusing storage) fills
+//! [`LightMaps`]: per pixel, the depth of the nearest triangle on the ray
+//! from the light's centre through the pixel centre, that triangle's object
+//! id and its index. [`rasterize_triangle`] hands every covered pixel of one
+//! triangle to a callback, for methods that rasterise something other than
+//! a depth map. Single-threaded and scalar; the default scene (3676
+//! triangles) takes about 2 ms at 512² into reused maps
+//! (`benches/raster.rs`).
 //!
 //! ```
 //! use glam::{DVec2, DVec3};
@@ -77,8 +80,8 @@
 //! error a few ulps times the conditioning `|n|·|(u,v,1)| / |n·(u,v,1)|`
 //! (grazing triangles lose digits). Against an independent Möller–Trumbore
 //! ray cast over random, non-grazing triangles (`tests/raster.rs`) the
-//! worst relative difference is `9.3e-15` over about 14 000 pixels. The nearest triangle wins; at equal
-//! depth the lower triangle index.
+//! worst relative difference is `9.3e-15` over about 14 000 pixels. The
+//! nearest triangle wins; at equal depth the lower triangle index.
 //!
 //! **Domain.** No input panics or produces NaN. Triangles with a non-finite
 //! vertex are skipped. Light-frame coordinates and projected coordinates
