@@ -47,8 +47,13 @@
 //! the two directions gets opposite answers, so two triangles sharing an
 //! edge (same world vertices, bit for bit) cover a centre on it exactly
 //! once, and a fan around a vertex covers a centre at that vertex exactly
-//! once. Both orientations are rasterised (occluders are two-sided);
-//! projections of zero area cover nothing.
+//! once. Equivalently, the rule moves every centre by `(δ, δ²)` with
+//! `δ → 0⁺` (a symbolic perturbation: on an edge `a → b` the sign of
+//! `(b − a) × (δ, δ²)` is that of `−(b.y − a.y)`, or of `b.x − a.x` when the
+//! edge is horizontal), so coverage is that of a point on no edge, and every
+//! counting argument for generic points holds exactly (a closed mesh covers
+//! each centre an even number of times). Both orientations are rasterised
+//! (occluders are two-sided); projections of zero area cover nothing.
 //!
 //! Why exact predicates rather than the GPU's fixed-point snapping: the
 //! covered set is then exactly the set of centres inside the `f64`
