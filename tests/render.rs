@@ -38,7 +38,12 @@ fn hard_shadow_is_monte_carlo_with_a_point_light_bit_for_bit() {
         let hard = values(&HardShadow, &stages, &frame);
         for m in [&MonteCarlo::new(4) as &dyn Method, &Exact] {
             let reference = values(m, &point_stages, &frame);
-            assert_eq!(hard, reference, "{name}: hard vs {} at the centre", m.name());
+            assert_eq!(
+                hard,
+                reference,
+                "{name}: hard vs {} at the centre",
+                m.name()
+            );
         }
         // Not vacuous: the scene has shadowed and lit receivers.
         assert!(hard.contains(&0.0) && hard.contains(&1.0), "{name}");
@@ -136,9 +141,20 @@ fn renders_everywhere(scene: &Scene, side: u32) -> (Frame, Vec<f64>) {
 #[test]
 fn a_camera_inside_a_closed_box_sees_only_umbra() {
     let light = Light::sphere(DVec3::new(0.0, 5.0, 0.0), 0.5).unwrap();
-    let camera = Camera::new(DVec3::ZERO, DVec3::new(0.3, -1.0, 0.2), DVec3::Y, 100.0, 24, 24).unwrap();
+    let camera = Camera::new(
+        DVec3::ZERO,
+        DVec3::new(0.3, -1.0, 0.2),
+        DVec3::Y,
+        100.0,
+        24,
+        24,
+    )
+    .unwrap();
     let scene = Scene::new(light)
-        .with_mesh("box", cuboid(DVec3::splat(-1.0), DVec3::splat(1.0)).unwrap())
+        .with_mesh(
+            "box",
+            cuboid(DVec3::splat(-1.0), DVec3::splat(1.0)).unwrap(),
+        )
         .with_camera(camera);
     let (frame, exact) = renders_everywhere(&scene, 24);
     // The walls are seen from inside, every receiver is enclosed.
@@ -148,7 +164,15 @@ fn a_camera_inside_a_closed_box_sees_only_umbra() {
 
 #[test]
 fn a_scene_without_occluders_is_all_background() {
-    let camera = Camera::new(DVec3::new(0.0, 1.0, 3.0), DVec3::ZERO, DVec3::Y, 45.0, 16, 16).unwrap();
+    let camera = Camera::new(
+        DVec3::new(0.0, 1.0, 3.0),
+        DVec3::ZERO,
+        DVec3::Y,
+        45.0,
+        16,
+        16,
+    )
+    .unwrap();
     let scene = Scene::new(Light::sphere(DVec3::Y * 3.0, 0.5).unwrap()).with_camera(camera);
     let (frame, _) = renders_everywhere(&scene, 16);
     assert!(frame.receivers().is_empty());
@@ -157,7 +181,15 @@ fn a_scene_without_occluders_is_all_background() {
 
 #[test]
 fn a_lone_floor_is_fully_lit_by_every_method() {
-    let camera = Camera::new(DVec3::new(0.0, 1.0, 3.0), DVec3::ZERO, DVec3::Y, 60.0, 32, 32).unwrap();
+    let camera = Camera::new(
+        DVec3::new(0.0, 1.0, 3.0),
+        DVec3::ZERO,
+        DVec3::Y,
+        60.0,
+        32,
+        32,
+    )
+    .unwrap();
     let floor = quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0).unwrap();
     let scene = Scene::new(Light::sphere(DVec3::new(1.0, 3.0, 0.5), 0.5).unwrap())
         .with_mesh("floor", floor)
@@ -176,7 +208,15 @@ fn a_one_pixel_image_and_a_light_behind_the_camera_are_defined() {
     let scene = builtin("default").unwrap();
     renders_everywhere(&scene, 1);
     // The light behind the eye: the camera looks away from it at the floor.
-    let camera = Camera::new(DVec3::new(2.0, 2.5, 3.0), DVec3::new(-1.0, 0.0, -1.0), DVec3::Y, 50.0, 20, 20).unwrap();
+    let camera = Camera::new(
+        DVec3::new(2.0, 2.5, 3.0),
+        DVec3::new(-1.0, 0.0, -1.0),
+        DVec3::Y,
+        50.0,
+        20,
+        20,
+    )
+    .unwrap();
     let behind = scene.with_camera(camera);
     let (frame, _) = renders_everywhere(&behind, 20);
     assert!(!frame.receivers().is_empty());
@@ -197,7 +237,11 @@ fn receivers_lie_on_the_surface_they_see_on_its_visible_side() {
     assert!(on_floor.len() > 100);
     for r in on_floor {
         assert_eq!(r.normal, Some(DVec3::Y));
-        assert!(r.position.y > 0.0 && r.position.y < 1e-8, "{:?}", r.position);
+        assert!(
+            r.position.y > 0.0 && r.position.y < 1e-8,
+            "{:?}",
+            r.position
+        );
     }
 }
 

@@ -2,7 +2,7 @@
 //! Shadows", SIGGRAPH 2005 sketch): the baseline engines ship today.
 
 use super::{per_receiver, Method, MethodError, Output};
-use crate::render::raster::LightMaps;
+use crate::render::FittedMaps;
 use crate::render::{Frame, Needs, Stages};
 use crate::scene::Light;
 use glam::{DVec2, DVec3};
@@ -82,7 +82,7 @@ pub enum PcssBias {
 impl Default for Pcss {
     fn default() -> Pcss {
         Pcss {
-            resolution: 128,
+            resolution: 1024,
             blocker_samples: 32,
             filter_samples: 64,
             bias: PcssBias::ReceiverPlane,
@@ -117,7 +117,7 @@ fn vogel(n: u32) -> Vec<DVec2> {
 
 /// One receiver's view of the depth map.
 struct Lookup<'a> {
-    maps: &'a LightMaps,
+    maps: &'a FittedMaps,
     /// The receiver in light-frame coordinates.
     p: DVec3,
     /// Its light-frame normal, when the receiver-plane bias is used.
@@ -130,7 +130,7 @@ impl Lookup<'_> {
     /// The depth of the texel under image-plane point `u` when it blocks
     /// the receiver, `None` when it does not (or `u` is off the map).
     fn blocker(&self, u: DVec2) -> Option<f64> {
-        let view = self.maps.view();
+        let view = &self.maps.view;
         let t = view.to_pixel(u).floor();
         if !(t.x >= 0.0
             && t.y >= 0.0
@@ -140,7 +140,7 @@ impl Lookup<'_> {
             return None;
         }
         let (col, row) = (t.x as u32, t.y as u32);
-        let d = self.maps.depth_at(col, row);
+        let d = self.maps.maps.depth_at(col, row);
         let z = match self.normal {
             Some(n) => {
                 // The tangent plane n·X = n·p along the ray (c, 1).
@@ -204,12 +204,13 @@ impl Method for Pcss {
             Err(e) => return Err(MethodError::LightView(e.clone())),
         };
         let r = light_radius(light);
-        let view = maps.view();
+        let view = &maps.view;
         let lf = view.frame();
         let [ax, ay, az] = lf.axes();
         // The least occluder depth seen by the map bounds the search.
         let z_min = maps
-            .depths()
+            .maps
+            .depth()
             .iter()
             .copied()
             .filter(|d| d.is_finite())

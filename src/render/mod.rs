@@ -19,4 +19,4 @@ pub mod raster;
 mod stages;
 
 pub use frame::{Frame, Receiver, BACKGROUND, RECEIVER_OFFSET};
-pub use stages::{Needs, Progress, SharedMaps, StageTime, Stages, Stats};
+pub use stages::{FittedMaps, Needs, Progress, SharedMaps, StageTime, Stages, Stats};

@@ -1,23 +1,209 @@
-//! TEMPORARY stub of the light-view rasterizer (replaced by the real one).
-#![allow(missing_docs, dead_code, clippy::neg_cmp_op_on_partial_ord)]
+//! The scalar light-view rasterizer: the scene's triangles as seen from the
+//! light's centre, over the light frame and image plane of DESIGN.md §2.
+//! Every shadow-map method (PCSS, the single-sample method, SSOC, OESS)
+//! draws on it.
+//!
+//! A [`LightView`] is a light frame, an axis-aligned window `[lo, hi]` on the
+//! light image plane `z = 1`, a resolution and a near depth;
+//! [`LightView::fit`] fits the window to a set of points. [`rasterize`] (or
+//! [`rasterize_occluders`], or [`rasterize_into`] reusing storage) fills
+//! [`LightMaps`]: per pixel, the depth of the nearest triangle on the ray
+//! from the light's centre through the pixel centre, that triangle's object
+//! id and its index. [`rasterize_triangle`] hands every covered pixel of one
+//! triangle to a callback, for methods that rasterise something other than
+//! a depth map. Single-threaded and scalar; the default scene (3676
+//! triangles) takes about 2 ms at 512² into reused maps
+//! (`benches/raster.rs`).
+//!
+//! ```
+//! use glam::{DVec2, DVec3};
+//! use softshadow::render::raster::{rasterize, LightView};
+//! use softshadow::scene::LightFrame;
+//!
+//! // Light at the origin looking down +z; one triangle at depth 2.
+//! let frame = LightFrame::toward(DVec3::ZERO, DVec3::Z)?;
+//! let view = LightView::new(frame, DVec2::splat(-1.0), DVec2::splat(1.0), 8, 8, 0.1)?;
+//! let tri = [DVec3::new(-2.0, -2.0, 2.0), DVec3::new(2.0, -2.0, 2.0), DVec3::new(0.0, 2.0, 2.0)];
+//! let maps = rasterize(&view, &[tri], &[7])?;
+//! assert_eq!(maps.depth_at(4, 4), 2.0);
+//! assert_eq!(maps.object_at(4, 4), 7);
+//! assert_eq!(maps.triangle_at(0, 7), u32::MAX); // a top corner, outside
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
+//!
+//! # Contract
+//!
+//! **Coverage by pixel centre, watertight.** Pixel `(col, row)` covers the
+//! image-plane cell `x ∈ [lo.x + col·sx, lo.x + (col+1)·sx)`,
+//! `y ∈ [lo.y + row·sy, lo.y + (row+1)·sy)`; a triangle covers it when the
+//! cell's centre lies inside the triangle's projection. The inside test is
+//! the crate's exact [`orient2d`] on the projected vertices and the centre
+//! (a rounded evaluation with Shewchuk's static error bound answers almost
+//! every pixel; only centres within that bound of an edge's line reach the
+//! exact expansion). A centre exactly on an edge is decided by a top-left
+//! rule: with the triangle counter-clockwise, the edge `a → b` owns its
+//! points when `b.y < a.y`, or `b.y = a.y` and `b.x > a.x` (rows grow with
+//! `y`, so these are the left edges and the top edges). An edge traversed in
+//! the two directions gets opposite answers, so two triangles sharing an
+//! edge (same world vertices, bit for bit) cover a centre on it exactly
+//! once, and a fan around a vertex covers a centre at that vertex exactly
+//! once. Equivalently, the rule moves every centre by `(δ, δ²)` with
+//! `δ → 0⁺` (a symbolic perturbation: on an edge `a → b` the sign of
+//! `(b − a) × (δ, δ²)` is that of `−(b.y − a.y)`, or of `b.x − a.x` when the
+//! edge is horizontal), so coverage is that of a point on no edge, and every
+//! counting argument for generic points holds exactly (a closed mesh covers
+//! each centre an even number of times). Both orientations are rasterised
+//! (occluders are two-sided); projections of zero area cover nothing.
+//!
+//! Why exact predicates rather than the GPU's fixed-point snapping: the
+//! covered set is then exactly the set of centres inside the `f64`
+//! projection of the triangle, the same triangle a ray cast through the
+//! pixel centre sees, so the maps agree with ray casting everywhere except
+//! within rounding of the projection of an edge; there is no sub-pixel
+//! grid to choose, no guard band and no snapping error to document, and the
+//! domain is the predicate's. Projected vertices are a deterministic
+//! function of the world vertex alone (light-frame coordinates, then
+//! `(x/z, y/z)`), so shared vertices project to the same bits.
+//!
+//! **Near plane.** Triangles are clipped against `z = near` in light-frame
+//! coordinates before projection; parts nearer than `near` are dropped. A
+//! crossing is computed from the edge's two endpoints taken in a canonical
+//! order (lexicographic on their light-frame coordinates), with `z` set to
+//! `near` exactly, so two triangles sharing an edge get the same clip point
+//! bit for bit. The clipped polygon (up to four vertices) is rasterised as a
+//! fan from its first vertex; its internal diagonal is shared bit for bit,
+//! so the fan covers every centre of the polygon once. (The projection of
+//! the clipped quadrilateral is convex; only when rounding of the clip
+//! point bends it by a few ulps, with a centre in that sliver, could a
+//! centre be counted twice or missed.)
+//!
+//! **Depth.** The stored depth is the light-frame `z` at which the ray from
+//! the light's centre in direction `(u, v, 1)`, `(u, v)` the pixel centre,
+//! meets the plane of the triangle: `z = (n·a) / (n·(u, v, 1))` with
+//! `n = (b − a) × (c − a)` in light-frame coordinates, clamped to the range
+//! of the (clipped) polygon's depths (the exact value lies in it). Relative
+//! error a few ulps times the conditioning `|n|·|(u,v,1)| / |n·(u,v,1)|`
+//! (grazing triangles lose digits). Against an independent Möller–Trumbore
+//! ray cast over random, non-grazing triangles (`tests/raster.rs`) the
+//! worst relative difference is `9.3e-15` over about 14 000 pixels. The
+//! nearest triangle wins; at equal depth the lower triangle index.
+//!
+//! **Domain.** No input panics or produces NaN. Triangles with a non-finite
+//! vertex are skipped. Light-frame coordinates and projected coordinates
+//! are kept within [`MAX_COORD`] in magnitude: a triangle with a vertex (or
+//! a projected, clipped vertex) beyond it is skipped, as is done for
+//! non-finite ones, so nothing overflows. Projected coordinates and pixel
+//! centres smaller than [`MIN_COORD`] in magnitude are flushed to zero (a
+//! deterministic function of the value, so shared vertices stay shared);
+//! this keeps every predicate inside [`orient2d`]'s exact range, so
+//! coverage is exact for every triangle rasterised.
 
+use crate::kernel::predicate::{orient2d, Sign};
 use crate::reference::Occluders;
-use crate::scene::LightFrame;
+use crate::scene::{LightFrame, Projected};
 use glam::{DVec2, DVec3};
 use std::fmt;
 
-#[derive(Clone, Debug, PartialEq)]
+/// The largest width or height of a [`LightView`], in pixels.
+pub const MAX_RESOLUTION: u32 = 16384;
+
+/// The largest magnitude of a light-frame coordinate, a projected
+/// coordinate or a window coordinate the rasterizer accepts; triangles
+/// beyond it are skipped (see the module docs, "Domain").
+pub const MAX_COORD: f64 = 1e100;
+
+/// Projected coordinates and pixel centres smaller than this in magnitude
+/// are flushed to zero, so that [`orient2d`] is exact on them.
+pub const MIN_COORD: f64 = 1e-140;
+
+/// The smallest extent of a window [`LightView::fit`] builds, relative to
+/// `max(1, |coordinate|)`: points that project to one point or one line get
+/// a window at least this wide around them.
+pub const MIN_FIT_EXTENT: f64 = 1.0 / (1u64 << 40) as f64;
+
+// Shewchuk's `ccwerrboundA = (3 + 16ε)ε`, ε = 2⁻⁵³, as in `orient2d`.
+const EPS: f64 = f64::EPSILON / 2.0;
+const CCW_ERR_BOUND_A: f64 = (3.0 + 16.0 * EPS) * EPS;
+
+/// Why a light view could not be built or a rasterisation not run.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub enum RasterError {
-    Empty,
+    /// A window corner is not finite or exceeds [`MAX_COORD`] in magnitude.
+    NonFiniteWindow,
+    /// The window is empty: `lo ≥ hi` on some axis, or so narrow that a
+    /// pixel is smaller than [`MIN_COORD`].
+    EmptyWindow,
+    /// A width or height is 0 or larger than [`MAX_RESOLUTION`].
+    Resolution {
+        /// The width asked for.
+        width: u32,
+        /// The height asked for.
+        height: u32,
+    },
+    /// The near depth is not finite and positive.
+    Near,
+    /// [`LightView::fit`]: no finite point lies at depth `≥ near`.
+    NothingInFront,
+    /// [`rasterize`]: `objects` does not have one id per triangle.
+    LengthMismatch {
+        /// The number of triangles.
+        triangles: usize,
+        /// The number of object ids.
+        objects: usize,
+    },
+    /// [`rasterize`]: more triangles than a `u32` index can name (index
+    /// `u32::MAX` means "no triangle").
+    TooManyTriangles,
 }
+
 impl fmt::Display for RasterError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "nothing in front of the light")
+        match self {
+            RasterError::NonFiniteWindow => {
+                write!(
+                    f,
+                    "light view window is not finite (or beyond {MAX_COORD:e})"
+                )
+            }
+            RasterError::EmptyWindow => write!(f, "light view window is empty (lo ≥ hi)"),
+            RasterError::Resolution { width, height } => write!(
+                f,
+                "light view resolution {width}×{height} is outside 1..={MAX_RESOLUTION}"
+            ),
+            RasterError::Near => write!(f, "light view near depth is not finite and positive"),
+            RasterError::NothingInFront => {
+                write!(f, "no point lies in front of the light view's near plane")
+            }
+            RasterError::LengthMismatch { triangles, objects } => write!(
+                f,
+                "{triangles} triangles but {objects} object ids: need one id per triangle"
+            ),
+            RasterError::TooManyTriangles => {
+                write!(f, "more than {} triangles to rasterise", u32::MAX - 1)
+            }
+        }
     }
 }
+
 impl std::error::Error for RasterError {}
 
-#[derive(Clone, Debug)]
+fn flush(x: f64) -> f64 {
+    if x.abs() < MIN_COORD {
+        0.0
+    } else {
+        x
+    }
+}
+
+/// What the light sees: a light frame, a window `[lo, hi]` on its image
+/// plane `z = 1`, a resolution and a near depth.
+///
+/// Pixel `(col, row)` covers `x ∈ [lo.x + col·sx, lo.x + (col+1)·sx)`,
+/// `y ∈ [lo.y + row·sy, lo.y + (row+1)·sy)`, with `(sx, sy)` the
+/// [texel size](LightView::texel_size); maps are row-major, index
+/// `row·width + col`.
+#[derive(Clone, Debug, PartialEq)]
 pub struct LightView {
     frame: LightFrame,
     lo: DVec2,
@@ -25,9 +211,87 @@ pub struct LightView {
     width: u32,
     height: u32,
     near: f64,
+    texel: DVec2,
+    // Pixel-centre coordinates, computed once so that every triangle (and
+    // `pixel_center`) sees the same bits.
+    xs: Vec<f64>,
+    ys: Vec<f64>,
 }
 
 impl LightView {
+    /// The view of `frame` over the window `[lo, hi]` at `width × height`
+    /// pixels, rasterising only what lies at light-frame depth `≥ near`.
+    ///
+    /// # Errors
+    /// [`RasterError::NonFiniteWindow`] (a corner not finite or beyond
+    /// [`MAX_COORD`]), [`RasterError::EmptyWindow`] (`lo ≥ hi` on an axis,
+    /// or pixels smaller than [`MIN_COORD`]),
+    /// [`RasterError::Resolution`] (a size 0 or above [`MAX_RESOLUTION`]),
+    /// [`RasterError::Near`] (`near` not finite and positive).
+    pub fn new(
+        frame: LightFrame,
+        lo: DVec2,
+        hi: DVec2,
+        width: u32,
+        height: u32,
+        near: f64,
+    ) -> Result<LightView, RasterError> {
+        let ok = |p: DVec2| p.is_finite() && p.abs().max_element() <= MAX_COORD;
+        if !(ok(lo) && ok(hi)) {
+            return Err(RasterError::NonFiniteWindow);
+        }
+        if !(lo.x < hi.x && lo.y < hi.y) {
+            return Err(RasterError::EmptyWindow);
+        }
+        if !(1..=MAX_RESOLUTION).contains(&width) || !(1..=MAX_RESOLUTION).contains(&height) {
+            return Err(RasterError::Resolution { width, height });
+        }
+        if !(near.is_finite() && near > 0.0) {
+            return Err(RasterError::Near);
+        }
+        // |lo|, |hi| ≤ MAX_COORD: `hi − lo` cannot overflow.
+        let texel = DVec2::new(
+            (hi.x - lo.x) / f64::from(width),
+            (hi.y - lo.y) / f64::from(height),
+        );
+        // Pixels narrower than MIN_COORD would have centres flushed
+        // together (and underflowing pixel coordinates).
+        if !(texel.x >= MIN_COORD && texel.y >= MIN_COORD) {
+            return Err(RasterError::EmptyWindow);
+        }
+        let centers = |lo: f64, s: f64, n: u32| -> Vec<f64> {
+            (0..n)
+                .map(|k| flush(lo + (f64::from(k) + 0.5) * s))
+                .collect()
+        };
+        Ok(LightView {
+            frame,
+            lo,
+            hi,
+            width,
+            height,
+            near,
+            texel,
+            xs: centers(lo.x, texel.x, width),
+            ys: centers(lo.y, texel.y, height),
+        })
+    }
+
+    /// The view whose window just contains the projections of the finite
+    /// `points` at light-frame depth `≥ near` (typically the receivers and
+    /// the occluders' vertices a method is given), grown by one pixel on
+    /// each side: per axis, with `n` pixels, the pixel size is
+    /// `extent / (n − 2)` for `n ≥ 3` and the window extends one pixel
+    /// beyond the extreme projections (for `n ≤ 2`, by `extent / n`, which
+    /// is `n / (n + 2)` of a pixel). Pixels need not be square.
+    /// Points behind `near` are ignored. An extent below
+    /// [`MIN_FIT_EXTENT`]` · max(1, |coordinate|)` (all points projecting
+    /// to one point or onto one line) is widened to that, centred.
+    ///
+    /// # Errors
+    /// [`RasterError::NothingInFront`] when no finite point is at depth
+    /// `≥ near`; the errors of [`LightView::new`] otherwise (a bad `near`
+    /// or resolution, or projections beyond [`MAX_COORD`]).
     pub fn fit(
         frame: LightFrame,
         points: impl IntoIterator<Item = DVec3>,
@@ -35,115 +299,582 @@ impl LightView {
         height: u32,
         near: f64,
     ) -> Result<LightView, RasterError> {
-        let mut lo = DVec2::splat(f64::INFINITY);
-        let mut hi = -lo;
+        if !(near.is_finite() && near > 0.0) {
+            return Err(RasterError::Near);
+        }
+        if !(1..=MAX_RESOLUTION).contains(&width) || !(1..=MAX_RESOLUTION).contains(&height) {
+            return Err(RasterError::Resolution { width, height });
+        }
+        let mut bounds: Option<(DVec2, DVec2)> = None;
         for p in points {
             let q = frame.to_light(p);
-            if q.z >= near {
-                let s = DVec2::new(q.x / q.z, q.y / q.z);
-                lo = lo.min(s);
-                hi = hi.max(s);
+            if !(q.is_finite() && q.z >= near) {
+                continue;
             }
+            let u = DVec2::new(q.x / q.z, q.y / q.z);
+            if !u.is_finite() {
+                return Err(RasterError::NonFiniteWindow);
+            }
+            bounds = Some(match bounds {
+                None => (u, u),
+                Some((a, b)) => (a.min(u), b.max(u)),
+            });
         }
-        if !(lo.x <= hi.x) {
-            return Err(RasterError::Empty);
-        }
-        let px =
-            (hi - lo).max(DVec2::splat(1e-9)) / DVec2::new(f64::from(width), f64::from(height));
-        Ok(LightView {
+        let (min, max) = bounds.ok_or(RasterError::NothingInFront)?;
+        let axis = |min: f64, max: f64, n: u32| -> (f64, f64) {
+            let floor = MIN_FIT_EXTENT * min.abs().max(max.abs()).max(1.0);
+            let (min, max) = if max - min < floor {
+                let mid = 0.5 * min + 0.5 * max;
+                (mid - 0.5 * floor, mid + 0.5 * floor)
+            } else {
+                (min, max)
+            };
+            let inner = if n >= 3 { n - 2 } else { n };
+            let s = (max - min) / f64::from(inner);
+            (min - s, max + s)
+        };
+        let (lx, hx) = axis(min.x, max.x, width);
+        let (ly, hy) = axis(min.y, max.y, height);
+        LightView::new(
             frame,
-            lo: lo - px,
-            hi: hi + px,
+            DVec2::new(lx, ly),
+            DVec2::new(hx, hy),
             width,
             height,
             near,
-        })
+        )
     }
-    pub fn near(&self) -> f64 {
-        self.near
+
+    /// The light frame.
+    #[must_use]
+    pub fn frame(&self) -> &LightFrame {
+        &self.frame
     }
-    pub fn frame(&self) -> LightFrame {
-        self.frame
+
+    /// The window's lower corner on the image plane.
+    #[must_use]
+    pub fn lo(&self) -> DVec2 {
+        self.lo
     }
+
+    /// The window's upper corner on the image plane.
+    #[must_use]
+    pub fn hi(&self) -> DVec2 {
+        self.hi
+    }
+
+    /// The number of columns.
+    #[must_use]
     pub fn width(&self) -> u32 {
         self.width
     }
+
+    /// The number of rows.
+    #[must_use]
     pub fn height(&self) -> u32 {
         self.height
     }
+
+    /// The number of pixels, `width · height`.
+    #[must_use]
+    pub fn len(&self) -> usize {
+        self.width as usize * self.height as usize
+    }
+
+    /// Always `false` (a view has at least one pixel); for clippy's sake.
+    #[must_use]
+    pub fn is_empty(&self) -> bool {
+        false
+    }
+
+    /// The near depth.
+    #[must_use]
+    pub fn near(&self) -> f64 {
+        self.near
+    }
+
+    /// The size of one pixel on the image plane, `(sx, sy)`.
+    #[must_use]
     pub fn texel_size(&self) -> DVec2 {
-        (self.hi - self.lo) / DVec2::new(f64::from(self.width), f64::from(self.height))
+        self.texel
     }
-    pub fn to_pixel(&self, s: DVec2) -> DVec2 {
-        (s - self.lo) / self.texel_size()
-    }
+
+    /// The image-plane centre of pixel `(col, row)`, `lo + (k + ½)·s` per
+    /// axis (coordinates below [`MIN_COORD`] flushed to zero): exactly the
+    /// point the rasterizer tests. Indices past the last pixel are clamped
+    /// to it.
+    #[must_use]
     pub fn pixel_center(&self, col: u32, row: u32) -> DVec2 {
-        self.lo + (DVec2::new(f64::from(col), f64::from(row)) + 0.5) * self.texel_size()
+        let c = (col.min(self.width - 1)) as usize;
+        let r = (row.min(self.height - 1)) as usize;
+        DVec2::new(self.xs[c], self.ys[r])
+    }
+
+    /// Continuous pixel coordinates of an image-plane point:
+    /// `(point − lo) / s`, so that pixel `(col, row)` spans `[col, col + 1)
+    /// × [row, row + 1)` and its centre is near `(col + ½, row + ½)` (up to
+    /// rounding).
+    #[must_use]
+    pub fn to_pixel(&self, point: DVec2) -> DVec2 {
+        (point - self.lo) / self.texel
+    }
+
+    /// The pixel `(col, row)` whose cell contains the image-plane point,
+    /// `None` outside the window or for a non-finite point.
+    #[must_use]
+    pub fn pixel_of(&self, point: DVec2) -> Option<(u32, u32)> {
+        let p = self.to_pixel(point).floor();
+        let inside =
+            p.x >= 0.0 && p.y >= 0.0 && p.x < f64::from(self.width) && p.y < f64::from(self.height);
+        inside.then_some((p.x as u32, p.y as u32))
+    }
+
+    /// The row-major index `row·width + col` of pixel `(col, row)`, `None`
+    /// outside the view.
+    #[must_use]
+    pub fn index(&self, col: u32, row: u32) -> Option<usize> {
+        (col < self.width && row < self.height)
+            .then(|| row as usize * self.width as usize + col as usize)
+    }
+
+    /// The image-plane projection and light-frame depth of a world point
+    /// ([`LightFrame::project`]); `None` at or behind the light's plane.
+    #[must_use]
+    pub fn project(&self, p: DVec3) -> Option<Projected> {
+        self.frame.project(p)
     }
 }
 
-#[derive(Clone, Debug)]
+/// One pixel covered by a triangle: where, and the triangle's depth there.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Fragment {
+    /// The pixel's column.
+    pub col: u32,
+    /// The pixel's row.
+    pub row: u32,
+    /// The light-frame depth `z` of the triangle's plane on the ray through
+    /// the pixel centre, finite and `≥ near`.
+    pub depth: f64,
+}
+
+/// The light maps: per pixel, the nearest triangle on the ray from the
+/// light's centre through the pixel centre, row-major (`row·width + col`).
+#[derive(Clone, Debug, PartialEq)]
 pub struct LightMaps {
-    view: LightView,
+    width: u32,
+    height: u32,
     depth: Vec<f64>,
     object: Vec<u32>,
+    triangle: Vec<u32>,
 }
 
 impl LightMaps {
-    pub fn view(&self) -> &LightView {
-        &self.view
+    /// Empty maps: every depth `f64::INFINITY`, every id `u32::MAX`.
+    #[must_use]
+    pub fn empty(width: u32, height: u32) -> LightMaps {
+        let n = width as usize * height as usize;
+        LightMaps {
+            width,
+            height,
+            depth: vec![f64::INFINITY; n],
+            object: vec![u32::MAX; n],
+            triangle: vec![u32::MAX; n],
+        }
     }
+
+    /// Resizes to `width × height` and clears to the empty state, keeping
+    /// the storage.
+    pub fn reset(&mut self, width: u32, height: u32) {
+        let n = width as usize * height as usize;
+        (self.width, self.height) = (width, height);
+        for (v, x) in [(&mut self.object, u32::MAX), (&mut self.triangle, u32::MAX)] {
+            v.clear();
+            v.resize(n, x);
+        }
+        self.depth.clear();
+        self.depth.resize(n, f64::INFINITY);
+    }
+
+    /// The number of columns.
+    #[must_use]
+    pub fn width(&self) -> u32 {
+        self.width
+    }
+
+    /// The number of rows.
+    #[must_use]
+    pub fn height(&self) -> u32 {
+        self.height
+    }
+
+    fn index(&self, col: u32, row: u32) -> Option<usize> {
+        (col < self.width && row < self.height)
+            .then(|| row as usize * self.width as usize + col as usize)
+    }
+
+    /// The light-frame depth `z` of the nearest triangle at pixel
+    /// `(col, row)`; `f64::INFINITY` where no triangle is seen, and outside
+    /// the maps.
+    #[must_use]
     pub fn depth_at(&self, col: u32, row: u32) -> f64 {
-        self.depth[(row * self.view.width + col) as usize]
+        self.index(col, row)
+            .map_or(f64::INFINITY, |i| self.depth[i])
     }
-    pub fn depths(&self) -> &[f64] {
+
+    /// The object id of the nearest triangle at pixel `(col, row)`;
+    /// `u32::MAX` where none, and outside the maps.
+    #[must_use]
+    pub fn object_at(&self, col: u32, row: u32) -> u32 {
+        self.index(col, row).map_or(u32::MAX, |i| self.object[i])
+    }
+
+    /// The input index of the nearest triangle at pixel `(col, row)`;
+    /// `u32::MAX` where none, and outside the maps.
+    #[must_use]
+    pub fn triangle_at(&self, col: u32, row: u32) -> u32 {
+        self.index(col, row).map_or(u32::MAX, |i| self.triangle[i])
+    }
+
+    /// Whether some triangle covers pixel `(col, row)`.
+    #[must_use]
+    pub fn is_covered(&self, col: u32, row: u32) -> bool {
+        self.triangle_at(col, row) != u32::MAX
+    }
+
+    /// The depth map, row-major.
+    #[must_use]
+    pub fn depth(&self) -> &[f64] {
         &self.depth
     }
-    pub fn object_at(&self, col: u32, row: u32) -> u32 {
-        self.object[(row * self.view.width + col) as usize]
+
+    /// The object-id map, row-major.
+    #[must_use]
+    pub fn objects(&self) -> &[u32] {
+        &self.object
+    }
+
+    /// The triangle-index map, row-major.
+    #[must_use]
+    pub fn triangles(&self) -> &[u32] {
+        &self.triangle
     }
 }
 
-pub fn rasterize_occluders(view: &LightView, occ: &Occluders) -> LightMaps {
-    let n = (view.width * view.height) as usize;
-    let mut depth = vec![f64::INFINITY; n];
-    let mut object = vec![u32::MAX; n];
-    for row in 0..view.height {
-        for col in 0..view.width {
-            let s = view.pixel_center(col, row);
-            let d = DVec3::new(s.x, s.y, 1.0);
-            for (i, t) in occ.triangles().iter().enumerate() {
-                let [a, b, c] = t.map(|v| view.frame.to_light(v));
-                let e1 = b - a;
-                let e2 = c - a;
-                let pv = d.cross(e2);
-                let det = e1.dot(pv);
-                if det.abs() < 1e-300 {
-                    continue;
-                }
-                let inv = 1.0 / det;
-                let tv = -a;
-                let u = tv.dot(pv) * inv;
-                if !(0.0..=1.0).contains(&u) {
-                    continue;
-                }
-                let qv = tv.cross(e1);
-                let v = d.dot(qv) * inv;
-                if v < 0.0 || u + v > 1.0 {
-                    continue;
-                }
-                let z = e2.dot(qv) * inv;
-                let k = (row * view.width + col) as usize;
-                if z >= view.near && z < depth[k] {
-                    depth[k] = z;
-                    object[k] = occ.objects()[i];
-                }
+/// Rasterises world-space `triangles`, `objects[i]` the object id of
+/// triangle `i`, into light maps over `view` (see the module docs for
+/// coverage, clipping and depth). Triangles with a non-finite vertex, or
+/// outside the domain, are skipped.
+///
+/// # Errors
+/// [`RasterError::LengthMismatch`] when `objects.len() != triangles.len()`;
+/// [`RasterError::TooManyTriangles`] beyond `u32::MAX − 1` triangles.
+pub fn rasterize(
+    view: &LightView,
+    triangles: &[[DVec3; 3]],
+    objects: &[u32],
+) -> Result<LightMaps, RasterError> {
+    if objects.len() != triangles.len() {
+        return Err(RasterError::LengthMismatch {
+            triangles: triangles.len(),
+            objects: objects.len(),
+        });
+    }
+    if triangles.len() >= u32::MAX as usize {
+        return Err(RasterError::TooManyTriangles);
+    }
+    let mut maps = LightMaps::empty(view.width, view.height);
+    fill_maps(view, triangles, objects, &mut maps);
+    Ok(maps)
+}
+
+/// [`rasterize`] into existing maps, reusing their storage (resized to the
+/// view and cleared first): for a method that rasterises every frame.
+///
+/// # Errors
+/// As [`rasterize`]; `maps` is left cleared then.
+pub fn rasterize_into(
+    view: &LightView,
+    triangles: &[[DVec3; 3]],
+    objects: &[u32],
+    maps: &mut LightMaps,
+) -> Result<(), RasterError> {
+    maps.reset(view.width, view.height);
+    if objects.len() != triangles.len() {
+        return Err(RasterError::LengthMismatch {
+            triangles: triangles.len(),
+            objects: objects.len(),
+        });
+    }
+    if triangles.len() >= u32::MAX as usize {
+        return Err(RasterError::TooManyTriangles);
+    }
+    fill_maps(view, triangles, objects, maps);
+    Ok(())
+}
+
+fn fill_maps(view: &LightView, triangles: &[[DVec3; 3]], objects: &[u32], maps: &mut LightMaps) {
+    let w = view.width as usize;
+    for (i, (tri, &object)) in triangles.iter().zip(objects).enumerate() {
+        rasterize_triangle(view, tri, |f| {
+            let k = f.row as usize * w + f.col as usize;
+            // Strict: at equal depth the earlier (lower) index stays.
+            if f.depth < maps.depth[k] {
+                maps.depth[k] = f.depth;
+                maps.object[k] = object;
+                maps.triangle[k] = i as u32;
             }
+        });
+    }
+}
+
+/// [`rasterize`] for a scene's [`Occluders`] (which always have one object
+/// id per triangle; past `u32::MAX − 1` triangles, which no `Occluders` of
+/// this crate can hold in memory, the maps would be empty).
+#[must_use]
+pub fn rasterize_occluders(view: &LightView, occluders: &Occluders) -> LightMaps {
+    rasterize(view, occluders.triangles(), occluders.objects())
+        .unwrap_or_else(|_| LightMaps::empty(view.width, view.height))
+}
+
+/// Calls `emit` once for every pixel of `view` whose centre the world-space
+/// triangle `tri` covers (clipped at `near`), with the triangle's depth
+/// there; in no particular order. The coverage and depth of [`rasterize`],
+/// for methods that accumulate something other than the nearest triangle.
+/// Nothing is emitted for a triangle with a non-finite vertex, one outside
+/// the domain (module docs), one entirely nearer than `near`, or one whose
+/// projection has zero area.
+pub fn rasterize_triangle(view: &LightView, tri: &[DVec3; 3], mut emit: impl FnMut(Fragment)) {
+    let q = tri.map(|p| view.frame.to_light(p));
+    if !q
+        .iter()
+        .all(|p| p.is_finite() && p.abs().max_element() <= MAX_COORD)
+    {
+        return;
+    }
+    let near = view.near;
+    // Clip against z ≥ near (Sutherland–Hodgman on one plane): at most 4.
+    let mut poly = [DVec3::ZERO; 4];
+    let mut count = 0;
+    for i in 0..3 {
+        let (p, r) = (q[i], q[(i + 1) % 3]);
+        let (pin, rin) = (p.z >= near, r.z >= near);
+        if pin {
+            poly[count] = p;
+            count += 1;
+        }
+        if pin != rin {
+            poly[count] = crossing(p, r, near);
+            count += 1;
         }
     }
-    LightMaps {
-        view: view.clone(),
-        depth,
-        object,
+    if count < 3 {
+        return;
     }
+    let mut uv = [DVec2::ZERO; 4];
+    let (mut zmin, mut zmax) = (f64::INFINITY, 0.0f64);
+    for k in 0..count {
+        let p = poly[k];
+        let u = DVec2::new(flush(p.x / p.z), flush(p.y / p.z));
+        if !(u.is_finite() && u.abs().max_element() <= MAX_COORD) {
+            return;
+        }
+        uv[k] = u;
+        zmin = zmin.min(p.z);
+        zmax = zmax.max(p.z);
+    }
+    let plane = Plane::new(&q, zmin, zmax);
+    for k in 1..count - 1 {
+        fill(view, [uv[0], uv[k], uv[k + 1]], &plane, &mut emit);
+    }
+}
+
+/// The crossing of the edge `p r` with `z = near`, from the endpoints in a
+/// canonical (lexicographic) order, so that both triangles sharing the edge
+/// get the same bits. The caller guarantees the ends are on opposite sides.
+fn crossing(p: DVec3, r: DVec3, near: f64) -> DVec3 {
+    let key = |v: DVec3| [v.x, v.y, v.z];
+    let (a, b) = if key(p) <= key(r) { (p, r) } else { (r, p) };
+    // a.z and b.z straddle `near`, so the difference is nonzero and
+    // t ∈ [0, 1] (rounded differences are monotone).
+    let t = (near - a.z) / (b.z - a.z);
+    DVec3::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), near)
+}
+
+/// The triangle's plane for the depth along a pixel ray.
+struct Plane {
+    n: DVec3,
+    na: f64,
+    zmin: f64,
+    zmax: f64,
+}
+
+impl Plane {
+    fn new(q: &[DVec3; 3], zmin: f64, zmax: f64) -> Plane {
+        let n = (q[1] - q[0]).cross(q[2] - q[0]);
+        Plane {
+            n,
+            na: n.dot(q[0]),
+            zmin,
+            zmax,
+        }
+    }
+
+    /// `z = (n·a) / (n·(u, v, 1))`, clamped to the polygon's depth range
+    /// (where the exact value lies); never NaN.
+    #[inline]
+    fn depth(&self, p: DVec2) -> f64 {
+        let z = self.na / (self.n.x * p.x + self.n.y * p.y + self.n.z);
+        if z >= self.zmin {
+            z.min(self.zmax)
+        } else {
+            self.zmin
+        }
+    }
+}
+
+/// Whether an edge `a → b` of a counter-clockwise triangle owns the points
+/// on it: the top-left rule. Antisymmetric in `a, b` for `a ≠ b` (the sign
+/// of a rounded difference is exact).
+#[inline]
+fn owns_edge(a: DVec2, b: DVec2) -> bool {
+    b.y < a.y || (b.y == a.y && b.x > a.x)
+}
+
+/// The sign of `orient2d(a, b, p)` (left of `a → b` is positive): the
+/// rounded determinant when Shewchuk's bound certifies its sign, else the
+/// exact predicate. The same evaluation order as `orient2d`'s filter.
+#[inline]
+fn side(a: DVec2, b: DVec2, p: DVec2) -> i32 {
+    let l = (a.x - p.x) * (b.y - p.y);
+    let r = (a.y - p.y) * (b.x - p.x);
+    let det = l - r;
+    let bound = CCW_ERR_BOUND_A * (l.abs() + r.abs());
+    if det > bound {
+        1
+    } else if -det > bound {
+        -1
+    } else {
+        orient2d(a, b, p).to_i32()
+    }
+}
+
+/// An edge of a counter-clockwise triangle and whether it owns its points.
+#[derive(Clone, Copy)]
+struct Edge {
+    a: DVec2,
+    b: DVec2,
+    owns: bool,
+}
+
+impl Edge {
+    fn new(a: DVec2, b: DVec2) -> Edge {
+        Edge {
+            a,
+            b,
+            owns: owns_edge(a, b),
+        }
+    }
+
+    #[inline]
+    fn admits(&self, p: DVec2) -> bool {
+        match side(self.a, self.b, p) {
+            1 => true,
+            0 => self.owns,
+            _ => false,
+        }
+    }
+}
+
+/// Emits the pixels whose centres the projected triangle covers.
+///
+/// Per row the covered centres form one run of columns: each edge's test is
+/// the exact sign of a function linear in `x`, and pixel centres increase
+/// with the column. So a row is found from a guess of its first column
+/// (where the left edges cross the row, in floating point): when the exact
+/// test accepts the guess, the run starts at the first column to its left
+/// that the test rejects; when it rejects the guess, the row is scanned
+/// from the left of the bounding box as if there were no guess. Either way
+/// every decision is the exact test's, and the run ends at the first
+/// rejected column.
+fn fill(view: &LightView, t: [DVec2; 3], plane: &Plane, emit: &mut impl FnMut(Fragment)) {
+    let [a, mut b, mut c] = t;
+    match orient2d(a, b, c) {
+        Sign::Zero => return,
+        Sign::Negative => std::mem::swap(&mut b, &mut c),
+        Sign::Positive => {}
+    }
+    let edges = [Edge::new(a, b), Edge::new(b, c), Edge::new(c, a)];
+    let min = a.min(b).min(c);
+    let max = a.max(b).max(c);
+    // Candidate pixels: centres in [min, max], widened by a pixel for the
+    // rounding of the division; the exact test decides.
+    let Some((c0, c1)) = span(min.x, max.x, view.lo.x, view.texel.x, view.width) else {
+        return;
+    };
+    let Some((r0, r1)) = span(min.y, max.y, view.lo.y, view.texel.y, view.height) else {
+        return;
+    };
+    let inside = |x: f64, y: f64| {
+        let p = DVec2::new(x, y);
+        x >= min.x && x <= max.x && edges.iter().all(|e| e.admits(p))
+    };
+    // The left edges (interior on their +x side: going down, counter-
+    // clockwise) as x = x0 + (y − y0)·slope, for the guess only.
+    let mut left = [(0.0, 0.0, 0.0); 3];
+    let mut lefts = 0;
+    for e in edges.iter().filter(|e| e.b.y < e.a.y) {
+        left[lefts] = (e.a.x, e.a.y, (e.b.x - e.a.x) / (e.b.y - e.a.y));
+        lefts += 1;
+    }
+    let left = &left[..lefts];
+    let xs = &view.xs[..];
+    for row in r0..=r1 {
+        let y = view.ys[row as usize];
+        if y < min.y || y > max.y {
+            continue;
+        }
+        let xl = left
+            .iter()
+            .map(|&(x0, y0, k)| x0 + (y - y0) * k)
+            .fold(min.x, f64::max);
+        let g = ((xl - view.lo.x) / view.texel.x - 0.5).ceil();
+        // NaN saturates to 0 in the cast; clamp to the box.
+        let mut col = (g.max(0.0) as u32).clamp(c0, c1);
+        if inside(xs[col as usize], y) {
+            while col > c0 && inside(xs[col as usize - 1], y) {
+                col -= 1;
+            }
+        } else {
+            match (c0..=c1).find(|&k| inside(xs[k as usize], y)) {
+                Some(k) => col = k,
+                None => continue,
+            }
+        }
+        // `col` is covered and starts the run.
+        loop {
+            let x = xs[col as usize];
+            emit(Fragment {
+                col,
+                row,
+                depth: plane.depth(DVec2::new(x, y)),
+            });
+            if col == c1 || !inside(xs[col as usize + 1], y) {
+                break;
+            }
+            col += 1;
+        }
+    }
+}
+
+/// The range of pixel indices whose centres may lie in `[min, max]`, with a
+/// one-pixel margin; `None` when it misses the view.
+fn span(min: f64, max: f64, lo: f64, s: f64, n: u32) -> Option<(u32, u32)> {
+    let first = ((min - lo) / s - 0.5).floor() - 1.0;
+    let last = ((max - lo) / s - 0.5).ceil() + 1.0;
+    let top = f64::from(n - 1);
+    if !(first <= top && last >= 0.0) {
+        return None;
+    }
+    // Both in [0, n − 1] now; the casts are exact.
+    Some((first.max(0.0) as u32, last.min(top) as u32))
 }

@@ -64,7 +64,17 @@ impl std::ops::BitOr for Needs {
 type MapKey = (u64, u32, u32);
 
 /// Light maps as [`Stages::light_maps`] hands them out.
-pub type SharedMaps = Arc<Result<LightMaps, RasterError>>;
+pub type SharedMaps = Arc<Result<FittedMaps, RasterError>>;
+
+/// Light maps with the view they were rendered over.
+#[derive(Clone, Debug)]
+pub struct FittedMaps {
+    /// The view: the light frame, the window on the light image plane, the
+    /// resolution, the near depth.
+    pub view: LightView,
+    /// Depth, object and triangle per texel.
+    pub maps: LightMaps,
+}
 
 /// One timed stage: what was built, for how long.
 #[derive(Clone, Debug, PartialEq)]
@@ -310,8 +320,10 @@ impl<'a> Stages<'a> {
                 .map(|r| r.position)
                 .chain(occluders.triangles().iter().flatten().copied());
             let near = near_depth(light_frame, occluders.triangles(), frame);
-            let maps = LightView::fit(light_frame, points, width, height, near)
-                .map(|view| rasterize_occluders(&view, occluders));
+            let maps = LightView::fit(light_frame, points, width, height, near).map(|view| {
+                let maps = rasterize_occluders(&view, occluders);
+                FittedMaps { view, maps }
+            });
             let detail = match &maps {
                 Ok(_) => format!("{width}×{height}, near {near:.3e}"),
                 Err(e) => format!("not built: {e}"),
