@@ -1,8 +1,10 @@
-//! The command-line program: the default run (kernel self-check and the
-//! references on the default scene) passes, `visibility` prints the JSON of
-//! DESIGN §8 with answers that agree with the library, and every kind of
-//! bad input ends with one line naming the file, the place and the field,
-//! exit status 2, nothing on stdout and no panic.
+//! The command-line program: the default run prints the table of every
+//! method against the exact answer, `check` (kernel self-check and the
+//! references on the default scene) passes, `render` writes its three PNG
+//! files, `visibility` prints the JSON of DESIGN §8 with answers that agree
+//! with the library for every method, and every kind of bad input ends with
+//! one line naming the file, the place and the field, exit status 2, nothing
+//! on stdout and no panic.
 
 use std::path::{Path, PathBuf};
 use std::process::{Command, Output};
@@ -52,8 +54,104 @@ fn scene_with_light(light: &str) -> String {
 }
 
 #[test]
-fn default_run_passes_its_self_check() {
+fn default_run_prints_every_method_against_exact() {
     let out = softshadow(&[]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(out.status.success(), "exit {:?}\n{stdout}", out.status);
+    let rows: Vec<Vec<&str>> = stdout
+        .lines()
+        .filter(|l| l.starts_with("| ") && !l.starts_with("| method"))
+        .map(|l| l.split('|').map(str::trim).collect())
+        .collect();
+    let names: Vec<&str> = rows.iter().map(|r| r[1]).collect();
+    for m in softshadow::method::default_set() {
+        assert!(
+            names.contains(&m.name().as_str()),
+            "{} missing:\n{stdout}",
+            m.name()
+        );
+    }
+    for r in &rows {
+        // Time, mean abs, RMSE, max: finite numbers, errors within [0, 1].
+        let numbers: Vec<f64> = r[2..6].iter().map(|x| x.parse().unwrap()).collect();
+        assert!(numbers.iter().all(|x| x.is_finite() && *x >= 0.0), "{r:?}");
+        assert!(numbers[1..].iter().all(|x| *x <= 1.0), "{r:?}");
+        if r[1] == "exact" {
+            assert!(numbers[1..].iter().all(|x| *x == 0.0), "{r:?}");
+        }
+    }
+}
+
+#[test]
+fn render_writes_the_three_pictures_and_the_errors() {
+    let d = dir("render");
+    let out = softshadow(&[
+        "render",
+        "--scene",
+        "contact",
+        "--method",
+        "pcss",
+        "--out",
+        d.to_str().unwrap(),
+        "--width",
+        "40",
+        "--height",
+        "30",
+        "--stats",
+    ]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    assert!(
+        stdout.contains("| pcss |") && stdout.contains("light maps"),
+        "{stdout}"
+    );
+    for kind in ["visibility", "shaded", "error"] {
+        let file = std::fs::File::open(d.join(format!("contact-pcss-{kind}.png"))).unwrap();
+        let reader = png::Decoder::new(std::io::BufReader::new(file))
+            .read_info()
+            .unwrap();
+        let info = reader.info();
+        // The heat-map has its legend below and is at least 64 wide.
+        let (w, h) = if kind == "error" {
+            (64, 30 + 18)
+        } else {
+            (40, 30)
+        };
+        assert_eq!((info.width, info.height), (w, h), "{kind}");
+    }
+}
+
+#[test]
+fn render_rejects_bad_arguments_in_one_line() {
+    let d = dir("render-bad");
+    let nocam = write(
+        &d,
+        "nocam.json",
+        &scene_with_light(r#"{"type": "sphere", "center": [0, 3, 0], "radius": 0.5}"#),
+    );
+    rejects(
+        &["render", "--scene", &nocam, "--method", "hard"],
+        &["nocam.json", "camera"],
+    );
+    rejects(
+        &[
+            "render", "--scene", "default", "--method", "hard", "--width", "0",
+        ],
+        &["--width"],
+    );
+    rejects(
+        &["render", "--scene", "default", "--method", "nope"],
+        &["nope"],
+    );
+}
+
+#[test]
+fn check_passes_its_self_check() {
+    let out = softshadow(&["check"]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(out.status.success(), "exit {:?}\n{stdout}", out.status);
     assert!(stdout.contains(" 0 over budget"), "{stdout}");
@@ -64,8 +162,12 @@ fn default_run_passes_its_self_check() {
 #[test]
 fn visibility_prints_the_json_of_the_design() {
     let d = dir("json");
-    let points = write(&d, "points.json", POINTS);
-    for method in ["exact", "mc:256"] {
+    let points = write(
+        &d,
+        "points.json",
+        r#"{"points": [{"p": [0.2, 0.0, 0.1], "normal": [0, 1, 0]}, {"p": [-0.3, 0.0, -0.4], "object": 0, "normal": [0, 1, 0]}]}"#,
+    );
+    for method in ["exact", "mc:256", "hard", "pcss"] {
         let out = softshadow(&[
             "visibility",
             "--scene",
@@ -86,7 +188,11 @@ fn visibility_prints_the_json_of_the_design() {
         assert_eq!(v.len(), 2);
         assert!(v.iter().all(|x| (0.0..=1.0).contains(&x.as_f64().unwrap())));
         assert!(json["seconds"].as_f64().unwrap() >= 0.0);
-        assert_eq!(json.get("stderr").is_some(), method != "exact", "{json}");
+        assert_eq!(
+            json.get("stderr").is_some(),
+            method.starts_with("mc:"),
+            "{json}"
+        );
     }
 }
 
@@ -338,8 +444,21 @@ fn bad_points_and_arguments_are_one_line_errors() {
             "--points",
             &ok,
             "--method",
-            "sism",
+            "oess",
         ],
-        &["sism"],
+        &["oess", "not built yet"],
+    );
+    // The points file gives no normals, which PCSS's default bias needs.
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &ok,
+            "--method",
+            "pcss",
+        ],
+        &["ok.json", "points[0].normal", "pcss"],
     );
 }
