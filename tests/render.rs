@@ -263,3 +263,35 @@ fn pcss_without_normals_says_which_receiver_lacks_one() {
     };
     assert_eq!(values(&constant, &stages, &frame).len(), 2);
 }
+
+#[test]
+fn stages_are_built_only_when_needed_and_once() {
+    let scene = builtin("contact").unwrap();
+    let stages = Stages::new(&scene);
+    let frame = frame(&scene, &stages, 16);
+    let names = |s: &softshadow::render::Stats| -> Vec<String> {
+        s.stages.iter().map(|t| t.name.clone()).collect()
+    };
+    assert_eq!(names(&stages.stats()), ["bvh"]);
+    // The hard shadow needs the BVH only, already built for the receivers.
+    let hard = method::run(&HardShadow, &stages, &frame).unwrap();
+    assert!(hard.stats.stages.is_empty(), "{:?}", hard.stats);
+    // PCSS builds its light maps once; a second run on the same frame
+    // reuses them, a new frame gets its own.
+    let first = method::run(&Pcss::default(), &stages, &frame).unwrap();
+    assert_eq!(names(&first.stats), ["light maps"]);
+    let second = method::run(&Pcss::default(), &stages, &frame).unwrap();
+    assert!(second.stats.stages.is_empty());
+    assert_eq!(first.output, second.output);
+    let other = Frame::from_receivers(frame.receivers().to_vec());
+    let third = method::run(&Pcss::default(), &stages, &other).unwrap();
+    assert_eq!(names(&third.stats), ["light maps"]);
+    // Fitted to the same receivers, so the same answer.
+    assert_eq!(third.output, first.output);
+    assert_eq!(names(&stages.stats()), ["bvh", "light maps", "light maps"]);
+    assert!(stages
+        .stats()
+        .stages
+        .iter()
+        .all(|s| s.seconds >= 0.0 && !s.detail.is_empty()));
+}
