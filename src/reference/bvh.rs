@@ -173,7 +173,8 @@ fn segment_blocked_filtered(p: DVec3, x: DVec3, t: &[DVec3; 3]) -> Option<bool> 
 ///
 /// `u` comes from the plane: with `f(q) = orient3d(a, b, c, q)` (affine in
 /// `q`), `u = f(p) / (f(p) − f(x))`. Accuracy: relative error at most
-/// `2⁻³⁰` — the rounded evaluation is used when its error bound says so,
+/// `2⁻²³` — the rounded evaluation is used when its error bound says so
+/// (it is then in practice within a few ulps),
 /// otherwise [`orient3d_value`] (relative error `2⁻⁴⁰` each, and the two
 /// values have opposite signs, so their difference does not cancel). `u`
 /// is rounded up to the least positive `f64` if it underflows, and never
@@ -196,16 +197,20 @@ fn crossing(p: DVec3, x: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]) -> Option
     }
 }
 
-/// A bound on `u`'s relative error below which the rounded crossing is
-/// kept (see [`crossing_filtered`]).
-const CROSSING_REL: f64 = 1.0 / (1u64 << 33) as f64;
+/// The bound on the relative error of `f(p)` and of `Σeᵢ` below which the
+/// rounded crossing is kept (see [`crossing_filtered`]): `u` is then within
+/// `2⁻²⁴ + 2⁻⁵³` of the true value. (The bounds are crude — products of
+/// max-norms — and the rounded `u` is in practice within a few ulps; a
+/// tighter threshold sends ordinary primary rays, with their small
+/// triangles seen from afar, to the expansion arithmetic.)
+const CROSSING_REL: f64 = 1.0 / (1u64 << 25) as f64;
 
 /// [`segment_crossing`] by one rounded evaluation of the determinants of
 /// [`segment_blocked_filtered`] (the three edge determinants
 /// `eᵢ = d · (pᵢ × pᵢ₊₁)` with `pᵢ` the corners minus `p`, and
 /// `f(p) = pa · (pb × pc)`, sharing the cross product of `e₁`): `None`
 /// when a sign it needs is uncertain or `u`'s error bound exceeds
-/// `2⁻³³`; `Some(None)` for a certain miss.
+/// `2⁻²⁴`; `Some(None)` for a certain miss.
 ///
 /// The plane's value at `x` needs no further product: `f` is affine with
 /// linear part `−n`, `n = (b − a) × (c − a)`, and `e₀ + e₁ + e₂ = d · n`
@@ -766,7 +771,7 @@ impl Bvh {
     /// meshes are watertight — and a hit exactly on an edge counts; a
     /// triangle whose plane contains the origin is not met (`t > 0`).
     /// The crossing's `t` comes from the plane (relative error below
-    /// `2⁻³⁰`), and the hit is the least `t`, ties going to the lower
+    /// `2⁻²³`, in practice a few ulps), and the hit is the least `t`, ties going to the lower
     /// triangle index: the answer is that of testing every triangle
     /// (`tests/closest_hit.rs` checks it bit for bit), independent of the
     /// traversal order and of threads. A crossing whose rounded `t`
@@ -778,8 +783,10 @@ impl Bvh {
     /// segment's far end to its `t`, rounded up and widened by the slab
     /// test's `2⁻²⁰`. The slab test's entry is at most `(1 + 2⁻²¹)` times
     /// the parameter of any point of the true segment in the box, and a
-    /// crossing's computed parameter is within `2⁻³⁰` of the true one, so
-    /// no box holding a crossing at or before the current hit is culled.
+    /// crossing's computed parameter is within `2⁻²³` of the true one
+    /// (`2⁻²¹ + 2⁻²³` stays below `2⁻²⁰` less the comparison's
+    /// roundings), so no box holding a crossing at or before the current
+    /// hit is culled.
     ///
     /// Triangles beyond `±2⁶⁰` (kept out of the tree) are tested by every
     /// query, and a far point beyond `f32::MAX` tests every triangle, as
@@ -1075,9 +1082,9 @@ impl Probe {
     }
 }
 
-/// A bound on the relative error of a crossing's `u` ([`segment_crossing`]
-/// promises `2⁻³⁰`), for culling.
-const U_SLACK: f64 = 1.0 / (1u64 << 30) as f64;
+/// A bound on the relative error of a crossing's `u` (what
+/// [`segment_crossing`] promises), for culling.
+const U_SLACK: f64 = 1.0 / (1u64 << 23) as f64;
 
 /// The best crossing so far of a closest-hit query.
 struct Best {
