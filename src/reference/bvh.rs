@@ -224,19 +224,24 @@ fn crossing_filtered(p: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]) -> Option<
         pb.abs().max_element(),
         pc.abs().max_element(),
     );
-    let cab = pa.cross(pb);
     let cbc = pb.cross(pc);
-    let cca = pc.cross(pa);
-    let (e0, e1, e2) = (d.dot(cab), d.dot(cbc), d.dot(cca));
-    let (b0, b1, b2) = (
+    let cab = pa.cross(pb);
+    let (e0, e1) = (d.dot(cab), d.dot(cbc));
+    let (b0, b1) = (
         DET3_BOUND * (d_norm * ma) * mb + DET3_FLOOR,
         DET3_BOUND * (d_norm * mb) * mc + DET3_FLOOR,
-        DET3_BOUND * (d_norm * mc) * ma + DET3_FLOOR,
     );
+    // Two edges certainly opposite: the line passes outside (most boxes
+    // the traversal reaches hold a triangle the ray misses).
+    if (e0 > b0 && e1 < -b1) || (e0 < -b0 && e1 > b1) {
+        return Some(None);
+    }
+    let cca = pc.cross(pa);
+    let e2 = d.dot(cca);
+    let b2 = DET3_BOUND * (d_norm * mc) * ma + DET3_FLOOR;
     let pos = u8::from(e0 > b0) | u8::from(e1 > b1) << 1 | u8::from(e2 > b2) << 2;
     let neg = u8::from(e0 < -b0) | u8::from(e1 < -b1) << 1 | u8::from(e2 < -b2) << 2;
     if pos != 0 && neg != 0 {
-        // Two edges certainly opposite: the line passes outside.
         return Some(None);
     }
     if pos != 7 && neg != 7 {
@@ -762,9 +767,10 @@ impl Bvh {
     ///
     /// The ray is represented by the segment from `origin` to a far point
     /// `x = fl(origin + T · direction)` beyond every triangle (see
-    /// [`Bvh::ray_segment`]: `T` is twice the larger of the ray's exit from
-    /// the box of all triangles and `|origin|∞ / |direction|∞`, so `x − o`
-    /// follows `direction` to a relative `2⁻⁵¹`). Whether the ray meets a
+    /// [`Bvh::ray_segment`]: `T |direction|∞` is twice the larger of the
+    /// max-norm distance to the farthest corner of the box of all triangles
+    /// and `|origin|∞`, so `x − o` follows `direction` to a relative
+    /// `2⁻⁵¹`). Whether the ray meets a
     /// triangle is decided exactly on that segment by [`segment_crossing`]
     /// (the decision of [`segment_blocked`]): a ray through an edge or a
     /// vertex shared by two triangles meets at least one of them — closed
@@ -861,15 +867,15 @@ impl Bvh {
     /// segment parameter `u` (as [`segment_crossing`]`(origin, x, ·)`
     /// returns it) is the hit `t = u · t_x` (rounded). `None` where
     /// [`Bvh::closest_hit`] returns `None` before testing any triangle: no
-    /// triangle, non-finite or zero input, a ray that leaves the box of
-    /// all triangles before `t > 0` (or misses it along an axis it does not
-    /// move on), or a far point that overflows.
+    /// triangle, non-finite or zero input, or a far point that overflows.
     ///
-    /// With `m = |direction|∞` and `s = direction / m`: `T = 2 max(e,
-    /// |origin|∞)`, `e` the rounded exit parameter of `origin + τ s` from
-    /// the exact box of all finite triangles (rounding makes it at most two
-    /// ulps short of the true exit, which the factor 2 covers), `x =
-    /// fl(origin + T s)`, `t_x = T / m`.
+    /// With `m = |direction|∞` and `s = direction / m` (so `|s|∞ = 1`):
+    /// `T = 2 max(E, |origin|∞)`, `E` the rounded max-norm distance from
+    /// `origin` to the farthest corner of the exact box of all finite
+    /// triangles (no point `origin + τ s` with `τ > E` is in the box; the
+    /// factor 2 covers the rounding, and `|origin|∞` keeps `x − origin`
+    /// within a relative `2⁻⁵¹` of `T s`), `x = fl(origin + T s)`,
+    /// `t_x = T / m`.
     #[must_use]
     pub fn ray_segment(&self, origin: DVec3, direction: DVec3) -> Option<(DVec3, f64)> {
         self.probe(origin, direction).map(|p| (p.x, p.scale))
@@ -886,22 +892,13 @@ impl Bvh {
             return None;
         }
         let s = direction / m;
-        let mut exit = f64::INFINITY;
-        for i in 0..3 {
-            if s[i] == 0.0 {
-                if origin[i] < lo[i] || origin[i] > hi[i] {
-                    return None;
-                }
-                continue;
-            }
-            let far = if s[i] > 0.0 { hi[i] } else { lo[i] };
-            // The difference's sign is exact, hence the quotient's.
-            exit = exit.min((far - origin[i]) / s[i]);
-        }
-        if exit.is_nan() || exit <= 0.0 {
+        // Every point of the box is within `E = max |corner − origin|∞` of
+        // the origin, and `|s|∞ = 1`: the ray leaves the box by `τ = E`.
+        let far = (hi - origin).max(origin - lo).max_element();
+        let reach = 2.0 * far.max(origin.abs().max_element());
+        if reach.is_nan() || reach <= 0.0 {
             return None;
         }
-        let reach = 2.0 * exit.max(origin.abs().max_element());
         let x = origin + s * reach;
         if !x.is_finite() {
             return None;
@@ -1120,8 +1117,8 @@ impl Best {
 ///
 /// The cross product of the two edges at the triangle's largest angle (the
 /// corner opposite the longest edge) is the best conditioned of the three;
-/// each edge is first divided by its max-norm, so that neither tiny nor
-/// huge triangles under- or overflow.
+/// where it under- or overflows (tiny or huge triangles), each edge is first
+/// divided by its max-norm.
 fn facing_normal(t: &[DVec3; 3], direction: DVec3) -> DVec3 {
     let [a, b, c] = *t;
     let (ab, bc, ca) = (b - a, c - b, a - c);
@@ -1130,18 +1127,18 @@ fn facing_normal(t: &[DVec3; 3], direction: DVec3) -> DVec3 {
         bc.abs().max_element(),
         ca.abs().max_element(),
     );
-    let (u, v) = if lab >= lbc && lab >= lca {
-        (bc / lbc, ca / lca)
+    let (u, v, lu, lv) = if lab >= lbc && lab >= lca {
+        (bc, ca, lbc, lca)
     } else if lbc >= lca {
-        (ca / lca, ab / lab)
+        (ca, ab, lca, lab)
     } else {
-        (ab / lab, bc / lbc)
+        (ab, bc, lab, lbc)
     };
-    let fallback = -direction / direction.abs().max_element();
     let n = u
         .cross(v)
         .try_normalize()
-        .unwrap_or_else(|| fallback.normalize());
+        .or_else(|| (u / lu).cross(v / lv).try_normalize())
+        .unwrap_or_else(|| (-direction / direction.abs().max_element()).normalize());
     if n.dot(direction) > 0.0 {
         -n
     } else {
