@@ -869,13 +869,15 @@ impl Bvh {
     /// [`Bvh::closest_hit`] returns `None` before testing any triangle: no
     /// triangle, non-finite or zero input, or a far point that overflows.
     ///
-    /// With `m = |direction|∞` and `s = direction / m` (so `|s|∞ = 1`):
+    /// With `m = |direction|∞` and `s = direction · fl(1/m)` (`direction /
+    /// m` for `m` outside `[1e-300, 1e300]`; either way `|s|∞ = 1` to an
+    /// ulp):
     /// `T = 2 max(E, |origin|∞)`, `E` the rounded max-norm distance from
     /// `origin` to the farthest corner of the exact box of all finite
     /// triangles (no point `origin + τ s` with `τ > E` is in the box; the
     /// factor 2 covers the rounding, and `|origin|∞` keeps `x − origin`
     /// within a relative `2⁻⁵¹` of `T s`), `x = fl(origin + T s)`,
-    /// `t_x = T / m`.
+    /// `t_x = T · fl(1/m)` (or `T / m`).
     #[must_use]
     pub fn ray_segment(&self, origin: DVec3, direction: DVec3) -> Option<(DVec3, f64)> {
         self.probe(origin, direction).map(|p| (p.x, p.scale))
@@ -891,7 +893,14 @@ impl Bvh {
         if m == 0.0 {
             return None;
         }
-        let s = direction / m;
+        // One division where the reciprocal stays in the normal range.
+        let inv = 1.0 / m;
+        let by_inverse = (1e-300..=1e300).contains(&m);
+        let s = if by_inverse {
+            direction * inv
+        } else {
+            direction / m
+        };
         // Every point of the box is within `E = max |corner − origin|∞` of
         // the origin, and `|s|∞ = 1`: the ray leaves the box by `τ = E`.
         let far = (hi - origin).max(origin - lo).max_element();
@@ -909,7 +918,7 @@ impl Bvh {
             x,
             d,
             d_norm: d.abs().max_element(),
-            scale: reach / m,
+            scale: if by_inverse { reach * inv } else { reach / m },
         })
     }
 
@@ -1144,11 +1153,8 @@ fn facing_normal(t: &[DVec3; 3], direction: DVec3) -> DVec3 {
         .try_normalize()
         .or_else(|| (u / lu).cross(v / lv).try_normalize())
         .unwrap_or_else(|| (-direction / direction.abs().max_element()).normalize());
-    if n.dot(direction) > 0.0 {
-        -n
-    } else {
-        n
-    }
+    // Branch-free: which way a normal faces is unpredictable per pixel.
+    DVec3::select(glam::BVec3::splat(n.dot(direction) > 0.0), -n, n)
 }
 
 /// The per-ray constants of the conservative `f32` slab test (see
