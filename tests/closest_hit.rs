@@ -315,6 +315,34 @@ fn normal_is_unit_and_faces_the_ray() {
 }
 
 #[test]
+fn ties_go_to_the_lower_index() {
+    let t = [DVec3::ZERO, DVec3::X, DVec3::Y];
+    let (o, d) = (DVec3::new(0.2, 0.2, 1.0), -DVec3::Z);
+    // Coincident copies, either winding, in either order, and behind a
+    // neighbour sharing their edge `x + y = 1` (not on the ray).
+    for triangles in [
+        vec![t, [t[2], t[1], t[0]]],
+        vec![[t[2], t[1], t[0]], t],
+        vec![[DVec3::X, DVec3::ONE, DVec3::Y], t, t],
+    ] {
+        let bvh = bvh_of(triangles.clone());
+        let hit = check(&bvh, o, d, f64::INFINITY).expect("hit");
+        let first = triangles
+            .iter()
+            .position(|&u| u == t || u == [t[2], t[1], t[0]]);
+        assert_eq!(Some(hit.triangle as usize), first);
+    }
+    // A ray through the shared edge of two triangles: the lower index.
+    let quad = vec![
+        [DVec3::ZERO, DVec3::X, DVec3::Y],
+        [DVec3::X, DVec3::new(1.0, 1.0, 0.0), DVec3::Y],
+    ];
+    let hit = check(&bvh_of(quad), DVec3::new(0.5, 0.5, 1.0), -DVec3::Z, 9.0).expect("hit");
+    assert_eq!(hit.triangle, 0);
+    assert!((hit.t - 1.0).abs() < 1e-15, "{hit:?}");
+}
+
+#[test]
 fn t_max_is_respected() {
     // Two parallel squares at z = 1 and z = 2, ray down the z axis.
     let square = |z: f64| {

@@ -777,7 +777,8 @@ impl Bvh {
     /// meshes are watertight — and a hit exactly on an edge counts; a
     /// triangle whose plane contains the origin is not met (`t > 0`).
     /// The crossing's `t` comes from the plane (relative error below
-    /// `2⁻²³`, in practice a few ulps), and the hit is the least `t`, ties going to the lower
+    /// `2⁻²³`, in practice a few ulps), and the hit is the crossing of
+    /// least segment parameter (so of least `t`), ties going to the lower
     /// triangle index: the answer is that of testing every triangle
     /// (`tests/closest_hit.rs` checks it bit for bit), independent of the
     /// traversal order and of threads. A crossing whose rounded `t`
