@@ -1,6 +1,8 @@
 //! A bounding volume hierarchy over [`Occluders`], for the occlusion rays of
-//! the Monte Carlo reference and for culling the triangles a receiver's view
-//! of the light can meet (the exact reference).
+//! the Monte Carlo reference, for culling the triangles a receiver's view
+//! of the light can meet (the exact reference), and for the renderer's
+//! primary rays ([`Bvh::closest_hit`]: the nearest triangle on a ray,
+//! decided with the same exact test).
 //!
 //! # How it decides
 //!
