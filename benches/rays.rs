@@ -11,7 +11,15 @@
 //!   `Bvh2` / `CwBvh` with the same exact triangle test (for comparison only:
 //!   their `f32` node tests are not conservative).
 //!
-//! `cargo bench --features reference --bench rays`; figures in
+//! Closest hits ([`Bvh::closest_hit`]), also on two threads:
+//!
+//! - `closest/primary`: the renderer's primary rays, one per pixel of the
+//!   default scene's 512 × 512 camera (pinhole through pixel centres, as in
+//!   `examples/primary_corpus.rs`), rayon over rows;
+//! - `closest/soup`, `closest/sphere`: the occlusion rays above as rays
+//!   (origin `p`, direction `x − p`, `t_max = 1`).
+//!
+//! `cargo bench --features reference,scene-file --bench rays`; figures in
 //! `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
@@ -25,6 +33,7 @@ use rayon::prelude::*;
 use softshadow::arbitrary::Rng;
 use softshadow::reference::bvh::{segment_blocked, Bvh};
 use softshadow::reference::Occluders;
+use softshadow::scene::Camera;
 use std::hint::black_box;
 use std::time::Duration;
 
@@ -126,6 +135,66 @@ fn count(rays: &[(DVec3, DVec3)], unoccluded: impl Fn(DVec3, DVec3) -> bool + Sy
         .sum()
 }
 
+/// One ray per pixel of `camera`, row by row: pinhole, pixel centres, row 0
+/// at the top (as `examples/primary_corpus.rs` documents).
+fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {
+    let (w, h) = camera.resolution();
+    let forward = (camera.target() - camera.eye()).normalize();
+    let right = forward.cross(camera.up()).normalize();
+    let up = right.cross(forward);
+    let tan = (camera.fov_y_deg().to_radians() * 0.5).tan();
+    let aspect = f64::from(w) / f64::from(h);
+    let mut out = Vec::with_capacity(w as usize * h as usize);
+    for row in 0..h {
+        for col in 0..w {
+            let sx = (2.0 * (f64::from(col) + 0.5) / f64::from(w) - 1.0) * tan * aspect;
+            let sy = (1.0 - 2.0 * (f64::from(row) + 0.5) / f64::from(h)) * tan;
+            out.push((camera.eye(), (forward + right * sx + up * sy).normalize()));
+        }
+    }
+    out
+}
+
+/// Counts the hits of `rays` (`t_max`), rayon over chunks of `chunk` rays.
+fn count_hits(bvh: &Bvh, rays: &[(DVec3, DVec3)], t_max: f64, chunk: usize) -> usize {
+    rays.par_chunks(chunk)
+        .map(|c| {
+            c.iter()
+                .filter(|&&(o, d)| bvh.closest_hit(o, d, t_max).is_some())
+                .count()
+        })
+        .sum()
+}
+
+fn closest(c: &mut Criterion) {
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(THREADS)
+        .build()
+        .unwrap();
+    let scene = softshadow::scene::builtin("default").expect("default scene");
+    let camera = *scene.camera().expect("camera");
+    let width = camera.resolution().0 as usize;
+    let primary = camera_rays(&camera);
+    let bvh = Bvh::new(Occluders::from_scene(&scene));
+    let mut group = c.benchmark_group("closest");
+    group
+        .throughput(Throughput::Elements(primary.len() as u64))
+        .measurement_time(Duration::from_secs(4))
+        .sample_size(20);
+    group.bench_function("primary", |b| {
+        b.iter(|| pool.install(|| count_hits(&bvh, black_box(&primary), f64::INFINITY, width)))
+    });
+    let segments: Vec<(DVec3, DVec3)> = rays().into_iter().map(|(p, x)| (p, x - p)).collect();
+    group.throughput(Throughput::Elements(RAYS as u64));
+    for (name, triangles) in [("soup", soup()), ("sphere", sphere())] {
+        let bvh = Bvh::new(Occluders::from_triangles(triangles));
+        group.bench_function(name, |b| {
+            b.iter(|| pool.install(|| count_hits(&bvh, black_box(&segments), 1.0, 1024)))
+        });
+    }
+    group.finish();
+}
+
 fn bench(c: &mut Criterion) {
     let pool = rayon::ThreadPoolBuilder::new()
         .num_threads(THREADS)
@@ -193,5 +262,5 @@ fn bench(c: &mut Criterion) {
     }
 }
 
-criterion_group!(benches, bench);
+criterion_group!(benches, bench, closest);
 criterion_main!(benches);

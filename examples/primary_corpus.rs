@@ -1,0 +1,253 @@
+//! Primary-ray corpus and throughput of [`Bvh::closest_hit`] on the default
+//! scene: the Rust half of the opt-in closest-hit comparison with Intel
+//! Embree 4 (`benches/compare_embree_primary.sh` runs both halves; not part
+//! of CI).
+//!
+//! `cargo run --release --example primary_corpus --features reference,scene-file -- [outdir]`
+//!
+//! (default `target/ray_corpus`).
+//!
+//! # The rays
+//!
+//! One ray per pixel of the default scene's camera (the Stanford bunny over
+//! a floor, 3676 triangles; camera 512 × 512, 45° vertical field of view),
+//! a pinhole camera: `forward = normalise(target − eye)`,
+//! `right = normalise(forward × up)`, `up' = right × forward`; the pixel in
+//! column `i`, row `j` (row 0 at the top) has the direction
+//! `normalise(forward + sx right + sy up')` through its centre, with
+//! `sx = (2 (i + ½)/w − 1) tan(fov_y/2) w/h` and
+//! `sy = (1 − 2 (j + ½)/h) tan(fov_y/2)`. Rays are stored row by row. The
+//! query is the closest hit with `t ∈ (0, ∞)`.
+//!
+//! As in `examples/ray_corpus.rs`, every coordinate (triangle corners, the
+//! eye, the directions) is rounded to `f32` before use and stored as the
+//! exactly equal `f64`, so Embree sees the very same triangles and rays.
+//!
+//! # Files written to `outdir`
+//!
+//! `primary.rays` (little-endian throughout):
+//!
+//! | offset | type | content |
+//! |---|---|---|
+//! | 0 | `[u8; 8]` | magic `b"SSPRIM1\0"` |
+//! | 8 | `u32` | format version, 1 |
+//! | 12 | `u32` | reserved, 0 |
+//! | 16 | `u32`, `u32` | image width, height |
+//! | 24 | `u64` | number of triangles `T` |
+//! | 32 | `u64` | number of rays `R` (width × height) |
+//! | 40 | `[u8; 8]` | reserved, 0 |
+//! | 48 | `[u8; 16]` | scene name, ASCII, NUL-padded |
+//! | 64 | `[[[f64; 3]; 3]; T]` | triangle corners (triangle, corner, xyz) |
+//! | 64 + 72 T | `[[f64; 3]; R]` | ray origins |
+//! | 64 + 72 T + 24 R | `[[f64; 3]; R]` | ray directions (unit length before rounding) |
+//!
+//! `primary.ours.hits`: `[f64; R]`, the hit's `t` (`+∞` for a miss), then
+//! `[u32; R]`, the triangle (`u32::MAX` for a miss).
+//!
+//! # Timing
+//!
+//! The BVH is built once (its build time is printed); then, on a rayon pool
+//! of exactly 2 threads, `closest_hit` runs for every pixel, rayon over
+//! rows as a renderer calls it (one `Hit` stored per pixel), once to warm up
+//! and 7 more times; the median wall time gives rays/s, and the median CPU
+//! time of the process over each repetition (Linux schedstat, all threads)
+//! rays per CPU-second. One line starting with `RESULT` is meant for
+//! scripts.
+
+use glam::DVec3;
+use rayon::prelude::*;
+use softshadow::reference::bvh::{Bvh, Hit};
+use softshadow::reference::Occluders;
+use softshadow::scene::Camera;
+use std::fs::{self, File};
+use std::io::{BufWriter, Write};
+use std::path::{Path, PathBuf};
+use std::time::Instant;
+
+const THREADS: usize = 2;
+const WARMUPS: usize = 1;
+const REPETITIONS: usize = 7;
+const MAGIC: &[u8; 8] = b"SSPRIM1\0";
+const VERSION: u32 = 1;
+
+/// The nearest `f32` value, as an `f64` (exactly representable in both).
+fn to_f32(v: DVec3) -> DVec3 {
+    DVec3::new(
+        f64::from(v.x as f32),
+        f64::from(v.y as f32),
+        f64::from(v.z as f32),
+    )
+}
+
+/// The camera's rays, row by row (see the module docs), rounded to `f32`.
+fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {
+    let (w, h) = camera.resolution();
+    let forward = (camera.target() - camera.eye()).normalize();
+    let right = forward.cross(camera.up()).normalize();
+    let up = right.cross(forward);
+    let tan = (camera.fov_y_deg().to_radians() * 0.5).tan();
+    let aspect = f64::from(w) / f64::from(h);
+    let eye = to_f32(camera.eye());
+    let mut out = Vec::with_capacity(w as usize * h as usize);
+    for row in 0..h {
+        for col in 0..w {
+            let sx = (2.0 * (f64::from(col) + 0.5) / f64::from(w) - 1.0) * tan * aspect;
+            let sy = (1.0 - 2.0 * (f64::from(row) + 0.5) / f64::from(h)) * tan;
+            out.push((eye, to_f32((forward + right * sx + up * sy).normalize())));
+        }
+    }
+    out
+}
+
+fn write_corpus(
+    path: &Path,
+    (width, height): (u32, u32),
+    triangles: &[[DVec3; 3]],
+    rays: &[(DVec3, DVec3)],
+) -> std::io::Result<()> {
+    let mut w = BufWriter::new(File::create(path)?);
+    w.write_all(MAGIC)?;
+    w.write_all(&VERSION.to_le_bytes())?;
+    w.write_all(&0u32.to_le_bytes())?;
+    w.write_all(&width.to_le_bytes())?;
+    w.write_all(&height.to_le_bytes())?;
+    w.write_all(&(triangles.len() as u64).to_le_bytes())?;
+    w.write_all(&(rays.len() as u64).to_le_bytes())?;
+    w.write_all(&[0u8; 8])?;
+    let mut label = [0u8; 16];
+    label[..7].copy_from_slice(b"default");
+    w.write_all(&label)?;
+    let mut put = |v: DVec3| -> std::io::Result<()> {
+        for c in v.to_array() {
+            w.write_all(&c.to_le_bytes())?;
+        }
+        Ok(())
+    };
+    for t in triangles {
+        for &v in t {
+            put(v)?;
+        }
+    }
+    for &(o, _) in rays {
+        put(o)?;
+    }
+    for &(_, d) in rays {
+        put(d)?;
+    }
+    w.flush()
+}
+
+fn write_hits(path: &Path, hits: &[Option<Hit>]) -> std::io::Result<()> {
+    let mut w = BufWriter::new(File::create(path)?);
+    for h in hits {
+        w.write_all(&h.map_or(f64::INFINITY, |h| h.t).to_le_bytes())?;
+    }
+    for h in hits {
+        w.write_all(&h.map_or(u32::MAX, |h| h.triangle).to_le_bytes())?;
+    }
+    w.flush()
+}
+
+/// CPU time consumed so far by all threads of this process, in
+/// nanoseconds (Linux: the first field of `/proc/self/task/*/schedstat`);
+/// `None` where that is unavailable.
+fn cpu_ns() -> Option<u64> {
+    let mut total = 0;
+    for entry in fs::read_dir("/proc/self/task").ok()? {
+        let text = fs::read_to_string(entry.ok()?.path().join("schedstat")).ok()?;
+        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
+    }
+    Some(total)
+}
+
+fn median(mut v: Vec<f64>) -> f64 {
+    v.sort_by(f64::total_cmp);
+    v[v.len() / 2]
+}
+
+fn main() {
+    let outdir = PathBuf::from(
+        std::env::args()
+            .nth(1)
+            .unwrap_or_else(|| "target/ray_corpus".into()),
+    );
+    fs::create_dir_all(&outdir).expect("create outdir");
+    let pool = rayon::ThreadPoolBuilder::new()
+        .num_threads(THREADS)
+        .build()
+        .expect("thread pool");
+
+    let scene = softshadow::scene::builtin("default").expect("the default scene");
+    let camera = *scene.camera().expect("the default scene's camera");
+    let (width, height) = camera.resolution();
+    let triangles: Vec<[DVec3; 3]> = Occluders::from_scene(&scene)
+        .triangles()
+        .iter()
+        .map(|t| t.map(to_f32))
+        .collect();
+    let rays = camera_rays(&camera);
+    let corpus = outdir.join("primary.rays");
+    write_corpus(&corpus, (width, height), &triangles, &rays).expect("write corpus");
+    println!(
+        "default: {} triangles, {width} x {height} primary rays -> {}",
+        triangles.len(),
+        corpus.display()
+    );
+
+    let start = Instant::now();
+    let bvh = Bvh::new(Occluders::from_triangles(triangles));
+    println!(
+        "default: BVH built in {:.1} ms",
+        start.elapsed().as_secs_f64() * 1e3
+    );
+
+    let count = rays.len();
+    let mut hits: Vec<Option<Hit>> = vec![None; count];
+    let run = |hits: &mut [Option<Hit>]| {
+        let cpu = cpu_ns();
+        let start = Instant::now();
+        pool.install(|| {
+            hits.par_chunks_mut(width as usize)
+                .zip(rays.par_chunks(width as usize))
+                .for_each(|(out, row)| {
+                    for (h, &(o, d)) in out.iter_mut().zip(row) {
+                        *h = bvh.closest_hit(o, d, f64::INFINITY);
+                    }
+                });
+        });
+        let wall = start.elapsed().as_secs_f64();
+        (wall, cpu_ns().zip(cpu).map(|(b, a)| (b - a) as f64 * 1e-9))
+    };
+    for _ in 0..WARMUPS {
+        run(&mut hits);
+    }
+    let (times, cpus): (Vec<f64>, Vec<Option<f64>>) =
+        (0..REPETITIONS).map(|_| run(&mut hits)).unzip();
+    let cpu = cpus.into_iter().collect::<Option<Vec<f64>>>().map(median);
+    let hit_count = hits.iter().filter(|h| h.is_some()).count();
+    let secs = median(times.clone());
+    let rate = count as f64 / secs;
+    write_hits(&outdir.join("primary.ours.hits"), &hits).expect("write results");
+    println!(
+        "default: hit {hit_count} of {count} ({:.2}%), median {:.1} ms over {REPETITIONS} \
+         (min {:.1}, max {:.1}) on {THREADS} threads: {:.3} Mrays/s; CPU time {}",
+        100.0 * hit_count as f64 / count as f64,
+        secs * 1e3,
+        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
+        times.iter().copied().fold(0.0, f64::max) * 1e3,
+        rate / 1e6,
+        cpu.map_or("unknown".into(), |c| format!(
+            "{:.1} ms: {:.3} Mrays per CPU-second",
+            c * 1e3,
+            count as f64 / c / 1e6
+        ))
+    );
+    println!(
+        "RESULT scene=primary triangles={} rays={count} hits={hit_count} median_s={secs:.6} \
+         min_s={:.6} rays_per_s={rate:.0} cpu_s={} rays_per_cpu_s={} threads={THREADS}",
+        bvh.occluders().len(),
+        times.iter().copied().fold(f64::INFINITY, f64::min),
+        cpu.map_or("-".into(), |c| format!("{c:.6}")),
+        cpu.map_or("-".into(), |c| format!("{:.0}", count as f64 / c)),
+    );
+}
