@@ -139,17 +139,11 @@ fn count(rays: &[(DVec3, DVec3)], unoccluded: impl Fn(DVec3, DVec3) -> bool + Sy
 /// at the top (as `examples/primary_corpus.rs` documents).
 fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {
     let (w, h) = camera.resolution();
-    let forward = (camera.target() - camera.eye()).normalize();
-    let right = forward.cross(camera.up()).normalize();
-    let up = right.cross(forward);
-    let tan = (camera.fov_y_deg().to_radians() * 0.5).tan();
-    let aspect = f64::from(w) / f64::from(h);
     let mut out = Vec::with_capacity(w as usize * h as usize);
     for row in 0..h {
         for col in 0..w {
-            let sx = (2.0 * (f64::from(col) + 0.5) / f64::from(w) - 1.0) * tan * aspect;
-            let sy = (1.0 - 2.0 * (f64::from(row) + 0.5) / f64::from(h)) * tan;
-            out.push((camera.eye(), (forward + right * sx + up * sy).normalize()));
+            let (eye, d) = camera.primary_ray(col, row);
+            out.push((eye, d.normalize()));
         }
     }
     out

@@ -11,12 +11,9 @@
 //!
 //! One ray per pixel of the default scene's camera (the Stanford bunny over
 //! a floor, 3676 triangles; camera 512 × 512, 45° vertical field of view),
-//! a pinhole camera: `forward = normalise(target − eye)`,
-//! `right = normalise(forward × up)`, `up' = right × forward`; the pixel in
-//! column `i`, row `j` (row 0 at the top) has the direction
-//! `normalise(forward + sx right + sy up')` through its centre, with
-//! `sx = (2 (i + ½)/w − 1) tan(fov_y/2) w/h` and
-//! `sy = (1 − 2 (j + ½)/h) tan(fov_y/2)`. Rays are stored row by row. The
+//! the renderer's own primary rays (`Camera::primary_ray`: pinhole, pixel
+//! centres, row 0 at the top), directions normalised. Rays are stored row by
+//! row. The
 //! query is the closest hit with `t ∈ (0, ∞)`.
 //!
 //! As in `examples/ray_corpus.rs`, every coordinate (triangle corners, the
@@ -82,18 +79,11 @@ fn to_f32(v: DVec3) -> DVec3 {
 /// The camera's rays, row by row (see the module docs), rounded to `f32`.
 fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {
     let (w, h) = camera.resolution();
-    let forward = (camera.target() - camera.eye()).normalize();
-    let right = forward.cross(camera.up()).normalize();
-    let up = right.cross(forward);
-    let tan = (camera.fov_y_deg().to_radians() * 0.5).tan();
-    let aspect = f64::from(w) / f64::from(h);
-    let eye = to_f32(camera.eye());
     let mut out = Vec::with_capacity(w as usize * h as usize);
     for row in 0..h {
         for col in 0..w {
-            let sx = (2.0 * (f64::from(col) + 0.5) / f64::from(w) - 1.0) * tan * aspect;
-            let sy = (1.0 - 2.0 * (f64::from(row) + 0.5) / f64::from(h)) * tan;
-            out.push((eye, to_f32((forward + right * sx + up * sy).normalize())));
+            let (eye, d) = camera.primary_ray(col, row);
+            out.push((to_f32(eye), to_f32(d.normalize())));
         }
     }
     out

@@ -456,17 +456,11 @@ fn far_triangles_and_the_untreed_path_match_brute_force() {
 #[cfg(feature = "scene-file")]
 fn camera_rays(camera: &softshadow::scene::Camera, step: u32) -> Vec<(DVec3, DVec3)> {
     let (w, h) = camera.resolution();
-    let forward = (camera.target() - camera.eye()).normalize();
-    let right = forward.cross(camera.up()).normalize();
-    let up = right.cross(forward);
-    let tan = (camera.fov_y_deg().to_radians() * 0.5).tan();
-    let aspect = f64::from(w) / f64::from(h);
     let mut out = Vec::new();
     for row in (0..h).step_by(step as usize) {
         for col in (0..w).step_by(step as usize) {
-            let sx = (2.0 * (f64::from(col) + 0.5) / f64::from(w) - 1.0) * tan * aspect;
-            let sy = (1.0 - 2.0 * (f64::from(row) + 0.5) / f64::from(h)) * tan;
-            out.push((camera.eye(), (forward + right * sx + up * sy).normalize()));
+            let (eye, d) = camera.primary_ray(col, row);
+            out.push((eye, d.normalize()));
         }
     }
     out

@@ -170,33 +170,3 @@ fn bvh_extent(bvh: &Bvh) -> f64 {
         .filter(|m| m.is_finite())
         .fold(0.0, f64::max)
 }
-
-// TEMPORARY until the BVH's closest-hit query lands: brute force.
-struct Hit {
-    t: f64,
-    object: u32,
-    normal: DVec3,
-}
-trait TempClosest {
-    fn closest_hit(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<Hit>;
-}
-impl TempClosest for Bvh {
-    fn closest_hit(&self, o: DVec3, d: DVec3, t_max: f64) -> Option<Hit> {
-        let occ = self.occluders();
-        let mut best: Option<Hit> = None;
-        for (i, t) in occ.triangles().iter().enumerate() {
-            let far = best.as_ref().map_or(t_max.min(1e30), |h| h.t);
-            if crate::reference::bvh::segment_blocked(o, o + d * far, t) {
-                let n = (t[1] - t[0]).cross(t[2] - t[0]).normalize();
-                let th = n.dot(t[0] - o) / n.dot(d);
-                let n = if n.dot(d) > 0.0 { -n } else { n };
-                best = Some(Hit {
-                    t: th.clamp(0.0, far),
-                    object: occ.objects()[i],
-                    normal: n,
-                });
-            }
-        }
-        best
-    }
-}
