@@ -201,7 +201,7 @@ impl Method for Pcss {
         let maps = stages.light_maps(frame, self.resolution, self.resolution);
         let maps = match &*maps {
             Ok(maps) => maps,
-            Err(e) => return Err(MethodError::LightView(e.clone())),
+            Err(e) => return Err(MethodError::LightView(*e)),
         };
         let r = light_radius(light);
         let view = &maps.view;

@@ -65,34 +65,39 @@ impl Frame {
     pub fn from_camera(camera: &Camera, bvh: &Bvh) -> Frame {
         let (width, height) = camera.resolution();
         let extent = bvh_extent(bvh);
-        let rows: Vec<Vec<Option<Receiver>>> = (0..height)
+        // Per row, in parallel: the receivers found and which columns
+        // they are at; then concatenated in row order.
+        let rows: Vec<(Vec<u32>, Vec<Receiver>)> = (0..height)
             .into_par_iter()
             .map(|row| {
-                (0..width)
-                    .map(|col| {
-                        let (eye, d) = camera.primary_ray(col, row);
-                        let hit = bvh.closest_hit(eye, d, f64::INFINITY)?;
-                        let p = eye + d * hit.t;
-                        let scale = p.abs().max_element() + extent;
-                        Some(Receiver {
-                            position: p + hit.normal * (scale * RECEIVER_OFFSET),
+                let (mut cols, mut found) = (Vec::new(), Vec::new());
+                for col in 0..width {
+                    let (eye, d) = camera.primary_ray(col, row);
+                    let Some(hit) = bvh.closest_hit(eye, d, f64::INFINITY) else {
+                        continue;
+                    };
+                    let p = eye + d * hit.t;
+                    let scale = p.abs().max_element() + extent;
+                    let position = p + hit.normal * (scale * RECEIVER_OFFSET);
+                    if position.is_finite() {
+                        cols.push(col);
+                        found.push(Receiver {
+                            position,
                             normal: Some(hit.normal),
                             object: Some(hit.object),
-                        })
-                    })
-                    .collect()
+                        });
+                    }
+                }
+                (cols, found)
             })
             .collect();
-        let mut pixels = Vec::with_capacity(width as usize * height as usize);
-        let mut receivers = Vec::new();
-        for r in rows.into_iter().flatten() {
-            match r {
-                Some(r) if r.position.is_finite() => {
-                    pixels.push(receivers.len() as u32);
-                    receivers.push(r);
-                }
-                _ => pixels.push(BACKGROUND),
+        let mut pixels = vec![BACKGROUND; width as usize * height as usize];
+        let mut receivers = Vec::with_capacity(rows.iter().map(|r| r.1.len()).sum());
+        for (row, (cols, found)) in rows.into_iter().enumerate() {
+            for col in cols {
+                pixels[row * width as usize + col as usize] = receivers.len() as u32;
             }
+            receivers.extend(found);
         }
         Frame {
             id: NEXT_FRAME.fetch_add(1, Ordering::Relaxed),

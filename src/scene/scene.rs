@@ -53,6 +53,10 @@ pub struct Camera {
     fov_y_deg: f64,
     width: u32,
     height: u32,
+    /// `forward`, `right`, `up′` of [`Camera::primary_ray`] and
+    /// `tan(fov/2)`, derived from the fields above once.
+    basis: [DVec3; 3],
+    half: f64,
 }
 
 impl Camera {
@@ -91,6 +95,7 @@ impl Camera {
         if forward.cross(up).try_normalize().is_none() {
             return Err(CameraError::Degenerate);
         }
+        let right = forward.cross(up).normalize();
         Ok(Camera {
             eye,
             target,
@@ -98,6 +103,8 @@ impl Camera {
             fov_y_deg,
             width,
             height,
+            basis: [forward, right, right.cross(forward)],
+            half: (fov_y_deg.to_radians() * 0.5).tan(),
         })
     }
 
@@ -157,20 +164,12 @@ impl Camera {
     /// outside the field of view (no error).
     #[must_use]
     pub fn primary_ray(&self, col: u32, row: u32) -> (DVec3, DVec3) {
-        let (forward, right, up) = self.basis();
-        let half = (self.fov_y_deg.to_radians() * 0.5).tan();
+        let [forward, right, up] = self.basis;
+        let half = self.half;
         let (w, h) = (f64::from(self.width), f64::from(self.height));
         let x = (2.0 * (f64::from(col) + 0.5) / w - 1.0) * half * (w / h);
         let y = (1.0 - 2.0 * (f64::from(row) + 0.5) / h) * half;
         (self.eye, forward + right * x + up * y)
-    }
-
-    /// `forward`, `right`, `up′` of [`Camera::primary_ray`], orthonormal
-    /// (the constructor rejected the views where they are not defined).
-    fn basis(&self) -> (DVec3, DVec3, DVec3) {
-        let forward = (self.target - self.eye).normalize();
-        let right = forward.cross(self.up).normalize();
-        (forward, right, right.cross(forward))
     }
 }
 
