@@ -28,7 +28,10 @@ fn main() -> Result<(), Box<dyn Error>> {
             .filter(|m| m.name() != "exact")
             .collect()
     } else {
-        names.iter().map(|n| method::parse(n)).collect::<Result<_, _>>()?
+        names
+            .iter()
+            .map(|n| method::parse(n))
+            .collect::<Result<_, _>>()?
     };
     println!("| scene | method | time (ms) | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 | RMSE penumbra |");
     println!("|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");

@@ -286,10 +286,12 @@ impl<'a> Stages<'a> {
                 .scene
                 .bounds()
                 .and_then(|(lo, hi)| LightFrame::toward(c, (lo + hi) * 0.5).ok());
-            // A validated light has a finite centre, so the fallback exists.
-            toward.unwrap_or_else(|| {
-                LightFrame::toward(c, c - DVec3::Y).expect("a finite light centre")
-            })
+            // A validated light has a finite centre, so `along` succeeds; a
+            // light built around its constructors with a non-finite centre
+            // gets the frame at the origin (its receivers are errors).
+            toward
+                .or_else(|| LightFrame::along(c, -DVec3::Y).ok())
+                .unwrap_or_else(LightFrame::down_at_origin)
         })
     }
 

@@ -52,11 +52,34 @@ impl LightFrame {
             return Err(FrameError::NonFinite);
         }
         // Halved so that the difference cannot overflow.
-        let z = (target * 0.5 - origin * 0.5)
-            .try_normalize()
-            .ok_or(FrameError::NoDirection)?;
+        LightFrame::along(origin, target * 0.5 - origin * 0.5)
+    }
+
+    /// The frame at `origin` whose `+z` is the direction `direction` (any
+    /// length), `x` and `y` as in [`LightFrame::toward`].
+    ///
+    /// # Errors
+    /// [`FrameError::NonFinite`], [`FrameError::NoDirection`] (a zero
+    /// direction).
+    pub fn along(origin: DVec3, direction: DVec3) -> Result<LightFrame, FrameError> {
+        if !(origin.is_finite() && direction.is_finite()) {
+            return Err(FrameError::NonFinite);
+        }
+        let z = direction.try_normalize().ok_or(FrameError::NoDirection)?;
         let (x, y) = z.any_orthonormal_pair();
         Ok(LightFrame { origin, x, y, z })
+    }
+
+    /// The frame at the world origin with `+z` world `−y`, `x` world `+x`,
+    /// `y` world `+z`: a total fallback where no other frame is defined.
+    #[must_use]
+    pub fn down_at_origin() -> LightFrame {
+        LightFrame {
+            origin: DVec3::ZERO,
+            x: DVec3::X,
+            y: DVec3::Z,
+            z: -DVec3::Y,
+        }
     }
 
     /// The frame's origin (the light's centre).
@@ -110,6 +133,23 @@ pub struct Projected {
 mod tests {
     use super::*;
     use crate::arbitrary::Rng;
+
+    #[test]
+    fn the_fallback_frame_is_right_handed_and_along_agrees_with_toward() {
+        let [x, y, z] = LightFrame::down_at_origin().axes();
+        assert_eq!(x.cross(y), z);
+        assert_eq!(z, -DVec3::Y);
+        let o = DVec3::new(1.0, 2.0, 3.0);
+        assert_eq!(
+            LightFrame::along(o, DVec3::new(0.0, -4.0, 0.0)),
+            LightFrame::toward(o, o - DVec3::Y)
+        );
+        assert_eq!(
+            LightFrame::along(o, DVec3::ZERO),
+            Err(FrameError::NoDirection)
+        );
+        assert_eq!(LightFrame::along(o, DVec3::NAN), Err(FrameError::NonFinite));
+    }
 
     #[test]
     fn frames_are_right_handed_and_orthonormal() {
