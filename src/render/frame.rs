@@ -109,14 +109,18 @@ impl Frame {
     }
 
     /// Receivers given directly (a points file), laid out as one row.
+    ///
+    /// Frames index receivers with `u32`: beyond `2³² − 2` receivers (some
+    /// 200 GB of them) the extra ones are dropped.
     #[must_use]
-    pub fn from_receivers(receivers: Vec<Receiver>) -> Frame {
-        let n = receivers.len();
+    pub fn from_receivers(mut receivers: Vec<Receiver>) -> Frame {
+        receivers.truncate(BACKGROUND as usize);
+        let n = receivers.len() as u32;
         Frame {
             id: NEXT_FRAME.fetch_add(1, Ordering::Relaxed),
-            width: n as u32,
+            width: n,
             height: u32::from(n > 0),
-            pixels: (0..n as u32).collect(),
+            pixels: (0..n).collect(),
             receivers,
         }
     }
