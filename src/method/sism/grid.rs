@@ -1,0 +1,248 @@
+//! The light-space perspective grid of receivers (Johnson et al. 2009,
+//! Fig. 3): receivers sorted by light-image-plane cell and depth slice,
+//! stored contiguously, built in `O(n)` by a counting sort.
+//!
+//! Storage order is bin-major: the cells of one bin (a `bin × bin` tile of
+//! cells, the paper's rasteriser bin) are contiguous, and within a cell the
+//! depth slices follow each other from the nearest to the deepest. So one
+//! bin owns one contiguous range of the sorted receivers (the unit of
+//! parallel work), one cell one contiguous range, and the receivers of a
+//! column "at this depth and deeper" (§2.5's second optimisation) are a
+//! suffix of the cell's range.
+
+use glam::{DVec2, DVec3};
+
+/// The most cells along one side of the grid.
+pub(super) const MAX_SIDE: u32 = 8192;
+
+/// The grid and its sorted receivers.
+pub(super) struct Grid {
+    /// Lower corner of the grid on the light image plane.
+    pub lo: DVec2,
+    /// Cell size.
+    pub cell: DVec2,
+    /// Cells along x and y.
+    pub nx: u32,
+    pub ny: u32,
+    /// Cells per bin side.
+    pub bin: u32,
+    /// Bins along x and y.
+    pub bx: u32,
+    pub by: u32,
+    /// Depth slices per cell.
+    pub slices: u32,
+    /// `offsets[key]..offsets[key + 1]`: the sorted receivers of one
+    /// (bin, cell in bin, slice) key.
+    offsets: Vec<u32>,
+    /// Sorted receivers: image-plane position, light-frame depth, world
+    /// position, index in the frame.
+    pub s: Vec<DVec2>,
+    pub z: Vec<f64>,
+    pub world: Vec<DVec3>,
+    pub index: Vec<u32>,
+    /// Per bin, the greatest receiver depth (0 for an empty bin).
+    pub bin_zmax: Vec<f64>,
+    /// Per slice, the greatest receiver depth it holds over the whole grid
+    /// (0 for an empty slice).
+    pub slice_zmax: Vec<f64>,
+    /// The greatest receiver depth.
+    pub z_max: f64,
+}
+
+/// One receiver to store: image-plane position, depth, world position,
+/// frame index.
+pub(super) struct Entry {
+    pub s: DVec2,
+    pub z: f64,
+    pub world: DVec3,
+    pub index: u32,
+}
+
+impl Grid {
+    /// Builds the grid over `entries` (finite, `z > 0`) with about
+    /// `cells_per_receiver` cells per receiver, `bin × bin` cells per bin
+    /// and `slices` depth slices uniform in `1/z`. `O(n + cells · slices)`.
+    pub fn build(entries: &[Entry], cells_per_receiver: f64, bin: u32, slices: u32) -> Grid {
+        let n = entries.len();
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        let (mut z_min, mut z_max) = (f64::INFINITY, 0.0f64);
+        for e in entries {
+            lo = lo.min(e.s);
+            hi = hi.max(e.s);
+            z_min = z_min.min(e.z);
+            z_max = z_max.max(e.z);
+        }
+        if n == 0 {
+            lo = DVec2::ZERO;
+            hi = DVec2::ONE;
+            z_min = 1.0;
+            z_max = 1.0;
+        }
+        // A flat or point-like set still gets a box of positive size.
+        let scale = lo.abs().max(hi.abs()).max_element().max(1.0);
+        let floor = scale * 1e-9;
+        let mut extent = (hi - lo).max(DVec2::splat(floor));
+        let target = (n as f64 * cells_per_receiver).clamp(1.0, f64::from(MAX_SIDE).powi(2));
+        let aspect = extent.x / extent.y;
+        let nx = ((target * aspect).sqrt().ceil()).clamp(1.0, f64::from(MAX_SIDE)) as u32;
+        let ny = ((target / f64::from(nx)).ceil()).clamp(1.0, f64::from(MAX_SIDE)) as u32;
+        // Enlarged by a hair so the greatest coordinate falls in the last
+        // cell rather than on its far side.
+        extent *= 1.0 + 1e-9;
+        let cell = extent / DVec2::new(f64::from(nx), f64::from(ny));
+        let bin = bin.max(1);
+        let bx = nx.div_ceil(bin);
+        let by = ny.div_ceil(bin);
+        let slices = slices.max(1);
+        let keys = bx as usize * by as usize * (bin as usize * bin as usize) * slices as usize;
+
+        let mut grid = Grid {
+            lo,
+            cell,
+            nx,
+            ny,
+            bin,
+            bx,
+            by,
+            slices,
+            offsets: Vec::new(),
+            s: Vec::new(),
+            z: Vec::new(),
+            world: Vec::new(),
+            index: Vec::new(),
+            bin_zmax: vec![0.0; bx as usize * by as usize],
+            slice_zmax: vec![0.0; slices as usize],
+            z_max,
+        };
+        let (inv_near, inv_far) = (1.0 / z_min, 1.0 / z_max);
+        let span = inv_near - inv_far;
+        let slice_of = |z: f64| -> u32 {
+            if span > 0.0 {
+                let t = (inv_near - 1.0 / z) / span * f64::from(slices);
+                (t.max(0.0) as u32).min(slices - 1)
+            } else {
+                0
+            }
+        };
+        // Counting sort: count, prefix sums, place.
+        let key_of: Vec<u32> = entries
+            .iter()
+            .map(|e| {
+                let (cx, cy) = grid.cell_of(e.s);
+                grid.key(cx, cy, slice_of(e.z)) as u32
+            })
+            .collect();
+        let mut offsets = vec![0u32; keys + 1];
+        for &k in &key_of {
+            offsets[k as usize + 1] += 1;
+        }
+        for k in 0..keys {
+            offsets[k + 1] += offsets[k];
+        }
+        let mut next: Vec<u32> = offsets[..keys].to_vec();
+        let mut order = vec![0u32; n];
+        for (i, &k) in key_of.iter().enumerate() {
+            order[next[k as usize] as usize] = i as u32;
+            next[k as usize] += 1;
+        }
+        grid.offsets = offsets;
+        grid.s = order.iter().map(|&i| entries[i as usize].s).collect();
+        grid.z = order.iter().map(|&i| entries[i as usize].z).collect();
+        grid.world = order.iter().map(|&i| entries[i as usize].world).collect();
+        grid.index = order.iter().map(|&i| entries[i as usize].index).collect();
+        for (i, &o) in order.iter().enumerate() {
+            let e = &entries[o as usize];
+            let (cx, cy) = grid.cell_of(e.s);
+            let b = grid.bin_id(cx, cy);
+            grid.bin_zmax[b] = grid.bin_zmax[b].max(grid.z[i]);
+            let k = slice_of(e.z) as usize;
+            grid.slice_zmax[k] = grid.slice_zmax[k].max(e.z);
+        }
+        grid
+    }
+
+    /// The number of bins.
+    pub fn bins(&self) -> usize {
+        self.bx as usize * self.by as usize
+    }
+
+    /// The cell holding image-plane point `s` (clamped to the grid).
+    pub fn cell_of(&self, s: DVec2) -> (u32, u32) {
+        let t = (s - self.lo) / self.cell;
+        let cx = (t.x.max(0.0) as u32).min(self.nx - 1);
+        let cy = (t.y.max(0.0) as u32).min(self.ny - 1);
+        (cx, cy)
+    }
+
+    /// The range of cells (inclusive) whose rectangles can meet the box
+    /// `[lo, hi]`; `None` when the box misses the grid.
+    pub fn cell_range(&self, lo: DVec2, hi: DVec2) -> Option<(u32, u32, u32, u32)> {
+        if !(lo.x <= hi.x && lo.y <= hi.y) {
+            return None;
+        }
+        let a = (lo - self.lo) / self.cell;
+        let b = (hi - self.lo) / self.cell;
+        if b.x < -1e-9 || b.y < -1e-9 {
+            return None;
+        }
+        let (nx, ny) = (f64::from(self.nx), f64::from(self.ny));
+        if a.x > nx + 1e-9 || a.y > ny + 1e-9 {
+            return None;
+        }
+        // One cell of margin on each side for the rounding of the cell
+        // assignment.
+        let x0 = (a.x.floor() - 1.0).clamp(0.0, nx - 1.0) as u32;
+        let y0 = (a.y.floor() - 1.0).clamp(0.0, ny - 1.0) as u32;
+        let x1 = (b.x.floor() + 1.0).clamp(0.0, nx - 1.0) as u32;
+        let y1 = (b.y.floor() + 1.0).clamp(0.0, ny - 1.0) as u32;
+        Some((x0, y0, x1, y1))
+    }
+
+    /// The bin of cell `(cx, cy)`.
+    pub fn bin_id(&self, cx: u32, cy: u32) -> usize {
+        (cy / self.bin) as usize * self.bx as usize + (cx / self.bin) as usize
+    }
+
+    /// The cells of bin `b` as an inclusive range `(x0, y0, x1, y1)`.
+    pub fn bin_cells(&self, b: usize) -> (u32, u32, u32, u32) {
+        let (bx, by) = ((b % self.bx as usize) as u32, (b / self.bx as usize) as u32);
+        let x0 = bx * self.bin;
+        let y0 = by * self.bin;
+        (
+            x0,
+            y0,
+            (x0 + self.bin - 1).min(self.nx - 1),
+            (y0 + self.bin - 1).min(self.ny - 1),
+        )
+    }
+
+    fn key(&self, cx: u32, cy: u32, slice: u32) -> usize {
+        let b = self.bin_id(cx, cy);
+        let local = (cy % self.bin) as usize * self.bin as usize + (cx % self.bin) as usize;
+        (b * (self.bin as usize * self.bin as usize) + local) * self.slices as usize
+            + slice as usize
+    }
+
+    /// The sorted receivers of bin `b`.
+    pub fn bin_range(&self, b: usize) -> std::ops::Range<usize> {
+        let per = self.bin as usize * self.bin as usize * self.slices as usize;
+        self.offsets[b * per] as usize..self.offsets[(b + 1) * per] as usize
+    }
+
+    /// The sorted receivers of cell `(cx, cy)`, slices `first..` (the
+    /// column at that depth and deeper).
+    pub fn column(&self, cx: u32, cy: u32, first: u32) -> std::ops::Range<usize> {
+        let k = self.key(cx, cy, 0);
+        self.offsets[k + first.min(self.slices) as usize] as usize
+            ..self.offsets[k + self.slices as usize] as usize
+    }
+
+    /// The cell's rectangle, enlarged by a hair for the rounding of the
+    /// cell assignment.
+    pub fn cell_box(&self, cx: u32, cy: u32) -> (DVec2, DVec2) {
+        let lo = self.lo + self.cell * DVec2::new(f64::from(cx), f64::from(cy));
+        let hi = lo + self.cell;
+        let pad = self.cell * 1e-6 + DVec2::splat(lo.abs().max(hi.abs()).max_element() * 1e-12);
+        (lo - pad, hi + pad)
+    }
+}
