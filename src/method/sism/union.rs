@@ -222,9 +222,16 @@ mod tests {
     fn one_square_is_its_area_in_the_disk() {
         let mut s = Scratch::default();
         // Inside the disk entirely: its area / π.
-        let e = square(DVec2::new(0.1, 0.0), 0.3, 1.0);
+        let e = square(DVec2::new(0.5, 0.0), 0.2, 1.0);
         let v = union_occlusion(0.0, &e, &mut s);
-        assert!((v - 0.36 / PI).abs() < 1e-14, "{v}");
+        assert!((v - 0.16 / PI).abs() < 1e-14, "{v}");
+        // Partly outside the disk (x from 0.2 to 1.2): arcs and pieces,
+        // against polygon_disk_area (one Green sum, no arrangement).
+        let e = square(DVec2::new(0.7, 0.0), 0.5, 1.0);
+        let corners: Vec<DVec2> = e.iter().map(|m| m.a).collect();
+        let want = crate::kernel::disk::f64::polygon_disk_area(1.0, &corners) / PI;
+        let v = union_occlusion(0.0, &e, &mut s);
+        assert!((v - want).abs() < 1e-14, "{v} {want}");
         // Covering the centre.
         let e = square(DVec2::ZERO, 0.3, 1.0);
         let v = union_occlusion(1.0, &e, &mut s);
