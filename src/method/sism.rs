@@ -414,26 +414,6 @@ fn clip_near(a: DVec3, b: DVec3, near: f64) -> Option<(DVec3, DVec3)> {
     }
 }
 
-/// Separating-axis test of an oriented rectangle (centre, unit axis, half
-/// extents along and across it) against an axis-aligned box.
-fn rect_meets_box(c: DVec2, axis: DVec2, hl: f64, hw: f64, lo: DVec2, hi: DVec2) -> bool {
-    let perp = axis.perp();
-    let ex = hl * axis.x.abs() + hw * perp.x.abs();
-    let ey = hl * axis.y.abs() + hw * perp.y.abs();
-    if c.x + ex < lo.x || c.x - ex > hi.x || c.y + ey < lo.y || c.y - ey > hi.y {
-        return false;
-    }
-    let bc = (lo + hi) * 0.5;
-    let bh = (hi - lo) * 0.5;
-    for (u, h) in [(axis, hl), (perp, hw)] {
-        let r = bh.x * u.x.abs() + bh.y * u.y.abs();
-        if (bc - c).dot(u).abs() > h + r {
-            return false;
-        }
-    }
-    true
-}
-
 /// Distance from point `p` to segment `[a, b]`.
 fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     let d = b - a;
@@ -444,31 +424,6 @@ fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
         0.0
     };
     (a + d * t - p).length()
-}
-
-/// A lower bound of the distance from the box `[lo, hi]` to segment
-/// `[a, b]` (0 when they may meet).
-fn box_segment_distance(lo: DVec2, hi: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let inside = |p: DVec2| p.x >= lo.x && p.x <= hi.x && p.y >= lo.y && p.y <= hi.y;
-    if inside(a) || inside(b) {
-        return 0.0;
-    }
-    let corners = [lo, DVec2::new(hi.x, lo.y), hi, DVec2::new(lo.x, hi.y)];
-    // The segment crosses a side of the box.
-    let d = b - a;
-    let mut sides = corners.iter().map(|&k| d.perp_dot(k - a));
-    let first = sides.next().unwrap_or(0.0);
-    let straddles = sides.any(|s| (s > 0.0) != (first > 0.0)) || first == 0.0;
-    let (slo, shi) = (a.min(b), a.max(b));
-    if straddles && !(shi.x < lo.x || slo.x > hi.x || shi.y < lo.y || slo.y > hi.y) {
-        return 0.0;
-    }
-    let box_point = |p: DVec2| (p.clamp(lo, hi) - p).length();
-    let mut m = box_point(a).min(box_point(b));
-    for k in corners {
-        m = m.min(point_segment_distance(k, a, b));
-    }
-    m
 }
 
 /// The weights `ω` of DESIGN-less two-sided counting (module docs): per face
@@ -717,7 +672,7 @@ impl Sism {
             let detail = format!("{} triangles, {} edges", tris.len(), edges.len());
             ((tris, edges), detail)
         });
-        stages.count("sism edges", edges.len() as u64);
+        stages.count("sism penumbra edges", edges.len() as u64);
 
         // 2. Umbra: triangles binned, then per bin in parallel.
         let mut umbra = vec![0.0f64; m];
@@ -933,22 +888,38 @@ impl Sism {
             } else {
                 Some(global)
             };
-            let Some((x0, y0, x1, y1)) = grid.cell_range(global.lo, global.hi) else {
+            let Some((_, y0, _, y1)) = grid.cell_range(global.lo, global.hi) else {
                 continue;
             };
+            // Row by row, the cells the quad's rectangle meets: one span per
+            // row (the rectangle is convex).
             for cy in y0.max(by0)..=y1.min(by1) {
-                for cx in x0.max(bx0)..=x1.min(bx1) {
-                    let (lo, hi) = grid.cell_box(cx, cy);
-                    let hit = local.is_some_and(|q| q.meets(lo, hi));
-                    if !hit {
-                        if self.bin_depth && global.meets(lo, hi) {
-                            counts.saved_bin += grid.column(cx, cy, 0).len() as u64;
-                        }
-                        continue;
-                    }
+                let (ylo, yhi) = grid.row_band(cy);
+                let span = |q: &Quad| {
+                    q.row_span(ylo, yhi)
+                        .and_then(|(a, b)| grid.col_range(a, b))
+                        .map(|(a, b)| (a.max(bx0), b.min(bx1)))
+                        .filter(|(a, b)| a <= b)
+                };
+                let hit = local.as_ref().and_then(span);
+                if self.bin_depth {
+                    let all = span(&global).map_or(0, |(a, b)| grid.row_count(cy, a, b));
+                    let kept = hit.map_or(0, |(a, b)| grid.row_count(cy, a, b));
+                    counts.saved_bin += all.saturating_sub(kept);
+                }
+                let Some((cx0, cx1)) = hit else {
+                    continue;
+                };
+                for cx in cx0..=cx1 {
                     let mut first = 0;
                     if self.wedge_column && self.bound == Bound::Paper {
-                        let dmin = box_segment_distance(lo, hi, e.a, e.b);
+                        // A lower bound of the distance from the cell to the
+                        // projected edge: from its centre, less its half
+                        // diagonal.
+                        let (lo, hi) = grid.cell_box(cx, cy);
+                        let dmin = (point_segment_distance((lo + hi) * 0.5, e.a, e.b)
+                            - 0.5 * (hi - lo).length())
+                        .max(0.0);
                         let inv = 1.0 / e.z_min - dmin / r;
                         first = if inv > 0.0 {
                             first_slice_deeper(grid, (1.0 / inv) * (1.0 - 1e-9))
@@ -1049,18 +1020,49 @@ impl Quad {
         }
     }
 
-    fn meets(&self, lo: DVec2, hi: DVec2) -> bool {
+    /// The x-range of the rectangle's part in the band `ylo ≤ y ≤ yhi`,
+    /// `None` when it misses the band.
+    fn row_span(&self, ylo: f64, yhi: f64) -> Option<(f64, f64)> {
         if self.half_length.is_infinite() || self.half_width.is_infinite() {
-            return true;
+            return Some((f64::MIN, f64::MAX));
         }
-        rect_meets_box(
-            self.center,
-            self.axis,
-            self.half_length,
-            self.half_width,
-            lo,
-            hi,
-        )
+        if self.hi.y < ylo || self.lo.y > yhi {
+            return None;
+        }
+        let (along, across) = (
+            self.axis * self.half_length,
+            self.axis.perp() * self.half_width,
+        );
+        let corners = [
+            self.center - along - across,
+            self.center + along - across,
+            self.center + along + across,
+            self.center - along + across,
+        ];
+        let (mut x0, mut x1) = (f64::INFINITY, f64::NEG_INFINITY);
+        for k in 0..4 {
+            let (p, q) = (corners[k], corners[(k + 1) % 4]);
+            // The part of side p→q inside the band.
+            let (t0, t1) = if p.y == q.y {
+                if p.y < ylo || p.y > yhi {
+                    continue;
+                }
+                (0.0, 1.0)
+            } else {
+                let ta = (ylo - p.y) / (q.y - p.y);
+                let tb = (yhi - p.y) / (q.y - p.y);
+                (ta.min(tb).max(0.0), ta.max(tb).min(1.0))
+            };
+            if t0 > t1 {
+                continue;
+            }
+            for t in [t0, t1] {
+                let x = p.x + (q.x - p.x) * t;
+                x0 = x0.min(x);
+                x1 = x1.max(x);
+            }
+        }
+        (x0 <= x1).then_some((x0, x1))
     }
 }
 

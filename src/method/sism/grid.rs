@@ -47,6 +47,9 @@ pub(super) struct Grid {
     pub slice_zmax: Vec<f64>,
     /// The greatest receiver depth.
     pub z_max: f64,
+    /// Per row, the running count of receivers over its cells:
+    /// `row_prefix[cy (nx + 1) + cx]` receivers in cells `0..cx` of row `cy`.
+    row_prefix: Vec<u32>,
 }
 
 /// One receiver to store: image-plane position, depth, world position,
@@ -113,6 +116,7 @@ impl Grid {
             bin_zmax: vec![0.0; bx as usize * by as usize],
             slice_zmax: vec![0.0; slices as usize],
             z_max,
+            row_prefix: Vec::new(),
         };
         let (inv_near, inv_far) = (1.0 / z_min, 1.0 / z_max);
         let span = inv_near - inv_far;
@@ -146,6 +150,16 @@ impl Grid {
             next[k as usize] += 1;
         }
         grid.offsets = offsets;
+        let mut row_prefix = vec![0u32; ny as usize * (nx as usize + 1)];
+        for cy in 0..ny {
+            let base = cy as usize * (nx as usize + 1);
+            for cx in 0..nx {
+                let k = grid.key(cx, cy, 0);
+                let count = grid.offsets[k + slices as usize] - grid.offsets[k];
+                row_prefix[base + cx as usize + 1] = row_prefix[base + cx as usize] + count;
+            }
+        }
+        grid.row_prefix = row_prefix;
         grid.s = order.iter().map(|&i| entries[i as usize].s).collect();
         grid.z = order.iter().map(|&i| entries[i as usize].z).collect();
         grid.world = order.iter().map(|&i| entries[i as usize].world).collect();
@@ -235,6 +249,35 @@ impl Grid {
         let k = self.key(cx, cy, 0);
         self.offsets[k + first.min(self.slices) as usize] as usize
             ..self.offsets[k + self.slices as usize] as usize
+    }
+
+    /// The receivers in cells `x0..=x1` of row `cy`.
+    pub fn row_count(&self, cy: u32, x0: u32, x1: u32) -> u64 {
+        let base = cy as usize * (self.nx as usize + 1);
+        u64::from(self.row_prefix[base + x1 as usize + 1] - self.row_prefix[base + x0 as usize])
+    }
+
+    /// Row `cy`'s band `[ylo, yhi]`, enlarged by a hair like
+    /// [`cell_box`](Self::cell_box).
+    pub fn row_band(&self, cy: u32) -> (f64, f64) {
+        let (lo, hi) = self.cell_box(0, cy);
+        (lo.y, hi.y)
+    }
+
+    /// The columns (inclusive) whose cells meet `[x0, x1]`, clamped to the
+    /// grid, enlarged by a hair; `None` when the range misses the grid.
+    pub fn col_range(&self, x0: f64, x1: f64) -> Option<(u32, u32)> {
+        let pad = self.cell.x * 1e-6 + x0.abs().max(x1.abs()).min(f64::MAX) * 1e-12;
+        let a = ((x0 - pad) - self.lo.x) / self.cell.x;
+        let b = ((x1 + pad) - self.lo.x) / self.cell.x;
+        let n = f64::from(self.nx);
+        if !(b >= 0.0 && a < n) {
+            return None;
+        }
+        Some((
+            a.max(0.0).min(n - 1.0) as u32,
+            b.max(0.0).min(n - 1.0) as u32,
+        ))
     }
 
     /// The cell's rectangle, enlarged by a hair for the rounding of the
