@@ -65,7 +65,7 @@ fn default_run_passes_its_self_check() {
 fn visibility_prints_the_json_of_the_design() {
     let d = dir("json");
     let points = write(&d, "points.json", POINTS);
-    for method in ["exact", "mc:256"] {
+    for method in ["exact", "mc:256", "sism", "sism:exact-union"] {
         let out = softshadow(&[
             "visibility",
             "--scene",
@@ -86,7 +86,11 @@ fn visibility_prints_the_json_of_the_design() {
         assert_eq!(v.len(), 2);
         assert!(v.iter().all(|x| (0.0..=1.0).contains(&x.as_f64().unwrap())));
         assert!(json["seconds"].as_f64().unwrap() >= 0.0);
-        assert_eq!(json.get("stderr").is_some(), method != "exact", "{json}");
+        assert_eq!(
+            json.get("stderr").is_some(),
+            method.starts_with("mc:"),
+            "{json}"
+        );
     }
 }
 
@@ -338,8 +342,20 @@ fn bad_points_and_arguments_are_one_line_errors() {
             "--points",
             &ok,
             "--method",
-            "sism",
+            "ssoc",
         ],
-        &["sism"],
+        &["ssoc"],
+    );
+    rejects(
+        &[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &ok,
+            "--method",
+            "sism:sideways",
+        ],
+        &["sism:sideways", "sideways"],
     );
 }
