@@ -1183,3 +1183,45 @@ fn map_edge(e: &PenEdge, s: DVec2, zp: f64, r: f64) -> Option<MappedEdge> {
         weight: e.weight,
     })
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arbitrary::Rng;
+
+    #[test]
+    fn row_spans_contain_the_rectangle() {
+        let mut rng = Rng::new(0x5ba9);
+        for _ in 0..2000 {
+            let axis = DVec2::from_angle(rng.uniform(0.0, 6.3));
+            let q = Quad::new(
+                DVec2::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)),
+                axis,
+                rng.uniform(0.0, 0.5),
+                rng.uniform(0.0, 0.3),
+            );
+            let ylo = rng.uniform(-1.5, 1.5);
+            let yhi = ylo + rng.uniform(0.0, 0.2);
+            let span = q.row_span(ylo, yhi);
+            for _ in 0..50 {
+                let (u, v) = (rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0));
+                let p = q.center + axis * (u * q.half_length) + axis.perp() * (v * q.half_width);
+                if p.y < ylo || p.y > yhi {
+                    continue;
+                }
+                let (x0, x1) = span.expect("the band meets the rectangle");
+                let slack = 1e-12;
+                assert!(p.x >= x0 - slack && p.x <= x1 + slack, "{p} {x0} {x1}");
+            }
+        }
+    }
+
+    #[test]
+    fn the_tie_rule_gives_a_shared_edge_to_one_side() {
+        let (a, b) = (DVec2::new(0.0, 0.0), DVec2::new(1.0, 2.0));
+        let on = DVec2::new(0.5, 1.0);
+        assert_ne!(left(a, b, on), left(b, a, on));
+        assert!(left(a, b, DVec2::new(0.0, 1.0)));
+        assert!(!left(b, a, DVec2::new(0.0, 1.0)));
+    }
+}

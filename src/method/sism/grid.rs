@@ -289,3 +289,70 @@ impl Grid {
         (lo - pad, hi + pad)
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::arbitrary::Rng;
+
+    #[test]
+    fn every_receiver_is_stored_once_in_its_cell_and_slice_order() {
+        let mut rng = Rng::new(0x6e1d);
+        for case in 0..20 {
+            let n = [0, 1, 2, 17, 500, 3000][case % 6];
+            let entries: Vec<Entry> = (0..n)
+                .map(|i| {
+                    let z = rng.uniform(1.0, 5.0);
+                    // Clusters and a few coincident points.
+                    let s = if i % 7 == 0 {
+                        DVec2::splat(0.25)
+                    } else {
+                        DVec2::new(rng.uniform(-1.0, 1.0), rng.uniform(-0.3, 0.2))
+                    };
+                    Entry {
+                        s,
+                        z,
+                        world: DVec3::new(s.x * z, s.y * z, z),
+                        index: i as u32,
+                    }
+                })
+                .collect();
+            let grid = Grid::build(&entries, 1.0 + (case % 3) as f64, 1 + case as u32 % 5, 4);
+            // A permutation of the input.
+            let mut seen = vec![false; n];
+            for &i in &grid.index {
+                assert!(!seen[i as usize]);
+                seen[i as usize] = true;
+            }
+            assert!(seen.iter().all(|&b| b));
+            // Bins tile the array in order; each cell's column holds
+            // exactly its receivers, depths non-decreasing by slice.
+            let mut next = 0;
+            for b in 0..grid.bins() {
+                let r = grid.bin_range(b);
+                assert_eq!(r.start, next);
+                next = r.end;
+                let (x0, y0, x1, y1) = grid.bin_cells(b);
+                for cy in y0..=y1 {
+                    for cx in x0..=x1 {
+                        let col = grid.column(cx, cy, 0);
+                        assert!(r.start <= col.start && col.end <= r.end);
+                        assert_eq!(grid.row_count(cy, cx, cx), col.len() as u64);
+                        for i in col.clone() {
+                            assert_eq!(grid.cell_of(grid.s[i]), (cx, cy));
+                            assert!(grid.z[i] <= grid.z_max);
+                            assert!(grid.bin_zmax[b] >= grid.z[i]);
+                        }
+                        for k in 0..grid.slices {
+                            for i in grid.column(cx, cy, k).start..grid.column(cx, cy, k + 1).start
+                            {
+                                assert!(grid.z[i] <= grid.slice_zmax[k as usize]);
+                            }
+                        }
+                    }
+                }
+            }
+            assert_eq!(next, n);
+        }
+    }
+}
