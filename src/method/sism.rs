@@ -88,6 +88,21 @@
 //!   one footprint are added, which biases penumbrae darker.
 //!   [`Composition::ExactUnion`] computes the union instead.
 //!
+//! # The quad is conservative for the paper's footprint, not for the light
+//!
+//! Every receiver whose footprint (radius `R_p ≤ R`) reaches the edge lies
+//! within `R` of the projected edge, so [`Bound::Paper`]'s quad never drops
+//! an edge term the paper's model would compute; [`Bound::Conservative`]
+//! (the kernel's rigorous quad and wedge for the true, tilted facing disk)
+//! therefore changes no value, only the work. What the paper's model misses
+//! is in the footprint itself: a receiver can be partly shadowed by an edge
+//! that no footprint of radius `r (1/z_q − 1/z_p)` around `π(p)` reaches
+//! (the facing disk tilts; the edge's depth varies; surfaces near the
+//! receiver's own depth). `docs/accuracy/sism.md` counts, per built-in
+//! scene, the exact-penumbra receivers no edge term reaches and the largest
+//! error there; it is measured, not changed, since changing it would no
+//! longer be the paper's method.
+//!
 //! # Disk lights
 //!
 //! A disk light is handled with the light frame's `z` axis along the disk's
