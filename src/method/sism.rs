@@ -17,9 +17,11 @@
 //!    rasterised over the grid; for each stored receiver of a covered cell,
 //!    an exact point-in-triangle test (`orient2d` on the projected vertices,
 //!    with a tie rule that gives a point on an edge shared by two triangles
-//!    to exactly one of them) and an exact depth test (`orient3d`: the
-//!    triangle's plane separates the receiver from the light's centre, so
-//!    triangles beyond the receiver do not count). The result is the depth
+//!    to exactly one of them) and a depth test (the triangle's plane
+//!    separates the receiver from the light's centre, so triangles beyond
+//!    the receiver do not count: decided by the triangle's depth range where
+//!    it clears the receiver's depth by a relative `1e-12`, far above the
+//!    rounding of light-frame depths, else by the exact `orient3d`). The result is the depth
 //!    complexity between the receiver and the light's centre, weighted per
 //!    surface as below: the *layer count* `U(p)`.
 //! 3. **Penumbra** (§2.2, §2.3; stage `sism penumbra`): for each silhouette
@@ -383,9 +385,15 @@ struct UmbraTri {
     world: [DVec3; 3],
     /// `orient3d(world, light centre)`, never zero.
     light_side: Sign,
+    /// Least and greatest light-frame depth of the corners.
     z_min: f64,
+    z_max: f64,
     weight: f64,
 }
+
+/// Relative margin on light-frame depths (each rounded a few times) when
+/// they decide a depth order without the exact test.
+const DEPTH_MARGIN: f64 = 1e-12;
 
 /// One chain edge of the penumbra pass.
 struct PenEdge {
@@ -726,18 +734,28 @@ impl Sism {
                                     {
                                         continue;
                                     }
+                                    let zp = grid.z[i];
+                                    if zp < t.z_min * (1.0 - DEPTH_MARGIN) {
+                                        // The whole triangle is beyond the
+                                        // receiver.
+                                        continue;
+                                    }
                                     tests += 1;
                                     let [p0, p1, p2] = t.p;
-                                    if left(p0, p1, s)
-                                        && left(p1, p2, s)
-                                        && left(p2, p0, s)
-                                        && orient3d(
+                                    if !(left(p0, p1, s) && left(p1, p2, s) && left(p2, p0, s)) {
+                                        continue;
+                                    }
+                                    // The ray meets the triangle: it is in
+                                    // front of the receiver when wholly
+                                    // nearer, else the exact plane test.
+                                    let between = zp * (1.0 - DEPTH_MARGIN) > t.z_max
+                                        || orient3d(
                                             t.world[0],
                                             t.world[1],
                                             t.world[2],
                                             grid.world[i],
-                                        ) == t.light_side.flip()
-                                    {
+                                        ) == t.light_side.flip();
+                                    if between {
                                         acc[i - start] += t.weight;
                                     }
                                 }
@@ -1130,6 +1148,7 @@ fn push_umbra_tri(
             world,
             light_side,
             z_min: z_min.max(z_near),
+            z_max: q[0].z.max(q[1].z).max(q[2].z),
             weight,
         });
     }
