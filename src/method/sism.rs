@@ -19,11 +19,12 @@
 //!    with a tie rule that gives a point on an edge shared by two triangles
 //!    to exactly one of them) and a depth test (the triangle's plane
 //!    separates the receiver from the light's centre, so triangles beyond
-//!    the receiver do not count: decided by the triangle's depth range where
-//!    it clears the receiver's depth by a relative `1e-12`, far above the
-//!    rounding of light-frame depths, else by the exact `orient3d`). The result is the depth
-//!    complexity between the receiver and the light's centre, weighted per
-//!    surface as below: the *layer count* `U(p)`.
+//!    the receiver do not count: decided by the triangle's depth range
+//!    where it clears the receiver's depth by a relative `1e-12`, far above
+//!    the rounding of light-frame depths, else by the exact `orient3d`).
+//!    The result is the depth complexity between the receiver and the
+//!    light's centre, weighted per surface as below: the *layer count*
+//!    `U(p)`.
 //! 3. **Penumbra** (§2.2, §2.3; stage `sism penumbra`): for each silhouette
 //!    edge seen from the light's centre, a *penumbra quad*: the projected edge
 //!    extended on all sides by `R = r (1/z_e − 1/Z)`, `z_e` the edge's least
@@ -88,7 +89,10 @@
 //!   `z_q` stands for the whole edge.
 //! - *Independent occluders* (§5.2): `C = 0`, overlapping occluders inside
 //!   one footprint are added, which biases penumbrae darker.
-//!   [`Composition::ExactUnion`] computes the union instead.
+//!   [`Composition::ExactUnion`] computes the union instead; it maps each
+//!   edge endpoint with its own depth's footprint radius (so that the chain
+//!   stays closed), where eq. 3 uses one radius per edge, so on a single
+//!   occluder with a sloped silhouette the two differ slightly.
 //!
 //! # The quad is conservative for the paper's footprint, not for the light
 //!
@@ -449,8 +453,9 @@ fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
     (a + d * t - p).length()
 }
 
-/// The weights `ω` of DESIGN-less two-sided counting (module docs): per face
-/// and per edge, `½` for closed components, `1` for open ones.
+/// The layer weights `ω` of the module docs, per face and per edge: `½` in
+/// closed connected components (every edge with an even number of faces),
+/// `1` in open ones.
 fn component_weights(topo: &MeshTopology) -> (Vec<f64>, Vec<f64>) {
     let faces = topo.triangles().len();
     let mut parent: Vec<u32> = (0..faces as u32).collect();
