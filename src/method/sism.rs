@@ -567,43 +567,51 @@ impl Sism {
         let n = receivers.len();
         let center = light.center();
 
-        // 1. The grid.
-        let mut behind = 0u64;
-        let mut entries = Vec::with_capacity(n);
-        for (index, rec) in receivers.iter().enumerate() {
-            light
-                .emitter(rec.position)
-                .map_err(|error| MethodError::Receiver { index, error })?;
-            let q = light_frame.to_light(rec.position);
-            let s = project(q);
-            if q.z > 0.0 && s.is_finite() {
-                entries.push(Entry {
+        // 1. The grid: receivers checked and projected (in parallel), then
+        // sorted.
+        let grid_start = std::time::Instant::now();
+        let projected: Vec<Result<Option<Entry>, MethodError>> = receivers
+            .par_iter()
+            .enumerate()
+            .map(|(index, rec)| {
+                light
+                    .emitter(rec.position)
+                    .map_err(|error| MethodError::Receiver { index, error })?;
+                let q = light_frame.to_light(rec.position);
+                let s = project(q);
+                Ok((q.z > 0.0 && s.is_finite()).then_some(Entry {
                     s,
                     z: q.z,
                     world: rec.position,
                     index: index as u32,
-                });
-            } else {
-                behind += 1;
+                }))
+            })
+            .collect();
+        let mut entries = Vec::with_capacity(n);
+        for p in projected {
+            if let Some(e) = p? {
+                entries.push(e);
             }
         }
-        let grid = stages.timed("sism grid", || {
-            let g = Grid::build(
-                &entries,
-                self.cells_per_receiver,
-                self.bin_cells,
-                self.depth_slices,
-            );
-            let detail = format!(
+        let behind = (n - entries.len()) as u64;
+        let grid = Grid::build(
+            &entries,
+            self.cells_per_receiver,
+            self.bin_cells,
+            self.depth_slices,
+        );
+        stages.record(
+            "sism grid",
+            format!(
                 "{} receivers, {}×{} cells, {} bins, {} slices",
                 entries.len(),
-                g.nx,
-                g.ny,
-                g.bins(),
-                g.slices
-            );
-            (g, detail)
-        });
+                grid.nx,
+                grid.ny,
+                grid.bins(),
+                grid.slices
+            ),
+            grid_start.elapsed(),
+        );
         drop(entries);
         stages.count("sism receivers behind the light", behind);
         let m = grid.s.len();

@@ -11,6 +11,7 @@
 //! suffix of the cell's range.
 
 use glam::{DVec2, DVec3};
+use rayon::prelude::*;
 
 /// The most cells along one side of the grid.
 pub(super) const MAX_SIDE: u32 = 8192;
@@ -129,8 +130,9 @@ impl Grid {
             }
         };
         // Counting sort: count, prefix sums, place.
+        // Keys in parallel (rayon), then a sequential counting sort.
         let key_of: Vec<u32> = entries
-            .iter()
+            .par_iter()
             .map(|e| {
                 let (cx, cy) = grid.cell_of(e.s);
                 grid.key(cx, cy, slice_of(e.z)) as u32
@@ -149,6 +151,7 @@ impl Grid {
             order[next[k as usize] as usize] = i as u32;
             next[k as usize] += 1;
         }
+        drop(next);
         grid.offsets = offsets;
         let mut row_prefix = vec![0u32; ny as usize * (nx as usize + 1)];
         for cy in 0..ny {
@@ -160,17 +163,23 @@ impl Grid {
             }
         }
         grid.row_prefix = row_prefix;
-        grid.s = order.iter().map(|&i| entries[i as usize].s).collect();
-        grid.z = order.iter().map(|&i| entries[i as usize].z).collect();
-        grid.world = order.iter().map(|&i| entries[i as usize].world).collect();
-        grid.index = order.iter().map(|&i| entries[i as usize].index).collect();
-        for (i, &o) in order.iter().enumerate() {
-            let e = &entries[o as usize];
-            let (cx, cy) = grid.cell_of(e.s);
-            let b = grid.bin_id(cx, cy);
-            grid.bin_zmax[b] = grid.bin_zmax[b].max(grid.z[i]);
-            let k = slice_of(e.z) as usize;
-            grid.slice_zmax[k] = grid.slice_zmax[k].max(e.z);
+        grid.s = order.par_iter().map(|&i| entries[i as usize].s).collect();
+        grid.z = order.par_iter().map(|&i| entries[i as usize].z).collect();
+        grid.world = order
+            .par_iter()
+            .map(|&i| entries[i as usize].world)
+            .collect();
+        grid.index = order
+            .par_iter()
+            .map(|&i| entries[i as usize].index)
+            .collect();
+        // Per bin and per slice, the greatest depth, read off the keys.
+        let per_bin = bin as usize * bin as usize * slices as usize;
+        for (&o, &z) in order.iter().zip(&grid.z) {
+            let k = key_of[o as usize] as usize;
+            let (b, slice) = (k / per_bin, k % slices as usize);
+            grid.bin_zmax[b] = grid.bin_zmax[b].max(z);
+            grid.slice_zmax[slice] = grid.slice_zmax[slice].max(z);
         }
         grid
     }
