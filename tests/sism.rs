@@ -405,3 +405,25 @@ fn degenerate_frames_give_values_or_errors_never_nan() {
         Err(MethodError::InvalidOption { .. })
     ));
 }
+
+#[test]
+fn values_do_not_depend_on_the_number_of_threads() {
+    let scene = builtin("default").unwrap();
+    let frame = floor_frame(&scene, 48);
+    for m in [
+        Sism::default(),
+        Sism {
+            composition: Composition::ExactUnion,
+            ..Sism::default()
+        },
+    ] {
+        let run = |threads: usize| {
+            rayon::ThreadPoolBuilder::new()
+                .num_threads(threads)
+                .build()
+                .unwrap()
+                .install(|| passes(&m, &scene, &frame))
+        };
+        assert_eq!(run(1), run(3), "{m:?}");
+    }
+}

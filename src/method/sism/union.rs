@@ -253,6 +253,19 @@ mod tests {
     }
 
     #[test]
+    fn coincident_edges_share_their_piece() {
+        // A solid's contour in the all-edges chain: the front and the back
+        // face each bring the same edge, weight ½ each, and the layer count
+        // inside is ½ + ½. The piece must count once (a regression: it was
+        // counted once per copy, doubling the occluded area).
+        let mut s = Scratch::default();
+        let mut e = square(DVec2::new(0.5, 0.0), 0.2, 0.5);
+        e.extend(square(DVec2::new(0.5, 0.0), 0.2, 0.5));
+        let v = union_occlusion(0.0, &e, &mut s);
+        assert!((v - 0.16 / PI).abs() < 1e-14, "{v}");
+    }
+
+    #[test]
     fn two_overlapping_squares_count_once() {
         let mut s = Scratch::default();
         let mut e = square(DVec2::new(0.1, 0.0), 0.3, 1.0);
