@@ -46,7 +46,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
          depth, a footprint radius `R → 0`, and no edge term, while the exact answer there is \
          near ½ (half the light below its horizon). The `on the floor` rows leave them out. \
          These are the single point of projection's misses of §5.1 (the count under each \
-         table); the shading `n·l` hides them in a rendered image.\n\
+         table); the shading factor `n·l`, small near the terminator, mutes them in a rendered image.\n\
          - **Hidden silhouettes** (§5.1): edges that are silhouettes from part of the light \
          but not from its centre are missed, so umbrae come out narrower and the bias is \
          brighter (`large-light`, the boxes of `contact`).\n\
