@@ -13,9 +13,12 @@
 //! the rest of the boundary of (region ∩ disk) is covered arcs of the
 //! circle. Green's theorem over that boundary, with the exact
 //! [`segment_disk_area`] for the pieces and `½ Δφ` for the arcs, gives the
-//! covered area. Where several edges lie on one another (a contour edge
-//! appears twice in the all-edges chain, once per face), each takes the
-//! share `weight / jump` of the piece, so the piece counts once.
+//! covered area. Bit-identical edges are merged first (their weights
+//! added: the all-edges chain's interior edges cancel, a contour edge's two
+//! copies become one); where edges still lie on one another, each takes the
+//! share `weight / jump` of a piece, so the piece counts once. Cost:
+//! `O(k³)` for `k` edges meeting the footprint (`k²` pieces, each probed
+//! against every edge).
 //!
 //! Layer counts off the chain are the centre's count plus the signed
 //! crossings of the straight path from the centre (floating-point side
@@ -117,8 +120,41 @@ pub(super) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scrat
             .iter()
             .filter(|e| e.a.is_finite() && e.b.is_finite() && e.a != e.b && e.weight != 0.0)
             .filter(|e| meets_disk(e.a, e.b))
-            .copied(),
+            .map(|e| {
+                // One direction per segment (lexicographically ordered
+                // endpoints), the weight signed accordingly, so that copies
+                // of one edge can be merged below.
+                if (e.a.x, e.a.y) <= (e.b.x, e.b.y) {
+                    *e
+                } else {
+                    MappedEdge {
+                        a: e.b,
+                        b: e.a,
+                        weight: -e.weight,
+                    }
+                }
+            }),
     );
+    // Merge bit-identical segments (an interior edge of the all-edges chain
+    // appears once per face, in opposite directions, and cancels; a
+    // contour edge appears once per sheet): the chain is the same, and the
+    // arrangement below costs O(k³) in the number of edges.
+    kept.sort_by(|e, f| {
+        (e.a.x, e.a.y, e.b.x, e.b.y)
+            .partial_cmp(&(f.a.x, f.a.y, f.b.x, f.b.y))
+            .unwrap_or(std::cmp::Ordering::Equal)
+    });
+    let mut merged = 0;
+    for k in 0..kept.len() {
+        if merged > 0 && kept[merged - 1].a == kept[k].a && kept[merged - 1].b == kept[k].b {
+            kept[merged - 1].weight += kept[k].weight;
+        } else {
+            kept[merged] = kept[k];
+            merged += 1;
+        }
+    }
+    kept.truncate(merged);
+    kept.retain(|e| e.weight != 0.0);
     let covered = |c: f64| c > 0.5;
     if kept.is_empty() {
         return if covered(c0) { 1.0 } else { 0.0 };
