@@ -17,7 +17,7 @@ pub struct Args {
     /// a camera.
     #[arg(long)]
     scene: String,
-    /// The method: exact, mc:N, hard, pcss.
+    /// The method: exact, mc:N, hard, pcss, sism (or sism:OPT,… — see `softshadow::method::Sism::from_name`).
     #[arg(long, value_parser = parse_method)]
     method: String,
     /// The directory the PNG files are written to (created if missing).

@@ -19,7 +19,7 @@ pub struct Args {
     /// The points file: {"points": [{"p": [x, y, z], "object": i, "normal": [x, y, z]}, …]}.
     #[arg(long)]
     points: PathBuf,
-    /// The method: exact, mc:N, hard, pcss.
+    /// The method: exact, mc:N, hard, pcss, sism (or sism:OPT,… — see `softshadow::method::Sism::from_name`).
     #[arg(long, value_parser = parse_method)]
     method: String,
     /// Seed of the Monte Carlo samples.
