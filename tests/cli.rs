@@ -167,7 +167,14 @@ fn visibility_prints_the_json_of_the_design() {
         "points.json",
         r#"{"points": [{"p": [0.2, 0.0, 0.1], "normal": [0, 1, 0]}, {"p": [-0.3, 0.0, -0.4], "object": 0, "normal": [0, 1, 0]}]}"#,
     );
-    for method in ["exact", "mc:256", "hard", "pcss", "sism", "sism:exact-union"] {
+    for method in [
+        "exact",
+        "mc:256",
+        "hard",
+        "pcss",
+        "sism",
+        "sism:exact-union",
+    ] {
         let out = softshadow(&[
             "visibility",
             "--scene",

@@ -142,7 +142,7 @@ use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use crate::kernel::silhouette::MeshTopology;
 use crate::kernel::wedge::f64::{penumbra_quad, PenumbraWedge, QuadBound};
 use crate::render::{Frame, Needs, Stages};
-use crate::scene::{Light, LightFrame};
+use crate::scene::Light;
 use glam::{DVec2, DVec3};
 use grid::{Entry, Grid};
 use rayon::prelude::*;
@@ -542,27 +542,18 @@ impl Sism {
         let scene = stages.scene();
         let light = scene.light();
         self.needs(light)?;
-        let (light_frame, r) = match *light {
-            Light::Sphere { radius, .. } => (stages.light_frame(), radius),
-            Light::Disk {
-                center,
-                normal,
-                radius,
-            } => {
-                let toward = scene
-                    .bounds()
-                    .map_or(1.0, |(lo, hi)| ((lo + hi) * 0.5 - center).dot(normal));
-                let n = if toward < 0.0 { -normal } else { normal };
-                let f = LightFrame::toward(center, center + n).map_err(|_| {
-                    MethodError::InvalidOption {
-                        method: self.name(),
-                        message: "the disk light has no usable normal".to_owned(),
-                    }
-                })?;
-                (f, radius)
+        // The stages' light frame lies along a disk light's normal, where
+        // the footprint radius `R` is exact for edges parallel to it.
+        let r = match *light {
+            Light::Sphere { radius, .. } | Light::Disk { radius, .. } => radius,
+            _ => {
+                return Err(MethodError::UnsupportedLight {
+                    method: self.name(),
+                    light: super::light_kind(light),
+                })
             }
-            _ => unreachable!("needs() accepted only sphere and disk lights"),
         };
+        let light_frame = stages.light_frame();
         let receivers = frame.receivers();
         let n = receivers.len();
         let center = light.center();

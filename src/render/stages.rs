@@ -7,7 +7,7 @@ use super::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
 use crate::kernel::silhouette::MeshTopology;
 use crate::reference::bvh::Bvh;
 use crate::reference::Occluders;
-use crate::scene::{LightFrame, Scene};
+use crate::scene::{Light, LightFrame, Scene};
 use glam::DVec3;
 use std::fmt;
 use std::sync::{Arc, Mutex, OnceLock};
@@ -276,16 +276,32 @@ impl<'a> Stages<'a> {
         })
     }
 
-    /// The light frame of DESIGN §2: at the light's centre, `+z` toward the
-    /// centre of the scene's bounding box; when the scene has no triangle or
-    /// that centre is the light's, `+z` is world `−y` (down).
+    /// The light frame of DESIGN §2, at the light's centre. `+z` points
+    /// toward the centre of the scene's bounding box, except for a disk or
+    /// rect light, where it is the light's normal (`u × v` for a rect) on
+    /// the side of that centre — the light image plane is then parallel to
+    /// the light, where single-projection footprints (SISM's `R`, PCSS's
+    /// filter) are exact for occluders parallel to it. When the scene has no
+    /// triangle or the direction is undefined, `+z` is world `−y` (down).
     pub fn light_frame(&self) -> LightFrame {
         *self.light_frame.get_or_init(|| {
-            let c = self.scene.light().center();
-            let toward = self
-                .scene
-                .bounds()
-                .and_then(|(lo, hi)| LightFrame::toward(c, (lo + hi) * 0.5).ok());
+            let light = self.scene.light();
+            let c = light.center();
+            let center = self.scene.bounds().map(|(lo, hi)| (lo + hi) * 0.5);
+            let normal = match *light {
+                Light::Disk { normal, .. } => Some(normal),
+                Light::Rect { u, v, .. } => Some(u.cross(v)),
+                _ => None,
+            };
+            let toward = match (normal, center) {
+                (Some(n), Some(m)) => {
+                    let side = if (m - c).dot(n) < 0.0 { -1.0 } else { 1.0 };
+                    LightFrame::along(c, n * side).ok()
+                }
+                (Some(n), None) => LightFrame::along(c, n).ok(),
+                (None, Some(m)) => LightFrame::toward(c, m).ok(),
+                (None, None) => None,
+            };
             // A validated light has a finite centre, so `along` succeeds; a
             // light built around its constructors with a non-finite centre
             // gets the frame at the origin (its receivers are errors).
