@@ -194,6 +194,10 @@ pub struct Run {
 /// visibility, checks the contract (one finite value in `[0, 1]` per
 /// receiver) and times the whole.
 ///
+/// [`Run::stats`] is what the stage log gained during the run: runs on one
+/// [`Stages`] from several threads at once still compute the right values,
+/// but their stats then mix.
+///
 /// # Errors
 /// The method's [`MethodError`].
 pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, MethodError> {
