@@ -295,3 +295,63 @@ fn stages_are_built_only_when_needed_and_once() {
         .iter()
         .all(|s| s.seconds >= 0.0 && !s.detail.is_empty()));
 }
+
+#[test]
+fn pcss_names_round_trip_through_parse() {
+    let variants = [
+        Pcss::default(),
+        Pcss {
+            resolution: 256,
+            filter_samples: 17,
+            ..Pcss::default()
+        },
+        Pcss {
+            bias: PcssBias::Constant,
+            bias_relative: 0.1 + 0.2,
+            bias_texels: 2.5,
+            blocker_samples: 5,
+            ..Pcss::default()
+        },
+    ];
+    for p in variants {
+        let name = p.name();
+        let back = Pcss::from_name(&name).unwrap();
+        assert_eq!(back, p, "{name}");
+        assert_eq!(method::parse(&name).unwrap().name(), name);
+    }
+    assert!(method::parse("pcss:map=").is_err());
+    assert!(method::parse("pcss:sideways").is_err());
+    assert!(method::parse("pcssx").is_err());
+}
+
+#[test]
+fn pcss_shadows_a_receiver_right_behind_its_own_sheet() {
+    // The underside of a plate lit from above, just below it (where camera
+    // receivers sit, 2⁻³² of the scale off the surface) and a little lower:
+    // the plate hides the whole light, as the exact reference says.
+    let light = Light::disk(DVec3::new(0.0, 4.0, 0.0), -DVec3::Y, 0.6).unwrap();
+    let scene = Scene::new(light)
+        .with_mesh(
+            "floor",
+            quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0).unwrap(),
+        )
+        .with_mesh(
+            "plate",
+            quad(DVec3::Y, DVec3::X * 0.4, -DVec3::Z * 0.3).unwrap(),
+        );
+    let under = |depth: f64, x: f64| Receiver {
+        position: DVec3::new(x, 1.0 - depth, 0.05),
+        normal: Some(-DVec3::Y),
+        object: Some(1),
+    };
+    let receivers = vec![
+        under(4.0 / 4_294_967_296.0, 0.0),
+        under(1e-4, 0.1),
+        under(1e-2, -0.1),
+    ];
+    let frame = Frame::from_receivers(receivers);
+    let stages = Stages::new(&scene);
+    let exact = values(&Exact, &stages, &frame);
+    assert_eq!(exact, [0.0, 0.0, 0.0]);
+    assert_eq!(values(&Pcss::default(), &stages, &frame), exact);
+}

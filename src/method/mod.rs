@@ -120,6 +120,15 @@ pub enum MethodError {
     },
     /// The light view could not be set up.
     LightView(RasterError),
+    /// The method broke the trait's contract (a value outside `[0, 1]` or
+    /// NaN, a missing value): a bug in the method, reported rather than
+    /// passed on.
+    Contract {
+        /// The method.
+        method: String,
+        /// What was wrong.
+        message: String,
+    },
     /// An option of the method is out of its range.
     InvalidOption {
         /// The method.
@@ -156,6 +165,9 @@ impl fmt::Display for MethodError {
             ),
             MethodError::LightView(e) => write!(f, "light view: {e}"),
             MethodError::InvalidOption { method, message } => write!(f, "{method}: {message}"),
+            MethodError::Contract { method, message } => {
+                write!(f, "{method} broke the method contract: {message}")
+            }
         }
     }
 }
@@ -191,8 +203,9 @@ pub struct Run {
 }
 
 /// Runs `method` on `frame`: builds the stages it needs, computes the
-/// visibility, checks the contract (one finite value in `[0, 1]` per
-/// receiver) and times the whole.
+/// visibility, checks the contract (one value in `[0, 1]` per receiver, a
+/// finite standard error for each if any; [`MethodError::Contract`]
+/// otherwise) and times the whole.
 ///
 /// [`Run::stats`] is what the stage log gained during the run: runs on one
 /// [`Stages`] from several threads at once still compute the right values,
@@ -207,8 +220,31 @@ pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, M
     stages.prepare(needs);
     let output = method.visibility(stages, frame)?;
     let seconds = start.elapsed().as_secs_f64();
-    debug_assert_eq!(output.visibility.len(), frame.receivers().len());
-    debug_assert!(output.visibility.iter().all(|v| (0.0..=1.0).contains(v)));
+    let n = frame.receivers().len();
+    let bad = if output.visibility.len() != n {
+        Some(format!(
+            "{} values for {n} receivers",
+            output.visibility.len()
+        ))
+    } else if let Some(i) = output
+        .visibility
+        .iter()
+        .position(|v| !(0.0..=1.0).contains(v))
+    {
+        Some(format!("receiver {i} got {}", output.visibility[i]))
+    } else {
+        output
+            .stderr
+            .as_ref()
+            .filter(|e| e.len() != n || e.iter().any(|x| !x.is_finite()))
+            .map(|_| "a standard error is missing or not finite".to_owned())
+    };
+    if let Some(message) = bad {
+        return Err(MethodError::Contract {
+            method: method.name(),
+            message,
+        });
+    }
     Ok(Run {
         method: method.name(),
         output,
@@ -243,8 +279,10 @@ pub fn parse(name: &str) -> Result<Box<dyn Method>, String> {
     match name {
         "exact" => return Ok(Box::new(Exact)),
         "hard" => return Ok(Box::new(HardShadow)),
-        "pcss" => return Ok(Box::new(Pcss::default())),
         _ => {}
+    }
+    if option_list(name, "pcss").is_some() {
+        return Ok(Box::new(Pcss::from_name(name)?));
     }
     if name == "sism" || name.starts_with("sism:") {
         return Sism::from_name(name).map(|s| Box::new(s) as Box<dyn Method>);
@@ -266,6 +304,15 @@ pub fn parse(name: &str) -> Result<Box<dyn Method>, String> {
         ));
     }
     Err(format!("unknown method '{name}'; available: {available}"))
+}
+
+/// The options of a method name `base` or `base:opt,opt,…`: `Some` list
+/// (empty for `base` alone) when `name` is of that form, `None` otherwise.
+pub(crate) fn option_list<'a>(name: &'a str, base: &str) -> Option<Vec<&'a str>> {
+    match name.strip_prefix(base)? {
+        "" => Some(Vec::new()),
+        rest => Some(rest.strip_prefix(':')?.split(',').collect()),
+    }
 }
 
 /// The methods the default run (`softshadow` with no arguments) compares,

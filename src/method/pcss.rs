@@ -70,8 +70,9 @@ pub enum PcssBias {
     /// receiver's own surface is never its blocker however wide the filter,
     /// on any slope ("receiver plane depth bias", a known improvement on a
     /// constant bias). Needs receiver normals. A receiver whose normal faces
-    /// away from the light's centre is compared with its own depth instead,
-    /// as under [`PcssBias::Constant`].
+    /// away from the light's centre (its own surface lies between it and the
+    /// centre) is shadowed by that surface: for it a texel blocks when
+    /// `d < z_p + m`, so its own surface, at its own depth, counts.
     ReceiverPlane,
     /// `z = z_p`, the receiver's own depth: the classic constant bias, which
     /// needs no normal but lets a sloped receiver shadow itself under a wide
@@ -124,6 +125,9 @@ struct Lookup<'a> {
     normal: Option<DVec3>,
     /// The margin `m` of [`PcssBias`].
     margin: f64,
+    /// The receiver faces away from the light's centre: its own surface
+    /// blocks it ([`PcssBias::ReceiverPlane`]).
+    own_surface_blocks: bool,
 }
 
 impl Lookup<'_> {
@@ -154,13 +158,85 @@ impl Lookup<'_> {
             }
             None => self.p.z,
         };
-        (d < z - self.margin).then_some(d)
+        let blocks = if self.own_surface_blocks {
+            d < z + self.margin
+        } else {
+            d < z - self.margin
+        };
+        blocks.then_some(d)
+    }
+}
+
+impl Pcss {
+    /// The method called `name`: `pcss` (the defaults) or `pcss:OPT,…` with
+    /// options `map=N` ([`resolution`](Pcss::resolution)), `search=N`
+    /// ([`blocker_samples`](Pcss::blocker_samples)), `filter=N`
+    /// ([`filter_samples`](Pcss::filter_samples)), `constant`
+    /// ([`PcssBias::Constant`]), `relative=X`
+    /// ([`bias_relative`](Pcss::bias_relative)), `texels=X`
+    /// ([`bias_texels`](Pcss::bias_texels)). [`Method::name`] writes the
+    /// options that differ from the defaults, in that order, so names
+    /// round-trip. Values are checked when the method runs.
+    ///
+    /// # Errors
+    /// A message naming the unknown option or the malformed value.
+    pub fn from_name(name: &str) -> Result<Pcss, String> {
+        let mut p = Pcss::default();
+        let options =
+            super::option_list(name, "pcss").ok_or_else(|| format!("unknown method '{name}'"))?;
+        for opt in options {
+            let bad = || {
+                format!(
+                    "'{name}': option '{opt}' is not one of map=N, search=N, filter=N, \
+                     constant, relative=X, texels=X"
+                )
+            };
+            if opt == "constant" {
+                p.bias = PcssBias::Constant;
+                continue;
+            }
+            let (k, v) = opt.split_once('=').ok_or_else(bad)?;
+            match k {
+                "map" => p.resolution = v.parse().map_err(|_| bad())?,
+                "search" => p.blocker_samples = v.parse().map_err(|_| bad())?,
+                "filter" => p.filter_samples = v.parse().map_err(|_| bad())?,
+                "relative" => p.bias_relative = v.parse().map_err(|_| bad())?,
+                "texels" => p.bias_texels = v.parse().map_err(|_| bad())?,
+                _ => return Err(bad()),
+            }
+        }
+        Ok(p)
     }
 }
 
 impl Method for Pcss {
     fn name(&self) -> String {
-        "pcss".to_owned()
+        let d = Pcss::default();
+        let mut options = Vec::new();
+        if self.resolution != d.resolution {
+            options.push(format!("map={}", self.resolution));
+        }
+        if self.blocker_samples != d.blocker_samples {
+            options.push(format!("search={}", self.blocker_samples));
+        }
+        if self.filter_samples != d.filter_samples {
+            options.push(format!("filter={}", self.filter_samples));
+        }
+        if self.bias == PcssBias::Constant {
+            options.push("constant".to_owned());
+        }
+        // `{:?}` prints the shortest string that parses back to the same f64.
+        if self.bias_relative.to_bits() != d.bias_relative.to_bits() {
+            options.push(format!("relative={:?}", self.bias_relative));
+        }
+        if self.bias_texels.to_bits() != d.bias_texels.to_bits() {
+            options.push(format!("texels={:?}", self.bias_texels));
+        }
+        if options.is_empty() {
+            "pcss".to_owned()
+        } else {
+            format!("pcss:{}", options.join(","))
+        }
     }
 
     fn needs(&self, _: &Light) -> Result<Needs, MethodError> {
@@ -231,21 +307,19 @@ impl Method for Pcss {
                     return Ok(1.0);
                 }
                 // The tangent plane stands for the receiver's own surface
-                // only where that surface faces the light's centre; a
-                // receiver facing away is compared with its own depth (its
-                // own surface, between it and the light, blocks it there).
-                let normal = if plane {
-                    rec.normal
-                        .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)))
-                        .filter(|n| n.dot(p) < 0.0)
-                } else {
-                    None
-                };
+                // where that surface faces the light's centre; a receiver
+                // facing away is behind its own surface, which blocks it.
+                let n = rec
+                    .normal
+                    .filter(|_| plane)
+                    .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
+                let facing = n.filter(|n| n.dot(p) < 0.0);
                 let lookup = Lookup {
                     maps,
                     p,
-                    normal,
+                    normal: facing,
                     margin: p.z * (self.bias_relative + self.bias_texels * texel),
+                    own_surface_blocks: n.is_some() && facing.is_none(),
                 };
                 let s = DVec2::new(p.x / p.z, p.y / p.z);
                 // 1. Blocker search.

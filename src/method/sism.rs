@@ -76,6 +76,13 @@
 //! per covering triangle and each edge counts `ω m` (1 for the contour of a
 //! solid, as a silhouette edge counts once in the paper). For one convex
 //! solid or one open sheet `U + Σ` is then exact in the paper's model.
+//! Components are found on the topology stage's *welded* vertices
+//! ([`Stages::topology`]: corners at bit-identical positions are one), so a
+//! solid stored as a triangle soup is still closed. A component that is
+//! closed but for one odd edge — a hole, a fin, corners that differ in the
+//! last bit — counts as open, which doubles its layers: its penumbra comes
+//! out up to twice too deep (measured: errors near 0.5). Such meshes want
+//! `sism:exact-union`, whose union does not count layers.
 //! A receiver on or inside a closed surface (resting on the floor under a
 //! box, say) sees an odd number of that surface's faces, a half layer; the
 //! count is rounded up to whole layers, since the light's centre is blocked
@@ -222,6 +229,10 @@ pub struct Sism {
     /// Depth slices of the perspective grid, `1..=256`; default
     /// [`Sism::DEFAULT_DEPTH_SLICES`] = 8 (ours: Fig. 3 shows a 3D grid
     /// without a count).
+    ///
+    /// The three grid sizes change only the work, never a value; the grid
+    /// lowers them where needed to stay within `2²⁶` keys (512 MiB of
+    /// offsets), so no valid option can exhaust memory.
     pub depth_slices: u32,
 }
 
@@ -241,14 +252,9 @@ impl Sism {
     /// A message naming the option that is not understood.
     pub fn from_name(name: &str) -> Result<Sism, String> {
         let mut s = Sism::default();
-        let rest = match name.strip_prefix("sism") {
-            Some("") => return Ok(s),
-            Some(r) => r
-                .strip_prefix(':')
-                .ok_or(format!("unknown method '{name}'"))?,
-            None => return Err(format!("unknown method '{name}'")),
-        };
-        for opt in rest.split(',') {
+        let options =
+            super::option_list(name, "sism").ok_or_else(|| format!("unknown method '{name}'"))?;
+        for opt in options {
             let bad = || {
                 format!(
                     "'{name}': option '{opt}' is not one of all-edges, exact-union, \

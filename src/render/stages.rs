@@ -258,20 +258,32 @@ impl<'a> Stages<'a> {
         })
     }
 
-    /// Per mesh, its edge topology (`None` for a mesh the topology rejects,
-    /// e.g. one with an out-of-range index — which a validated
-    /// [`Mesh`](crate::scene::Mesh) never has).
+    /// Per mesh, its edge topology over *welded* vertices: corners at
+    /// bit-identical positions (`−0` and `+0` alike) are one vertex, the one
+    /// with the lowest index, so a mesh stored as a triangle soup or with
+    /// duplicated seam vertices still has its shared edges (a closed solid
+    /// stays closed). The topology's triangles index the mesh's own
+    /// positions. `None` for a mesh the topology rejects (never a validated
+    /// [`Mesh`](crate::scene::Mesh)).
     pub fn topology(&self) -> &[Option<MeshTopology>] {
         self.topology.get_or_init(|| {
             self.timed("topology", || {
+                let mut welded_vertices = 0usize;
                 let t: Vec<_> = self
                     .scene
                     .meshes()
                     .iter()
-                    .map(|m| MeshTopology::new(m.triangles(), m.positions().len()).ok())
+                    .map(|m| {
+                        let (triangles, merged) = welded(m.positions(), m.triangles());
+                        welded_vertices += merged;
+                        MeshTopology::new(&triangles, m.positions().len()).ok()
+                    })
                     .collect();
                 let edges: usize = t.iter().flatten().map(|t| t.edges().len()).sum();
-                (t, format!("{edges} edges"))
+                (
+                    t,
+                    format!("{edges} edges, {welded_vertices} vertices welded"),
+                )
             })
         })
     }
@@ -415,4 +427,23 @@ fn near_depth(frame: LightFrame, triangles: &[[DVec3; 3]], receivers: &Frame) ->
         return 1.0;
     }
     (lo * 0.5).max(hi * (1.0 / 1_048_576.0))
+}
+
+/// `triangles` with every index replaced by the lowest index of a vertex at
+/// the bit-identical position (`−0` read as `+0`), and how many vertices
+/// were merged into another.
+fn welded(positions: &[DVec3], triangles: &[[u32; 3]]) -> (Vec<[u32; 3]>, usize) {
+    let mut first = std::collections::HashMap::with_capacity(positions.len());
+    let key = |v: DVec3| (v + DVec3::ZERO).to_array().map(f64::to_bits);
+    let canonical: Vec<u32> = positions
+        .iter()
+        .enumerate()
+        .map(|(i, &v)| *first.entry(key(v)).or_insert(i as u32))
+        .collect();
+    let merged = positions.len() - first.len();
+    let triangles = triangles
+        .iter()
+        .map(|t| t.map(|i| canonical.get(i as usize).copied().unwrap_or(i)))
+        .collect();
+    (triangles, merged)
 }

@@ -16,6 +16,12 @@ use rayon::prelude::*;
 /// The most cells along one side of the grid.
 pub(super) const MAX_SIDE: u32 = 8192;
 
+/// The most keys (cells, padded to whole bins, times depth slices) a grid
+/// allocates: `2²⁶` (two `u32` arrays of that length, 512 MiB). The cell
+/// count, the bin side and the slice count are lowered to fit; they change
+/// only the work, never a value.
+pub(super) const KEY_BUDGET: usize = 1 << 26;
+
 /// The grid and its sorted receivers.
 pub(super) struct Grid {
     /// Lower corner of the grid on the light image plane.
@@ -65,7 +71,8 @@ pub(super) struct Entry {
 impl Grid {
     /// Builds the grid over `entries` (finite, `z > 0`) with about
     /// `cells_per_receiver` cells per receiver, `bin × bin` cells per bin
-    /// and `slices` depth slices uniform in `1/z`. `O(n + cells · slices)`.
+    /// and `slices` depth slices uniform in `1/z` — all three lowered as
+    /// needed to stay within [`KEY_BUDGET`] keys. `O(n + cells · slices)`.
     pub fn build(entries: &[Entry], cells_per_receiver: f64, bin: u32, slices: u32) -> Grid {
         let n = entries.len();
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
@@ -86,7 +93,7 @@ impl Grid {
         let scale = lo.abs().max(hi.abs()).max_element().max(1.0);
         let floor = scale * 1e-9;
         let mut extent = (hi - lo).max(DVec2::splat(floor));
-        let target = (n as f64 * cells_per_receiver).clamp(1.0, f64::from(MAX_SIDE).powi(2));
+        let target = (n as f64 * cells_per_receiver).clamp(1.0, (KEY_BUDGET / 8) as f64);
         let aspect = extent.x / extent.y;
         let nx = ((target * aspect).sqrt().ceil()).clamp(1.0, f64::from(MAX_SIDE)) as u32;
         let ny = ((target / f64::from(nx)).ceil()).clamp(1.0, f64::from(MAX_SIDE)) as u32;
@@ -94,11 +101,14 @@ impl Grid {
         // cell rather than on its far side.
         extent *= 1.0 + 1e-9;
         let cell = extent / DVec2::new(f64::from(nx), f64::from(ny));
-        let bin = bin.max(1);
+        // A bin no wider than the grid keeps the padding below 4 nx ny
+        // (bx bin < nx + bin ≤ 2 nx), hence below KEY_BUDGET / 2.
+        let bin = bin.min(nx).min(ny).max(1);
         let bx = nx.div_ceil(bin);
         let by = ny.div_ceil(bin);
-        let slices = slices.max(1);
-        let keys = bx as usize * by as usize * (bin as usize * bin as usize) * slices as usize;
+        let padded = bx as usize * by as usize * (bin as usize * bin as usize);
+        let slices = slices.clamp(1, (KEY_BUDGET / padded).max(1) as u32);
+        let keys = padded * slices as usize;
 
         let mut grid = Grid {
             lo,
