@@ -45,7 +45,10 @@ fuzz_target!(|data: &[u8]| {
     // m is rounded off the segment by at most a thin triangle (a, m, b).
     let off = (m - c.a).perp_dot(c.b - c.a).abs() / 2.0
         + EPS * ((m - c.a).length() * (c.b - c.a).length());
-    assert!((parts - v).abs() <= 3.0 * SLACK * EPS * r2 + off, "{c:?} t={t}: {parts} vs {v}");
+    assert!(
+        (parts - v).abs() <= 3.0 * SLACK * EPS * r2 + off,
+        "{c:?} t={t}: {parts} vs {v}"
+    );
 
     // Polygon: within [0, min(polygon area, πr²)] for a counter-clockwise one.
     let r = radius(&mut rng);
@@ -68,7 +71,8 @@ fuzz_target!(|data: &[u8]| {
     assert!(s.abs() <= 0.5 + EPS);
     assert_eq!(k::circle_segment_occlusion(-d, w0, w1), -s);
     let split = -w0 + (w0 + w1) * t;
-    let halves = k::circle_segment_occlusion(d, w0, split) + k::circle_segment_occlusion(d, -split, w1);
+    let halves =
+        k::circle_segment_occlusion(d, w0, split) + k::circle_segment_occlusion(d, -split, w1);
     assert!(
         (halves - s).abs() <= 8.0 * EPS * (1.0 + w0.abs() + w1.abs()),
         "({d:?}, {w0:?}, {w1:?}) t={t}: {halves} vs {s}"

@@ -29,7 +29,11 @@ fn word(data: &[u8], i: usize) -> Option<u64> {
     Some(u64::from_le_bytes(bytes.try_into().ok()?))
 }
 
-fn exact_v(triangles: &[[DVec3; 3]], case_light: &softshadow::scene::Light, p: DVec3) -> Option<f64> {
+fn exact_v(
+    triangles: &[[DVec3; 3]],
+    case_light: &softshadow::scene::Light,
+    p: DVec3,
+) -> Option<f64> {
     let bvh = Bvh::new(Occluders::from_triangles(triangles.to_vec()));
     exact::visibility(&bvh, case_light, p).ok()
 }
@@ -66,13 +70,24 @@ fuzz_target!(|data: &[u8]| {
         return;
     }
 
-    let reversed: Vec<[DVec3; 3]> = case.triangles.iter().rev().map(|t| [t[2], t[1], t[0]]).collect();
+    let reversed: Vec<[DVec3; 3]> = case
+        .triangles
+        .iter()
+        .rev()
+        .map(|t| [t[2], t[1], t[0]])
+        .collect();
     let w = exact_v(&reversed, &light, p).expect("same receiver");
-    assert!((v - w).abs() <= 1e-12, "order/orientation: {v} vs {w}\n{case:?}");
+    assert!(
+        (v - w).abs() <= 1e-12,
+        "order/orientation: {v} vs {w}\n{case:?}"
+    );
 
     if case.triangles.len() > 1 {
         let fewer = exact_v(&case.triangles[1..], &light, p).expect("same receiver");
-        assert!(v <= fewer + 1e-12, "more occluders, more light: {v} > {fewer}\n{case:?}");
+        assert!(
+            v <= fewer + 1e-12,
+            "more occluders, more light: {v} > {fewer}\n{case:?}"
+        );
     }
 
     {
@@ -82,6 +97,9 @@ fuzz_target!(|data: &[u8]| {
             .expect("the exact reference accepted this receiver");
         let q = student_t_two_sided_quantile(1e-12, REPLICATES - 1);
         let allowed = agreement_tolerance(&m, samples, q);
-        assert!((m.visibility - v).abs() <= allowed, "exact {v} vs {m:?}\n{case:?}");
+        assert!(
+            (m.visibility - v).abs() <= allowed,
+            "exact {v} vs {m:?}\n{case:?}"
+        );
     }
 });
