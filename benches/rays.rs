@@ -138,15 +138,10 @@ fn count(rays: &[(DVec3, DVec3)], unoccluded: impl Fn(DVec3, DVec3) -> bool + Sy
 /// One ray per pixel of `camera`, row by row: pinhole, pixel centres, row 0
 /// at the top (as `examples/primary_corpus.rs` documents).
 fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {
-    let (w, h) = camera.resolution();
-    let mut out = Vec::with_capacity(w as usize * h as usize);
-    for row in 0..h {
-        for col in 0..w {
-            let (eye, d) = camera.primary_ray(col, row);
-            out.push((eye, d.normalize()));
-        }
-    }
-    out
+    camera
+        .primary_rays()
+        .map(|(eye, d)| (eye, d.normalize()))
+        .collect()
 }
 
 /// Counts the hits of `rays` (`t_max`), rayon over chunks of `chunk` rays.

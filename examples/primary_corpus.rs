@@ -59,7 +59,11 @@ use softshadow::scene::Camera;
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+
+#[path = "support/timing.rs"]
+mod timing;
 use std::time::Instant;
+use timing::{cpu_ns, median};
 
 const THREADS: usize = 2;
 const WARMUPS: usize = 1;
@@ -78,15 +82,10 @@ fn to_f32(v: DVec3) -> DVec3 {
 
 /// The camera's rays, row by row (see the module docs), rounded to `f32`.
 fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {
-    let (w, h) = camera.resolution();
-    let mut out = Vec::with_capacity(w as usize * h as usize);
-    for row in 0..h {
-        for col in 0..w {
-            let (eye, d) = camera.primary_ray(col, row);
-            out.push((to_f32(eye), to_f32(d.normalize())));
-        }
-    }
-    out
+    camera
+        .primary_rays()
+        .map(|(eye, d)| (to_f32(eye), to_f32(d.normalize())))
+        .collect()
 }
 
 fn write_corpus(
@@ -136,23 +135,6 @@ fn write_hits(path: &Path, hits: &[Option<Hit>]) -> std::io::Result<()> {
         w.write_all(&h.map_or(u32::MAX, |h| h.triangle).to_le_bytes())?;
     }
     w.flush()
-}
-
-/// CPU time consumed so far by all threads of this process, in
-/// nanoseconds (Linux: the first field of `/proc/self/task/*/schedstat`);
-/// `None` where that is unavailable.
-fn cpu_ns() -> Option<u64> {
-    let mut total = 0;
-    for entry in fs::read_dir("/proc/self/task").ok()? {
-        let text = fs::read_to_string(entry.ok()?.path().join("schedstat")).ok()?;
-        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
-    }
-    Some(total)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn main() {

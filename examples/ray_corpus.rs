@@ -66,7 +66,11 @@ use softshadow::reference::Occluders;
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
+
+#[path = "support/timing.rs"]
+mod timing;
 use std::time::Instant;
+use timing::{cpu_ns, median};
 
 const SOUP_TRIANGLES: usize = 100_000;
 const SOUP_HALF_SIZE: f64 = 0.01;
@@ -205,23 +209,6 @@ fn write_corpus(
         put(v)?;
     }
     w.flush()
-}
-
-/// CPU time consumed so far by all threads of this process, in
-/// nanoseconds (Linux: the first field of `/proc/self/task/*/schedstat`);
-/// `None` where that is unavailable.
-fn cpu_ns() -> Option<u64> {
-    let mut total = 0;
-    for entry in fs::read_dir("/proc/self/task").ok()? {
-        let text = fs::read_to_string(entry.ok()?.path().join("schedstat")).ok()?;
-        total += text.split_whitespace().next()?.parse::<u64>().ok()?;
-    }
-    Some(total)
-}
-
-fn median(mut v: Vec<f64>) -> f64 {
-    v.sort_by(f64::total_cmp);
-    v[v.len() / 2]
 }
 
 fn main() {

@@ -154,6 +154,13 @@ impl Camera {
         })
     }
 
+    /// [`Camera::primary_ray`] for every pixel, row by row from the
+    /// top-left: `width · height` rays.
+    pub fn primary_rays(&self) -> impl Iterator<Item = (DVec3, DVec3)> + '_ {
+        (0..self.height)
+            .flat_map(move |row| (0..self.width).map(move |col| self.primary_ray(col, row)))
+    }
+
     /// The primary ray through the centre of pixel `(col, row)` (row 0 at
     /// the top, column 0 at the left): `(eye, direction)`, the direction not
     /// normalised. Pinhole model: `forward = target − eye` normalised,
@@ -295,5 +302,9 @@ mod tests {
         let (_, top_left) = camera.primary_ray(0, 0);
         let expected = DVec3::new(-2.0 + 0.01, 1.0 - 0.01, -1.0);
         assert!((top_left - expected).length() < 1e-12, "{top_left}");
+        let all: Vec<_> = camera.primary_rays().collect();
+        assert_eq!(all.len(), 200 * 100);
+        assert_eq!(all[100 * 200 - 1], camera.primary_ray(199, 99));
+        assert_eq!(all[250], camera.primary_ray(50, 1));
     }
 }
