@@ -63,7 +63,7 @@ use std::path::{Path, PathBuf};
 #[path = "support/timing.rs"]
 mod timing;
 use std::time::Instant;
-use timing::{cpu_ns, median};
+use timing::time_runs;
 
 const THREADS: usize = 2;
 const WARMUPS: usize = 1;
@@ -175,9 +175,7 @@ fn main() {
 
     let count = rays.len();
     let mut hits: Vec<Option<Hit>> = vec![None; count];
-    let run = |hits: &mut [Option<Hit>]| {
-        let cpu = cpu_ns();
-        let start = Instant::now();
+    let timing = time_runs(WARMUPS, REPETITIONS, || {
         pool.install(|| {
             hits.par_chunks_mut(width as usize)
                 .zip(rays.par_chunks(width as usize))
@@ -187,39 +185,9 @@ fn main() {
                     }
                 });
         });
-        let wall = start.elapsed().as_secs_f64();
-        (wall, cpu_ns().zip(cpu).map(|(b, a)| (b - a) as f64 * 1e-9))
-    };
-    for _ in 0..WARMUPS {
-        run(&mut hits);
-    }
-    let (times, cpus): (Vec<f64>, Vec<Option<f64>>) =
-        (0..REPETITIONS).map(|_| run(&mut hits)).unzip();
-    let cpu = cpus.into_iter().collect::<Option<Vec<f64>>>().map(median);
+    });
     let hit_count = hits.iter().filter(|h| h.is_some()).count();
-    let secs = median(times.clone());
-    let rate = count as f64 / secs;
     write_hits(&outdir.join("primary.ours.hits"), &hits).expect("write results");
-    println!(
-        "default: hit {hit_count} of {count} ({:.2}%), median {:.1} ms over {REPETITIONS} \
-         (min {:.1}, max {:.1}) on {THREADS} threads: {:.3} Mrays/s; CPU time {}",
-        100.0 * hit_count as f64 / count as f64,
-        secs * 1e3,
-        times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
-        times.iter().copied().fold(0.0, f64::max) * 1e3,
-        rate / 1e6,
-        cpu.map_or("unknown".into(), |c| format!(
-            "{:.1} ms: {:.3} Mrays per CPU-second",
-            c * 1e3,
-            count as f64 / c / 1e6
-        ))
-    );
-    println!(
-        "RESULT scene=primary triangles={} rays={count} hits={hit_count} median_s={secs:.6} \
-         min_s={:.6} rays_per_s={rate:.0} cpu_s={} rays_per_cpu_s={} threads={THREADS}",
-        bvh.occluders().len(),
-        times.iter().copied().fold(f64::INFINITY, f64::min),
-        cpu.map_or("-".into(), |c| format!("{c:.6}")),
-        cpu.map_or("-".into(), |c| format!("{:.0}", count as f64 / c)),
-    );
+    let triangles = bvh.occluders().len();
+    timing.report("primary", "hit", count, hit_count, THREADS, triangles);
 }

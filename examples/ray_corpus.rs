@@ -70,7 +70,7 @@ use std::path::{Path, PathBuf};
 #[path = "support/timing.rs"]
 mod timing;
 use std::time::Instant;
-use timing::{cpu_ns, median};
+use timing::time_runs;
 
 const SOUP_TRIANGLES: usize = 100_000;
 const SOUP_HALF_SIZE: f64 = 0.01;
@@ -253,9 +253,7 @@ fn main() {
 
         let segments: Vec<(DVec3, DVec3)> = origins.into_iter().zip(ends).collect();
         let mut occluded = vec![0u8; count];
-        let run = |occluded: &mut [u8]| {
-            let cpu = cpu_ns();
-            let start = Instant::now();
+        let timing = time_runs(WARMUPS, REPETITIONS, || {
             pool.install(|| {
                 occluded
                     .par_chunks_mut(CHUNK)
@@ -266,40 +264,10 @@ fn main() {
                         }
                     });
             });
-            let wall = start.elapsed().as_secs_f64();
-            (wall, cpu_ns().zip(cpu).map(|(b, a)| (b - a) as f64 * 1e-9))
-        };
-        for _ in 0..WARMUPS {
-            run(&mut occluded);
-        }
-        let (times, cpus): (Vec<f64>, Vec<Option<f64>>) =
-            (0..REPETITIONS).map(|_| run(&mut occluded)).unzip();
-        let cpu = cpus.into_iter().collect::<Option<Vec<f64>>>().map(median);
+        });
         let hits = occluded.iter().filter(|&&o| o == 1).count();
-        let secs = median(times.clone());
-        let rate = count as f64 / secs;
         fs::write(outdir.join(format!("{name}.ours.occluded")), &occluded).expect("write results");
-        println!(
-            "{name}: occluded {hits} of {count} ({:.2}%), median {:.1} ms over {REPETITIONS} \
-             (min {:.1}, max {:.1}) on {THREADS} threads: {:.3} Mrays/s; CPU time {}",
-            100.0 * hits as f64 / count as f64,
-            secs * 1e3,
-            times.iter().copied().fold(f64::INFINITY, f64::min) * 1e3,
-            times.iter().copied().fold(0.0, f64::max) * 1e3,
-            rate / 1e6,
-            cpu.map_or("unknown".into(), |c| format!(
-                "{:.1} ms: {:.3} Mrays per CPU-second",
-                c * 1e3,
-                count as f64 / c / 1e6
-            ))
-        );
-        println!(
-            "RESULT scene={name} triangles={} rays={count} hits={hits} median_s={secs:.6} \
-             min_s={:.6} rays_per_s={rate:.0} cpu_s={} rays_per_cpu_s={} threads={THREADS}",
-            bvh.occluders().len(),
-            times.iter().copied().fold(f64::INFINITY, f64::min),
-            cpu.map_or("-".into(), |c| format!("{c:.6}")),
-            cpu.map_or("-".into(), |c| format!("{:.0}", count as f64 / c)),
-        );
+        let triangles = bvh.occluders().len();
+        timing.report(name, "occluded", count, hits, THREADS, triangles);
     }
 }

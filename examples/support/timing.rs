@@ -1,10 +1,12 @@
-//! Timing helpers shared by the ray-corpus examples (`ray_corpus.rs`,
-//! `primary_corpus.rs`), included with `#[path]`.
+//! Timing shared by the ray-corpus examples (`ray_corpus.rs`,
+//! `primary_corpus.rs`), included with `#[path]`: warm-up runs, then the
+//! median wall and CPU time of repeated runs, and the two report lines the
+//! comparison scripts read.
 
 /// CPU time consumed so far by all threads of this process, in
 /// nanoseconds (Linux: the first field of `/proc/self/task/*/schedstat`);
 /// `None` where that is unavailable.
-pub fn cpu_ns() -> Option<u64> {
+fn cpu_ns() -> Option<u64> {
     let mut total = 0;
     for entry in std::fs::read_dir("/proc/self/task").ok()? {
         let text = std::fs::read_to_string(entry.ok()?.path().join("schedstat")).ok()?;
@@ -14,7 +16,84 @@ pub fn cpu_ns() -> Option<u64> {
 }
 
 /// The median (the upper one for an even count) of a non-empty list.
-pub fn median(mut v: Vec<f64>) -> f64 {
+fn median(mut v: Vec<f64>) -> f64 {
     v.sort_by(f64::total_cmp);
     v[v.len() / 2]
+}
+
+/// Wall and CPU seconds of repeated runs.
+pub struct Timing {
+    /// Median wall time.
+    pub median: f64,
+    /// Least wall time.
+    pub min: f64,
+    /// Greatest wall time.
+    pub max: f64,
+    /// Median CPU time over all threads, where the platform reports it.
+    pub cpu: Option<f64>,
+    repetitions: usize,
+}
+
+/// Runs `run` `warmups` times untimed, then `repetitions` times timed.
+pub fn time_runs(warmups: usize, repetitions: usize, mut run: impl FnMut()) -> Timing {
+    for _ in 0..warmups {
+        run();
+    }
+    let (times, cpus): (Vec<f64>, Vec<Option<f64>>) = (0..repetitions)
+        .map(|_| {
+            let cpu = cpu_ns();
+            let start = std::time::Instant::now();
+            run();
+            let wall = start.elapsed().as_secs_f64();
+            (wall, cpu_ns().zip(cpu).map(|(b, a)| (b - a) as f64 * 1e-9))
+        })
+        .unzip();
+    Timing {
+        median: median(times.clone()),
+        min: times.iter().copied().fold(f64::INFINITY, f64::min),
+        max: times.iter().copied().fold(0.0, f64::max),
+        cpu: cpus.into_iter().collect::<Option<Vec<f64>>>().map(median),
+        repetitions,
+    }
+}
+
+impl Timing {
+    /// Prints the human line and the `RESULT` line of `scene`: `count` rays
+    /// of which `hits` hit (`what`: "hit", "occluded"), on `threads`
+    /// threads, over `triangles` triangles.
+    pub fn report(
+        &self,
+        scene: &str,
+        what: &str,
+        count: usize,
+        hits: usize,
+        threads: usize,
+        triangles: usize,
+    ) {
+        let rate = count as f64 / self.median;
+        println!(
+            "{scene}: {what} {hits} of {count} ({:.2}%), median {:.1} ms over {} \
+             (min {:.1}, max {:.1}) on {threads} threads: {:.3} Mrays/s; CPU time {}",
+            100.0 * hits as f64 / count as f64,
+            self.median * 1e3,
+            self.repetitions,
+            self.min * 1e3,
+            self.max * 1e3,
+            rate / 1e6,
+            self.cpu.map_or("unknown".into(), |c| format!(
+                "{:.1} ms: {:.3} Mrays per CPU-second",
+                c * 1e3,
+                count as f64 / c / 1e6
+            ))
+        );
+        println!(
+            "RESULT scene={scene} triangles={triangles} rays={count} hits={hits} median_s={:.6} \
+             min_s={:.6} rays_per_s={rate:.0} cpu_s={} rays_per_cpu_s={} threads={threads}",
+            self.median,
+            self.min,
+            self.cpu.map_or("-".into(), |c| format!("{c:.6}")),
+            self.cpu
+                .map_or("-".into(), |c| format!("{:.0}", count as f64 / c)),
+        );
+    }
 }
