@@ -57,10 +57,10 @@ impl Frame {
     /// any triangle of `bvh` on the pixel's [primary
     /// ray](Camera::primary_ray) (closest hit, watertight), moved off the
     /// surface by [`RECEIVER_OFFSET`] along the geometric normal facing the
-    /// camera; pixels whose ray meets nothing are [`BACKGROUND`]. `width`
-    /// and `height` override the camera's resolution (the field of view is
-    /// kept). Parallel over rows; the result does not depend on the number
-    /// of threads.
+    /// camera; pixels whose ray meets nothing are [`BACKGROUND`]. The image
+    /// is the camera's resolution ([`Camera::with_resolution`] gives
+    /// another). Parallel over rows; the result does not depend on the
+    /// number of threads.
     #[must_use]
     pub fn from_camera(camera: &Camera, bvh: &Bvh) -> Frame {
         let (width, height) = camera.resolution();

@@ -230,11 +230,9 @@ impl<'a> Stages<'a> {
         self.scene
     }
 
-    /// Builds every stage in `needs` that is not built yet.
-    ///
-    /// # Errors
-    /// The light maps' [`RasterError`] (only with [`Needs::LIGHT_MAPS`],
-    /// which needs a frame: use [`Stages::light_maps`] directly).
+    /// Builds every stage in `needs` that is not built yet, except
+    /// [`Needs::LIGHT_MAPS`]: those are fitted to a frame and a resolution,
+    /// and built when the method asks [`Stages::light_maps`] for them.
     pub fn prepare(&self, needs: Needs) {
         if needs.contains(Needs::BVH) {
             self.bvh();
