@@ -300,3 +300,54 @@ impl ErrorSummary {
         }
     }
 }
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn srgb_encoding_matches_the_standard_at_known_points() {
+        assert_eq!(srgb8(0.0), 0);
+        assert_eq!(srgb8(1.0), 255);
+        // 1.055 · 0.5^(1/2.4) − 0.055 = 0.73536 → 187.52.
+        assert_eq!(srgb8(0.5), 188);
+        // The linear toe: 12.92 · 0.002 · 255 = 6.59.
+        assert_eq!(srgb8(0.002), 7);
+        assert_eq!(srgb8(f64::NAN), 0);
+        assert_eq!(srgb8(7.0), 255);
+    }
+
+    #[test]
+    fn the_heat_scale_is_white_at_zero_blue_below_red_above_and_saturates() {
+        assert_eq!(heat_colour(0.0), [255, 255, 255]);
+        let [r, g, b] = heat_colour(-HEAT_RANGE);
+        assert!(b > r && b > g, "too dark is blue: {r} {g} {b}");
+        let [r, g, b] = heat_colour(HEAT_RANGE);
+        assert!(r > g && r > b, "too bright is red: {r} {g} {b}");
+        assert_eq!(heat_colour(HEAT_RANGE), heat_colour(1.0));
+        assert_eq!(heat_colour(-HEAT_RANGE), heat_colour(-1.0));
+        // Half the range is lighter than the full colour.
+        assert!(heat_colour(0.5 * HEAT_RANGE)[1] > heat_colour(HEAT_RANGE)[1]);
+    }
+
+    #[test]
+    fn error_summaries_match_hand_computed_values() {
+        let reference = [0.0, 0.5, 1.0, 1.0];
+        let values = [0.1, 0.5, 0.9, 0.7];
+        // e = 0.1, 0, −0.1, −0.3.
+        let s = ErrorSummary::new(&values, &reference, |_| true);
+        assert_eq!(s.count, 4);
+        assert!((s.mean_abs - 0.125).abs() < 1e-15);
+        assert!((s.rmse - (0.11f64 / 4.0).sqrt()).abs() < 1e-15);
+        assert!((s.max_abs - 0.3).abs() < 1e-15);
+        assert!((s.p99_abs - 0.3).abs() < 1e-15);
+        assert!((s.mean_signed + 0.075).abs() < 1e-15);
+        assert_eq!(s.share_over_0_05, 0.75);
+        let only = ErrorSummary::new(&values, &reference, |i| i == 1);
+        assert_eq!((only.count, only.max_abs), (1, 0.0));
+        assert_eq!(
+            ErrorSummary::new(&values, &reference, |_| false),
+            ErrorSummary::default()
+        );
+    }
+}
