@@ -23,21 +23,10 @@
 # 7), plus the usual CARGO_TARGET_DIR.
 set -euo pipefail
 
-cd "$(dirname "$0")/.."
-VENV=${VENV:-/work/venv-embree}
+source "$(dirname "$0")/embree_env.sh"
 OUTDIR=${1:-target/ray_corpus}
 RAYS=${RAYS:-1000000}
 SEED=${SEED:-2026}
-REPS=${REPS:-7}
-LOG=$(mktemp -d)
-trap 'rm -rf "$LOG"' EXIT
-
-if [[ ! -x "$VENV/bin/python" ]] || ! "$VENV/bin/python" -c 'import embreex, numpy' 2>/dev/null; then
-    echo "no embreex in $VENV: python3 -m venv $VENV && $VENV/bin/pip install embreex numpy" >&2
-    exit 1
-fi
-
-echo "== machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^ //'), $(nproc) CPUs, load $(cut -d' ' -f1-3 /proc/loadavg)"
 echo "== ours: cargo run --release --example ray_corpus --features reference,arbitrary -- $OUTDIR $RAYS $SEED"
 cargo build --quiet --release --example ray_corpus --features reference,arbitrary
 cargo run --quiet --release --example ray_corpus --features reference,arbitrary -- "$OUTDIR" "$RAYS" "$SEED" |

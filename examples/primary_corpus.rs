@@ -60,25 +60,13 @@ use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-#[path = "support/timing.rs"]
-mod timing;
+#[path = "support/corpus.rs"]
+mod corpus;
+use corpus::{time_runs, to_f32, REPETITIONS, THREADS, WARMUPS};
 use std::time::Instant;
-use timing::time_runs;
 
-const THREADS: usize = 2;
-const WARMUPS: usize = 1;
-const REPETITIONS: usize = 7;
 const MAGIC: &[u8; 8] = b"SSPRIM1\0";
 const VERSION: u32 = 1;
-
-/// The nearest `f32` value, as an `f64` (exactly representable in both).
-fn to_f32(v: DVec3) -> DVec3 {
-    DVec3::new(
-        f64::from(v.x as f32),
-        f64::from(v.y as f32),
-        f64::from(v.z as f32),
-    )
-}
 
 /// The camera's rays, row by row (see the module docs), rounded to `f32`.
 fn camera_rays(camera: &Camera) -> Vec<(DVec3, DVec3)> {

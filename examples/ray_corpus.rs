@@ -67,10 +67,10 @@ use std::fs::{self, File};
 use std::io::{BufWriter, Write};
 use std::path::{Path, PathBuf};
 
-#[path = "support/timing.rs"]
-mod timing;
+#[path = "support/corpus.rs"]
+mod corpus;
+use corpus::{time_runs, to_f32, REPETITIONS, THREADS, WARMUPS};
 use std::time::Instant;
-use timing::time_runs;
 
 const SOUP_TRIANGLES: usize = 100_000;
 const SOUP_HALF_SIZE: f64 = 0.01;
@@ -81,21 +81,9 @@ const FLOOR_HALF: f64 = 1.5;
 const FLOOR_Z: f64 = -0.5;
 const LIGHT_HALF: f64 = 0.5;
 const LIGHT_Z: f64 = 1.5;
-const THREADS: usize = 2;
 const CHUNK: usize = 4096;
-const WARMUPS: usize = 1;
-const REPETITIONS: usize = 7;
 const MAGIC: &[u8; 8] = b"SSRAYC1\0";
 const VERSION: u32 = 1;
-
-/// The nearest `f32` value, as an `f64` (exactly representable in both).
-fn to_f32(v: DVec3) -> DVec3 {
-    DVec3::new(
-        f64::from(v.x as f32),
-        f64::from(v.y as f32),
-        f64::from(v.z as f32),
-    )
-}
 
 fn soup(rng: &mut Rng) -> Vec<[DVec3; 3]> {
     (0..SOUP_TRIANGLES)

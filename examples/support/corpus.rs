@@ -1,7 +1,26 @@
-//! Timing shared by the ray-corpus examples (`ray_corpus.rs`,
-//! `primary_corpus.rs`), included with `#[path]`: warm-up runs, then the
-//! median wall and CPU time of repeated runs, and the two report lines the
-//! comparison scripts read.
+//! What the ray-corpus examples (`ray_corpus.rs`, `primary_corpus.rs`)
+//! share, included with `#[path]`: the rounding of the corpus to `f32`, and
+//! the timing — warm-up runs, then the median wall and CPU time of repeated
+//! runs on the same thread count, and the two report lines the comparison
+//! scripts read.
+
+use glam::DVec3;
+
+/// Threads our side runs on (Embree's side runs as many processes).
+pub const THREADS: usize = 2;
+/// Untimed runs before the timed ones.
+pub const WARMUPS: usize = 1;
+/// Timed runs; the medians are reported.
+pub const REPETITIONS: usize = 7;
+
+/// The nearest `f32` value, as an `f64` (exactly representable in both).
+pub fn to_f32(v: DVec3) -> DVec3 {
+    DVec3::new(
+        f64::from(v.x as f32),
+        f64::from(v.y as f32),
+        f64::from(v.z as f32),
+    )
+}
 
 /// CPU time consumed so far by all threads of this process, in
 /// nanoseconds (Linux: the first field of `/proc/self/task/*/schedstat`);
