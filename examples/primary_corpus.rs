@@ -62,7 +62,7 @@ use std::path::{Path, PathBuf};
 
 #[path = "support/corpus.rs"]
 mod corpus;
-use corpus::{time_runs, to_f32, REPETITIONS, THREADS, WARMUPS};
+use corpus::{time_runs, to_f32, write_label_and_points, REPETITIONS, THREADS, WARMUPS};
 use std::time::Instant;
 
 const MAGIC: &[u8; 8] = b"SSPRIM1\0";
@@ -91,27 +91,14 @@ fn write_corpus(
     w.write_all(&(triangles.len() as u64).to_le_bytes())?;
     w.write_all(&(rays.len() as u64).to_le_bytes())?;
     w.write_all(&[0u8; 8])?;
-    let mut label = [0u8; 16];
-    label[..7].copy_from_slice(b"default");
-    w.write_all(&label)?;
-    let mut put = |v: DVec3| -> std::io::Result<()> {
-        for c in v.to_array() {
-            w.write_all(&c.to_le_bytes())?;
-        }
-        Ok(())
-    };
-    for t in triangles {
-        for &v in t {
-            put(v)?;
-        }
-    }
-    for &(o, _) in rays {
-        put(o)?;
-    }
-    for &(_, d) in rays {
-        put(d)?;
-    }
-    w.flush()
+    let origins: Vec<DVec3> = rays.iter().map(|&(o, _)| o).collect();
+    let directions = rays.iter().map(|(_, d)| d);
+    write_label_and_points(
+        &mut w,
+        "default",
+        triangles,
+        origins.iter().chain(directions),
+    )
 }
 
 fn write_hits(path: &Path, hits: &[Option<Hit>]) -> std::io::Result<()> {

@@ -69,7 +69,7 @@ use std::path::{Path, PathBuf};
 
 #[path = "support/corpus.rs"]
 mod corpus;
-use corpus::{time_runs, to_f32, REPETITIONS, THREADS, WARMUPS};
+use corpus::{time_runs, to_f32, write_label_and_points, REPETITIONS, THREADS, WARMUPS};
 use std::time::Instant;
 
 const SOUP_TRIANGLES: usize = 100_000;
@@ -179,24 +179,7 @@ fn write_corpus(
     w.write_all(&(triangles.len() as u64).to_le_bytes())?;
     w.write_all(&(origins.len() as u64).to_le_bytes())?;
     w.write_all(&[0u8; 8])?;
-    let mut label = [0u8; 16];
-    label[..name.len()].copy_from_slice(name.as_bytes());
-    w.write_all(&label)?;
-    let mut put = |v: DVec3| -> std::io::Result<()> {
-        for c in v.to_array() {
-            w.write_all(&c.to_le_bytes())?;
-        }
-        Ok(())
-    };
-    for t in triangles {
-        for &v in t {
-            put(v)?;
-        }
-    }
-    for &v in origins.iter().chain(ends) {
-        put(v)?;
-    }
-    w.flush()
+    write_label_and_points(&mut w, name, triangles, origins.iter().chain(ends))
 }
 
 fn main() {

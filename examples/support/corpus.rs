@@ -5,6 +5,7 @@
 //! scripts read.
 
 use glam::DVec3;
+use std::io::Write;
 
 /// Threads our side runs on (Embree's side runs as many processes).
 pub const THREADS: usize = 2;
@@ -115,4 +116,24 @@ impl Timing {
                 .map_or("-".into(), |c| format!("{:.0}", count as f64 / c)),
         );
     }
+}
+
+/// The tail every corpus file shares after its own header fields: a
+/// 16-byte NUL-padded `label`, then every triangle corner and every point
+/// of `points` (in order) as three little-endian `f64`s; flushes `w`.
+pub fn write_label_and_points<'a>(
+    w: &mut impl Write,
+    label: &str,
+    triangles: &'a [[DVec3; 3]],
+    points: impl IntoIterator<Item = &'a DVec3>,
+) -> std::io::Result<()> {
+    let mut padded = [0u8; 16];
+    padded[..label.len()].copy_from_slice(label.as_bytes());
+    w.write_all(&padded)?;
+    for &v in triangles.iter().flatten().chain(points) {
+        for c in v.to_array() {
+            w.write_all(&c.to_le_bytes())?;
+        }
+    }
+    w.flush()
 }
