@@ -27,27 +27,8 @@ source "$(dirname "$0")/embree_env.sh"
 OUTDIR=${1:-target/ray_corpus}
 RAYS=${RAYS:-1000000}
 SEED=${SEED:-2026}
-echo "== ours: cargo run --release --example ray_corpus --features reference,arbitrary -- $OUTDIR $RAYS $SEED"
-cargo build --quiet --release --example ray_corpus --features reference,arbitrary
-cargo run --quiet --release --example ray_corpus --features reference,arbitrary -- "$OUTDIR" "$RAYS" "$SEED" |
-    tee "$LOG/ours.txt"
-echo "== Embree: $VENV/bin/python benches/embree_compare.py $OUTDIR --reps $REPS --threads 2"
-"$VENV/bin/python" benches/embree_compare.py "$OUTDIR" --reps "$REPS" --threads 2 | tee "$LOG/embree.txt"
-echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"
-
-echo
-echo "Embree $(awk '/^EMBREE_VERSION/ {print $2}' "$LOG/embree.txt"); 2 threads (ours) / 2 processes (Embree);"
-echo "Mrays/s from the median wall time, Mrays/CPU-s from the median CPU time of the repetitions"
-echo
-awk '
-    function field(line, key,    n, i, kv, parts) {
-        n = split(line, parts, " ")
-        for (i = 1; i <= n; i++) {
-            split(parts[i], kv, "=")
-            if (kv[1] == key) return kv[2]
-        }
-        return ""
-    }
+run_both ray_corpus reference,arbitrary benches/embree_compare.py "$OUTDIR" "$RAYS" "$SEED"
+awk "$AWK_FIELD"'
     FNR == 1 { file++ }
     /^RESULT/ {
         scene = field($0, "scene")

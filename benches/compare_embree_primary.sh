@@ -21,27 +21,8 @@ set -euo pipefail
 
 source "$(dirname "$0")/embree_env.sh"
 OUTDIR=${1:-target/ray_corpus}
-echo "== ours: cargo run --release --example primary_corpus --features reference,scene-file -- $OUTDIR"
-cargo build --quiet --release --example primary_corpus --features reference,scene-file
-cargo run --quiet --release --example primary_corpus --features reference,scene-file -- "$OUTDIR" |
-    tee "$LOG/ours.txt"
-echo "== Embree: $VENV/bin/python benches/embree_primary.py $OUTDIR --reps $REPS --threads 2"
-"$VENV/bin/python" benches/embree_primary.py "$OUTDIR" --reps "$REPS" --threads 2 | tee "$LOG/embree.txt"
-echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"
-
-echo
-echo "Embree $(awk '/^EMBREE_VERSION/ {print $2}' "$LOG/embree.txt"); 2 threads (ours) / 2 processes (Embree);"
-echo "Mrays/s from the median wall time, Mrays/CPU-s from the median CPU time of the repetitions"
-echo
-awk '
-    function field(line, key,    n, i, kv, parts) {
-        n = split(line, parts, " ")
-        for (i = 1; i <= n; i++) {
-            split(parts[i], kv, "=")
-            if (kv[1] == key) return kv[2]
-        }
-        return ""
-    }
+run_both primary_corpus reference,scene-file benches/embree_primary.py "$OUTDIR"
+awk "$AWK_FIELD"'
     FNR == 1 { file++ }
     /^RESULT/ {
         if (file == 1) {
