@@ -94,8 +94,11 @@ impl Frame {
         let mut pixels = vec![BACKGROUND; width as usize * height as usize];
         let mut receivers = Vec::with_capacity(rows.iter().map(|r| r.1.len()).sum());
         for (row, (cols, found)) in rows.into_iter().enumerate() {
-            for col in cols {
-                pixels[row * width as usize + col as usize] = receivers.len() as u32;
+            // The row's receivers follow the earlier rows' in column order:
+            // the k-th found is at `cols[k]`.
+            let first = receivers.len();
+            for (k, col) in cols.into_iter().enumerate() {
+                pixels[row * width as usize + col as usize] = (first + k) as u32;
             }
             receivers.extend(found);
         }
