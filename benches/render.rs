@@ -57,11 +57,13 @@ fn methods(c: &mut Criterion) {
     let mut g = c.benchmark_group("methods");
     g.sample_size(10).measurement_time(Duration::from_secs(5));
     g.throughput(Throughput::Elements(frame.receivers().len() as u64));
-    let list: [&dyn Method; 3] = [&HardShadow, &Pcss::default(), &Exact];
+    let list: [&dyn Method; 3] = [&HardShadow::default(), &Pcss::default(), &Exact];
     for m in list {
         method::run(m, &stages, &frame).expect("runs"); // builds its stages
+                                                        // The visibility pass alone: the frame checked once, outside.
+        let input = method::check(m, &stages, &frame).expect("a valid frame");
         g.bench_function(m.name(), |b| {
-            b.iter(|| black_box(m.visibility(&stages, &frame).expect("runs")))
+            b.iter(|| black_box(m.visibility(&input).expect("runs")))
         });
     }
     g.finish();
@@ -71,7 +73,7 @@ fn methods(c: &mut Criterion) {
         b.iter(|| {
             let stages = Stages::new(&scene);
             let frame = Frame::from_camera(&camera, stages.bvh());
-            black_box(method::run(&HardShadow, &stages, &frame).expect("runs"))
+            black_box(method::run(&HardShadow::default(), &stages, &frame).expect("runs"))
         })
     });
     g.finish();

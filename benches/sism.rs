@@ -48,7 +48,7 @@ fn default_frame(c: &mut Criterion) {
             b.iter_batched(
                 || {
                     let stages = Stages::new(&scene);
-                    if m.needs(scene.light()).is_ok_and(|n| n.contains(Needs::BVH)) {
+                    if m.needs().contains(Needs::BVH) {
                         stages.bvh();
                     }
                     stages

@@ -23,7 +23,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     };
     let names: Vec<String> = args.collect();
     let methods: Vec<Box<dyn Method>> = if names.is_empty() {
-        method::default_set()
+        method::default_set(softshadow::scene::LightKind::Sphere)
             .into_iter()
             .filter(|m| m.name() != "exact")
             .collect()

@@ -36,7 +36,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let penumbra = |i: usize| exact[i] > 0.0 && exact[i] < 1.0;
     println!("| method | RMSE | RMSE penumbra | mean signed |");
     println!("|---|---:|---:|---:|");
-    for m in method::default_set() {
+    for m in method::default_set(scene.light().kind()) {
         let run = method::run(m.as_ref(), &stages, &frame)?;
         let v = &run.output.visibility;
         let part: String = run

@@ -111,7 +111,8 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
         }
         // Where the paper's footprint misses a true penumbra: receivers
         // partly lit in the exact answer where no edge term is non-zero.
-        let passes = Sism::default().passes(&stages, &frame)?;
+        let sism = Sism::default();
+        let passes = sism.passes(&method::check(&sism, &stages, &frame)?)?;
         let missed: Vec<usize> = (0..reference.len())
             .filter(|&i| reference[i] > 1e-9 && reference[i] < 1.0 - 1e-9)
             .filter(|&i| passes.occlusion[i] == passes.umbra[i])

@@ -26,9 +26,7 @@ fn timed(scene: &softshadow::scene::Scene, frame: &Frame, m: &dyn Method, runs: 
     let mut all: Vec<Run> = (0..runs)
         .map(|_| {
             let stages = Stages::new(scene);
-            if m.needs(scene.light())
-                .is_ok_and(|n| n.contains(softshadow::render::Needs::BVH))
-            {
+            if m.needs().contains(softshadow::render::Needs::BVH) {
                 stages.bvh();
             }
             method::run(m, &stages, frame).expect("the method runs")
@@ -98,7 +96,7 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     }
     let sism = sism_run.ok_or("no sism run")?;
     println!("\n`sism` stages (median run):\n\n```\n{}```\n", sism.stats);
-    let hard = timed(&scene, &frame, &method::HardShadow, RUNS);
+    let hard = timed(&scene, &frame, &method::HardShadow::default(), RUNS);
     println!(
         "sism / hard frame time: {:.2}× ({:.1} ms / {:.1} ms)\n",
         sism.seconds / hard.seconds,

@@ -64,7 +64,7 @@ fn default_run_prints_every_method_against_exact() {
         .map(|l| l.split('|').map(str::trim).collect())
         .collect();
     let names: Vec<&str> = rows.iter().map(|r| r[1]).collect();
-    for m in softshadow::method::default_set() {
+    for m in softshadow::method::default_set(softshadow::scene::LightKind::Sphere) {
         assert!(
             names.contains(&m.name().as_str()),
             "{} missing:\n{stdout}",

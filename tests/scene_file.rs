@@ -771,7 +771,7 @@ fn builtins_load_with_the_meshes_they_claim() {
     }
     assert!(builtin("nope").is_none());
     assert!(
-        matches!(builtin("large-light").unwrap().light(), Light::Sphere { radius, .. } if *radius == 2.0)
+        matches!(builtin("large-light").unwrap().light(), Light::Sphere(s) if s.radius() == 2.0)
     );
     assert!(matches!(
         builtin("linear-light").unwrap().light(),

@@ -8,7 +8,7 @@ use softshadow::arbitrary::Rng;
 use softshadow::kernel::silhouette::MeshTopology;
 use softshadow::kernel::wedge::f64::PenumbraWedge;
 use softshadow::method::sism::{Bound, Composition, EdgeSource, SismPasses};
-use softshadow::method::{self, Method, MethodError, Sism};
+use softshadow::method::{self, MethodError, Sism};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::builtin::floor_receivers;
 use softshadow::scene::primitive::{cuboid, quad, sphere, Transform};
@@ -29,7 +29,8 @@ fn floor_frame(scene: &Scene, side: usize) -> Frame {
 
 fn passes(m: &Sism, scene: &Scene, frame: &Frame) -> SismPasses {
     let stages = Stages::new(scene);
-    m.passes(&stages, frame).expect("sism runs")
+    let input = method::check(m, &stages, frame).expect("a valid frame");
+    m.passes(&input).expect("sism runs")
 }
 
 fn exact(scene: &Scene, frame: &Frame) -> Vec<f64> {
@@ -92,10 +93,7 @@ fn one_plate_under_a_disk_light_is_exact() {
     let penumbra = reference.iter().filter(|&&v| v > 0.0 && v < 1.0).count();
     assert!(penumbra > 300, "the grid covers the penumbra ({penumbra})");
     for composition in [Composition::Independent, Composition::ExactUnion] {
-        let m = Sism {
-            composition,
-            ..Sism::default()
-        };
+        let m = Sism::default().with_composition(composition);
         let p = passes(&m, &scene, &frame);
         let e = errors(&p.visibility, &reference, |_| true);
         assert!(e.max < ROUNDING, "{composition:?}: max error {}", e.max);
@@ -110,10 +108,7 @@ fn overlapping_plates_bias_darker_and_the_exact_union_removes_it() {
     let reference = exact(&scene, &frame);
     let independent = passes(&Sism::default(), &scene, &frame);
     let union = passes(
-        &Sism {
-            composition: Composition::ExactUnion,
-            ..Sism::default()
-        },
+        &Sism::default().with_composition(Composition::ExactUnion),
         &scene,
         &frame,
     );
@@ -198,19 +193,14 @@ fn all_edges_give_the_silhouettes_buffer() {
         let frame = floor_frame(&scene, 48);
         for composition in [Composition::Independent, Composition::ExactUnion] {
             let sil = passes(
-                &Sism {
-                    composition,
-                    ..Sism::default()
-                },
+                &Sism::default().with_composition(composition),
                 &scene,
                 &frame,
             );
             let all = passes(
-                &Sism {
-                    composition,
-                    edges: EdgeSource::AllEdges,
-                    ..Sism::default()
-                },
+                &Sism::default()
+                    .with_composition(composition)
+                    .with_edges(EdgeSource::AllEdges),
                 &scene,
                 &frame,
             );
@@ -239,13 +229,11 @@ fn overdraw_optimisations_change_no_value_only_the_work() {
         let frame = floor_frame(&scene, 64);
         let run = |bin_depth: bool, wedge_column: bool, bound: Bound| {
             let stages = Stages::new(&scene);
-            let m = Sism {
-                bin_depth,
-                wedge_column,
-                bound,
-                ..Sism::default()
-            };
-            let p = m.passes(&stages, &frame).unwrap();
+            let m = Sism::default()
+                .with_optimisations(bin_depth, wedge_column)
+                .with_bound(bound);
+            let input = method::check(&m, &stages, &frame).unwrap();
+            let p = m.passes(&input).unwrap();
             let stats = stages.stats();
             (p, stats)
         };
@@ -281,9 +269,10 @@ fn umbra_reads_zero_and_outside_every_wedge_is_the_umbra_pass() {
         let frame = floor_frame(&scene, 64);
         let reference = exact(&scene, &frame);
         let p = passes(&Sism::default(), &scene, &frame);
-        let Light::Sphere { center, radius } = *scene.light() else {
+        let Light::Sphere(sphere) = *scene.light() else {
             panic!("sphere light");
         };
+        let (center, radius) = (sphere.center(), sphere.radius());
         // The kernel's conservative wedges of every edge that can be a
         // silhouette from some point of the light: outside all of them the
         // light is entirely blocked or entirely visible.
@@ -357,8 +346,18 @@ fn names_round_trip_and_unsupported_lights_are_errors() {
         Light::point(DVec3::new(0.0, 3.0, 0.0)).unwrap(),
         Light::rect(DVec3::new(0.0, 3.0, 0.0), DVec3::X, DVec3::Z).unwrap(),
     ] {
+        let scene = Scene::new(light).with_mesh(
+            "plate",
+            quad(DVec3::Y, DVec3::X * 0.5, DVec3::Z * 0.5).unwrap(),
+        );
+        let stages = Stages::new(&scene);
+        let frame = Frame::from_receivers(vec![Receiver {
+            position: DVec3::ZERO,
+            normal: None,
+            object: None,
+        }]);
         assert!(matches!(
-            Sism::default().needs(&light),
+            method::run(&Sism::default(), &stages, &frame),
             Err(MethodError::UnsupportedLight { .. })
         ));
     }
@@ -371,7 +370,8 @@ fn degenerate_frames_give_values_or_errors_never_nan() {
     let m = Sism::default();
     // No receiver.
     let empty = Frame::from_receivers(Vec::new());
-    assert_eq!(m.visibility(&stages, &empty).unwrap().visibility.len(), 0);
+    let run = |frame: &Frame| method::run(&m, &stages, frame).map(|r| r.output);
+    assert_eq!(run(&empty).unwrap().visibility.len(), 0);
     // One receiver, behind the light's plane, coincident receivers, a far one.
     let c = scene.light().center();
     let at = |p: DVec3| Receiver {
@@ -385,23 +385,20 @@ fn degenerate_frames_give_values_or_errors_never_nan() {
         at(DVec3::new(0.1, 0.0, 0.1)),
         at(DVec3::new(1e6, 0.0, 0.0)),
     ]);
-    let v = m.visibility(&stages, &frame).unwrap().visibility;
+    let v = run(&frame).unwrap().visibility;
     assert!(v.iter().all(|x| (0.0..=1.0).contains(x)));
     assert_eq!(v[0], 1.0, "behind the light: outside the light view");
     assert_eq!(v[1], v[2]);
     // Inside the sphere light: an error naming the receiver.
     let inside = Frame::from_receivers(vec![at(DVec3::ZERO), at(c)]);
     assert!(matches!(
-        m.visibility(&stages, &inside),
+        run(&inside),
         Err(MethodError::Receiver { index: 1, .. })
     ));
     // Invalid options.
-    let bad = Sism {
-        depth_slices: 0,
-        ..Sism::default()
-    };
+    let bad = Sism::default().with_grid(1.0, 16, 0);
     assert!(matches!(
-        bad.visibility(&stages, &frame),
+        method::run(&bad, &stages, &frame),
         Err(MethodError::InvalidOption { .. })
     ));
 }
@@ -412,10 +409,7 @@ fn values_do_not_depend_on_the_number_of_threads() {
     let frame = floor_frame(&scene, 48);
     for m in [
         Sism::default(),
-        Sism {
-            composition: Composition::ExactUnion,
-            ..Sism::default()
-        },
+        Sism::default().with_composition(Composition::ExactUnion),
     ] {
         let run = |threads: usize| {
             rayon::ThreadPoolBuilder::new()
@@ -476,12 +470,7 @@ fn the_largest_grid_options_stay_within_the_key_budget_and_change_no_value() {
     // to 2²⁸ keys without the budget; the grid lowers them instead.
     let scene = plates(&[(1.0, 0.0)]);
     let frame = floor_frame(&scene, 3);
-    let big = Sism {
-        cells_per_receiver: 64.0,
-        bin_cells: 1024,
-        depth_slices: 256,
-        ..Sism::default()
-    };
+    let big = Sism::default().with_grid(64.0, 1024, 256);
     let a = passes(&big, &scene, &frame).visibility;
     let b = passes(&Sism::default(), &scene, &frame).visibility;
     assert_eq!(a, b);

@@ -135,7 +135,7 @@ fuzz_target!(|data: &[u8]| {
     if let Ok(point) = Light::point(light.center()) {
         let scene = scene.clone().with_light(point);
         let stages = Stages::new(&scene);
-        let hard = method::run(&method::HardShadow, &stages, &points);
+        let hard = method::run(&method::HardShadow::default(), &stages, &points);
         let exact = method::run(&method::Exact, &stages, &points);
         if let (Ok(h), Ok(e)) = (hard, exact) {
             assert_eq!(h.output.visibility, e.output.visibility);

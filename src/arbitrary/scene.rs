@@ -70,7 +70,12 @@ fn light(rng: &mut Rng, c: DVec3, s: f64) -> Light {
         }
         _ => Light::point(c),
     };
-    built.unwrap_or_else(|_| Light::point(c).unwrap_or(Light::Point { position: c }))
+    // The generators give finite `c` and `s > 0`, so `built` is a light; a
+    // point at the origin keeps the function total regardless.
+    built
+        .or_else(|_| Light::point(c))
+        .or_else(|_| Light::point(DVec3::ZERO))
+        .unwrap_or_else(|_| unreachable!("the origin is finite"))
 }
 
 /// A random case; `triangles` occluders at most (at least one).

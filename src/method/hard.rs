@@ -1,40 +1,72 @@
 //! The hard shadow: the point-light answer at the light's centre.
 
-use super::{per_receiver, Method, MethodError, Output};
-use crate::render::{Frame, Needs, Stages};
-use crate::scene::Light;
+use super::options::{flag, Configurable, Field};
+use super::{per_receiver, Horizon, Input, Method, MethodError, Output};
+use crate::render::Needs;
+use crate::scene::LightKind;
 
 /// Hard shadows: `V(p) = 1` when the open segment from `p` to the light's
 /// centre meets no triangle, else `0` — the answer for a point light at the
 /// centre, decided exactly by the BVH ([`Bvh::segment_unoccluded`]), so it
 /// equals the Monte Carlo and exact references for that point light bit for
-/// bit. Receivers the light itself cannot be seen from (inside a sphere
-/// light, …) are errors, as for every method.
+/// bit. Any light.
 ///
 /// [`Bvh::segment_unoccluded`]: crate::reference::bvh::Bvh::segment_unoccluded
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct HardShadow;
+#[non_exhaustive]
+pub struct HardShadow {
+    /// The [horizon bound](Horizon), `min(V, V_h)`; default off (ours, not
+    /// a paper's).
+    pub horizon: bool,
+}
+
+impl HardShadow {
+    /// With or without the horizon bound.
+    #[must_use]
+    pub fn with_horizon(mut self, on: bool) -> HardShadow {
+        self.horizon = on;
+        self
+    }
+}
+
+impl Configurable for HardShadow {
+    const NAME: &'static str = "hard";
+    const SUMMARY: &'static str = "hard shadows: the point light at the light's centre";
+    const LIGHTS: &'static [LightKind] = LightKind::ALL;
+    const DEFAULT_RUN: &'static [&'static str] = &["hard"];
+    const COMPARE: &'static [&'static str] = &["hard", "hard:horizon"];
+    const FIELDS: &'static [Field<HardShadow>] = &[flag(
+        "horizon",
+        "V ≤ the light's share above the receiver's tangent plane (ours)",
+        |m| m.horizon,
+        |m, v| m.horizon = v,
+    )];
+}
 
 impl Method for HardShadow {
     fn name(&self) -> String {
-        "hard".to_owned()
+        super::options::print(self)
     }
 
-    fn needs(&self, _: &Light) -> Result<Needs, MethodError> {
-        Ok(Needs::BVH)
+    fn lights(&self) -> &'static [LightKind] {
+        Self::LIGHTS
     }
 
-    fn visibility(&self, stages: &Stages, frame: &Frame) -> Result<Output, MethodError> {
-        let (bvh, light) = (stages.bvh(), stages.scene().light());
-        let center = light.center();
+    fn needs(&self) -> Needs {
+        Needs::BVH
+    }
+
+    fn horizon(&self) -> Horizon {
+        Horizon::clamp_if(self.horizon)
+    }
+
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        let bvh = input.stages().bvh();
+        let center = input.light().center();
         let visibility = per_receiver(
-            stages,
-            frame,
+            input,
             || (),
-            |(), index, r| {
-                light
-                    .emitter(r.position)
-                    .map_err(|error| MethodError::Receiver { index, error })?;
+            |(), _, r| {
                 Ok(if bvh.segment_unoccluded(r.position, center) {
                     1.0
                 } else {
@@ -42,9 +74,6 @@ impl Method for HardShadow {
                 })
             },
         )?;
-        Ok(Output {
-            visibility,
-            stderr: None,
-        })
+        Ok(Output::values(visibility))
     }
 }

@@ -1,17 +1,17 @@
 //! The shadow methods (feature `render`), behind one trait: a method
-//! declares what it needs ([`Method::needs`]) and fills the visibility of a
-//! frame's receivers ([`Method::visibility`]). DESIGN.md §6.
+//! declares what it needs ([`Method::needs`], [`Method::lights`],
+//! [`Method::requires`]) and fills the visibility of a frame's receivers
+//! ([`Method::visibility`]); [`run`] checks the light and every receiver
+//! once, builds the shared stages, runs the method, applies the
+//! [horizon](Horizon) where the method asks for it, checks the result and
+//! times the whole.
 //!
-//! | name | type | what |
-//! |---|---|---|
-//! | `exact` | [`Exact`] | the exact reference |
-//! | `mc:N` | [`MonteCarlo`] | Monte Carlo light sampling, `N` samples |
-//! | `hard` | [`HardShadow`] | the point light at the light's centre |
-//! | `pcss` | [`Pcss`] | percentage-closer soft shadows (Fernando 2005) |
-//! | `sism`, `sism:OPT,…` | [`Sism`] | soft irregular shadow mapping (Johnson et al. 2009); options in [`Sism::from_name`] |
-//!
-//! [`parse`] turns a command-line name into a method; [`run`] runs one on a
-//! frame, timed, with the stages it built.
+//! Every method of the crate is listed once, in the [`registry`]: its
+//! name, options, summary, the light kinds it handles and whether the
+//! default run compares it. [`parse`] turns a command-line name
+//! (`pcss:map=512`) into a method and [`Method::name`] prints it back; the
+//! names, their options and what they accept are listed by
+//! `softshadow --help` and in the registry's docs.
 //!
 //! ```
 //! use softshadow::method::{self, Method};
@@ -27,51 +27,243 @@
 //! let stages = Stages::new(&scene);
 //! let run = method::run(&method::Exact, &stages, &frame).unwrap();
 //! assert_eq!(run.output.visibility, vec![0.0, 1.0]); // under the plate; far away
+//! let pcss = method::parse("pcss:map=256").unwrap();
+//! assert_eq!(pcss.name(), "pcss:map=256");
 //! ```
 
+mod centre;
 mod hard;
+pub mod options;
 mod pcss;
 mod reference;
+pub mod registry;
 pub mod sism;
 
 pub use hard::HardShadow;
+pub use options::Configurable;
 pub use pcss::{Pcss, PcssBias};
 pub use reference::{Exact, MonteCarlo};
+pub use registry::{default_set, parse, REGISTRY};
 pub use sism::Sism;
 
 use crate::render::raster::RasterError;
-use crate::render::{Frame, Stages, Stats};
-use crate::scene::{Light, ReceiverError};
+use crate::render::{Frame, Needs, Receiver, Stages, Stats};
+use crate::scene::{Emitter, Light, LightKind, ReceiverError, Scene};
+use rayon::prelude::*;
 use std::fmt;
 use std::time::Instant;
 
-/// A shadow method: the visibility `V ∈ [0, 1]` (DESIGN §1) of each
-/// receiver of a frame.
+/// A shadow method: the visibility `V ∈ [0, 1]` (the fraction of the
+/// light's emitting measure visible from a receiver) of each receiver of a
+/// frame.
 ///
 /// Contract for implementations: one finite value in `[0, 1]` per receiver,
 /// in the frame's order; the same values whatever the number of threads;
-/// no panic on any valid scene and frame; errors, not NaN, for receivers
-/// the method cannot handle.
+/// no panic on any valid scene and frame; errors, not NaN, for what the
+/// method cannot handle. [`run`] checks the light kind against
+/// [`Method::lights`], every receiver against the light and against
+/// [`Method::requires`] before calling [`Method::visibility`], so a method
+/// does not check them again.
 pub trait Method: Send + Sync + fmt::Debug {
-    /// The command-line name (`exact`, `mc:64`, `pcss`, …), which
-    /// [`parse`] maps back to an equal method.
+    /// A name for the method and its settings, for tables and file names.
+    /// For the methods of the [`registry`] it is the command-line name
+    /// (`mc:64`, `pcss:map=512`), which [`parse`] maps back to an equal
+    /// method; a method of one's own may return anything short and
+    /// distinctive.
     fn name(&self) -> String;
 
-    /// The shared stages this method needs for `light`, or why it cannot
-    /// handle that light.
-    ///
-    /// # Errors
-    /// [`MethodError::UnsupportedLight`].
-    fn needs(&self, light: &Light) -> Result<crate::render::Needs, MethodError>;
+    /// The light kinds the method handles; [`run`] refuses the others with
+    /// [`MethodError::UnsupportedLight`]. Default: every kind.
+    fn lights(&self) -> &'static [LightKind] {
+        LightKind::ALL
+    }
 
-    /// The visibility of every receiver of `frame`, building what it needs
-    /// through `stages`.
+    /// The shared stages the method needs built before it runs (it may
+    /// build more of its own through [`Stages::cached`]).
+    fn needs(&self) -> Needs {
+        Needs::NONE
+    }
+
+    /// What every receiver must carry; [`run`] refuses a frame whose
+    /// receivers lack it. Default: nothing.
+    fn requires(&self) -> Requires {
+        Requires::default()
+    }
+
+    /// How the light's share above each receiver's tangent plane bounds the
+    /// answer ([`Horizon`]). Default: not at all.
+    fn horizon(&self) -> Horizon {
+        Horizon::Off
+    }
+
+    /// The visibility of every receiver of the checked frame `input`.
     ///
     /// # Errors
-    /// [`MethodError`]: a receiver the light cannot be seen from (inside a
-    /// sphere light, …), a receiver lacking a normal or object id the method
-    /// needs, an unsupported light.
-    fn visibility(&self, stages: &Stages, frame: &Frame) -> Result<Output, MethodError>;
+    /// [`MethodError`]: an invalid option, a light view that cannot be set
+    /// up, …
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError>;
+}
+
+/// What every receiver must carry for a method.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Requires {
+    /// A normal.
+    pub normals: bool,
+    /// An object id.
+    pub objects: bool,
+    /// How to do without normals (an option of the method), if there is a
+    /// way; shown in the error.
+    pub normals_hint: &'static str,
+}
+
+/// The horizon bound, beyond the papers: the part of the light below a
+/// receiver's tangent plane (the plane through it with its geometric
+/// normal) is hidden by the receiver's own surface, so `V ≤ V_h`, the
+/// light's share above that plane ([`Emitter::share_above`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Horizon {
+    /// No bound (every paper's method).
+    #[default]
+    Off,
+    /// [`run`] replaces each value by `min(V, V_h)`.
+    Clamp,
+    /// The method takes the plane into account itself (as one more edge of
+    /// an exact union, say); [`run`] only checks that receivers have
+    /// normals.
+    Within,
+}
+
+impl Horizon {
+    /// [`Horizon::Clamp`] when `on`, else [`Horizon::Off`]: the `horizon`
+    /// option of a method that leaves the bound to [`run`].
+    #[must_use]
+    pub fn clamp_if(on: bool) -> Horizon {
+        if on {
+            Horizon::Clamp
+        } else {
+            Horizon::Off
+        }
+    }
+}
+
+/// A frame checked by [`run`] for a method: the stages, the receivers, and
+/// each receiver's view of the light ([`Emitter`]) when the method asked
+/// for them ([`Needs::EMITTERS`]). Only [`run`] builds one.
+pub struct Input<'r, 'a> {
+    stages: &'r Stages<'a>,
+    frame: &'r Frame,
+    emitters: Vec<Emitter>,
+}
+
+impl fmt::Debug for Input<'_, '_> {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Input")
+            .field("receivers", &self.frame.receivers().len())
+            .field("emitters", &self.emitters.len())
+            .finish_non_exhaustive()
+    }
+}
+
+impl<'r, 'a> Input<'r, 'a> {
+    /// The stages of the scene.
+    #[must_use]
+    pub fn stages(&self) -> &'r Stages<'a> {
+        self.stages
+    }
+
+    /// The scene.
+    #[must_use]
+    pub fn scene(&self) -> &'a Scene {
+        self.stages.scene()
+    }
+
+    /// The light (of a kind the method handles).
+    #[must_use]
+    pub fn light(&self) -> &'a Light {
+        self.stages.scene().light()
+    }
+
+    /// The frame.
+    #[must_use]
+    pub fn frame(&self) -> &'r Frame {
+        self.frame
+    }
+
+    /// The receivers: each can see the light's measure, and carries what
+    /// [`Method::requires`] asked for.
+    #[must_use]
+    pub fn receivers(&self) -> &'r [Receiver] {
+        self.frame.receivers()
+    }
+
+    /// Each receiver's view of the light, in the frame's order, when the
+    /// method's [`Method::needs`] contains [`Needs::EMITTERS`]; empty
+    /// otherwise.
+    #[must_use]
+    pub fn emitters(&self) -> &[Emitter] {
+        &self.emitters
+    }
+
+    /// Checks `frame` for `method` (see [`run`]).
+    fn check(
+        method: &dyn Method,
+        stages: &'r Stages<'a>,
+        frame: &'r Frame,
+        keep_emitters: bool,
+    ) -> Result<Input<'r, 'a>, MethodError> {
+        let light = stages.scene().light();
+        if !method.lights().contains(&light.kind()) {
+            return Err(MethodError::UnsupportedLight {
+                method: method.name(),
+                light: light.kind().name(),
+            });
+        }
+        let receivers = frame.receivers();
+        if let Some(index) = receivers
+            .par_iter()
+            .position_first(|r| light.emitter(r.position).is_err())
+        {
+            if let Err(error) = light.emitter(receivers[index].position) {
+                return Err(MethodError::Receiver { index, error });
+            }
+        }
+        let requires = method.requires();
+        let horizon = method.horizon() != Horizon::Off;
+        if requires.normals || horizon {
+            if let Some(index) = receivers.iter().position(|r| r.normal.is_none()) {
+                return Err(MethodError::NeedsNormal {
+                    method: method.name(),
+                    index,
+                    hint: if requires.normals {
+                        requires.normals_hint
+                    } else {
+                        "or leave out the horizon option"
+                    },
+                });
+            }
+        }
+        if requires.objects {
+            if let Some(index) = receivers.iter().position(|r| r.object.is_none()) {
+                return Err(MethodError::NeedsObject {
+                    method: method.name(),
+                    index,
+                });
+            }
+        }
+        let emitters = if keep_emitters {
+            receivers
+                .par_iter()
+                .filter_map(|r| light.emitter(r.position).ok())
+                .collect()
+        } else {
+            Vec::new()
+        };
+        Ok(Input {
+            stages,
+            frame,
+            emitters,
+        })
+    }
 }
 
 /// What a method computed, per receiver.
@@ -82,6 +274,17 @@ pub struct Output {
     /// The standard error of each value, for the estimators that have one
     /// (Monte Carlo).
     pub stderr: Option<Vec<f64>>,
+}
+
+impl Output {
+    /// Values without standard errors.
+    #[must_use]
+    pub fn values(visibility: Vec<f64>) -> Output {
+        Output {
+            visibility,
+            stderr: None,
+        }
+    }
 }
 
 /// Why a method could not compute a frame.
@@ -174,18 +377,6 @@ impl fmt::Display for MethodError {
 
 impl std::error::Error for MethodError {}
 
-/// The kind name of a light, as in the scene file.
-#[must_use]
-pub fn light_kind(light: &Light) -> &'static str {
-    match light {
-        Light::Sphere { .. } => "sphere",
-        Light::Disk { .. } => "disk",
-        Light::Rect { .. } => "rect",
-        Light::Segment { .. } => "segment",
-        Light::Point { .. } => "point",
-    }
-}
-
 /// A timed run of one method on one frame.
 #[derive(Clone, Debug)]
 pub struct Run {
@@ -193,32 +384,54 @@ pub struct Run {
     pub method: String,
     /// Its values.
     pub output: Output,
-    /// Wall time of the run: the stages it needed that were not built yet,
-    /// and its visibility pass. Stages built by earlier runs on the same
-    /// [`Stages`] (the BVH the camera's receivers were found with, say) are
-    /// not counted again.
+    /// Wall time of the run: the checks, the stages it needed that were not
+    /// built yet, and its visibility pass. Stages built by earlier runs on
+    /// the same [`Stages`] (the BVH the camera's receivers were found with,
+    /// say) are not counted again.
     pub seconds: f64,
     /// The stages built and counters kept during the run.
     pub stats: Stats,
 }
 
-/// Runs `method` on `frame`: builds the stages it needs, computes the
-/// visibility, checks the contract (one value in `[0, 1]` per receiver, a
-/// finite standard error for each if any; [`MethodError::Contract`]
-/// otherwise) and times the whole.
+/// Runs `method` on `frame`:
+///
+/// 1. checks once what no method checks again: the light is of a kind the
+///    method handles ([`Method::lights`], else
+///    [`MethodError::UnsupportedLight`]); every receiver can see the
+///    light's measure (the first that cannot, by index, is
+///    [`MethodError::Receiver`]); receivers carry the normals and object
+///    ids the method [requires](Method::requires) (and normals for the
+///    [horizon](Method::horizon));
+/// 2. builds the shared stages it [needs](Method::needs);
+/// 3. computes the visibility, and with [`Horizon::Clamp`] replaces each
+///    value by `min(V, V_h)`;
+/// 4. checks the contract — one value in `[0, 1]` per receiver, a finite
+///    standard error for each if any ([`MethodError::Contract`] otherwise)
+///    — and times the whole.
 ///
 /// [`Run::stats`] is what the stage log gained during the run: runs on one
 /// [`Stages`] from several threads at once still compute the right values,
 /// but their stats then mix.
 ///
 /// # Errors
-/// The method's [`MethodError`].
+/// As above, and the method's own [`MethodError`].
 pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, MethodError> {
     let before = stages.stats();
     let start = Instant::now();
-    let needs = method.needs(stages.scene().light())?;
-    stages.prepare(needs);
-    let output = method.visibility(stages, frame)?;
+    let horizon = method.horizon() == Horizon::Clamp;
+    let input = check(method, stages, frame)?;
+    let mut output = method.visibility(&input)?;
+    if horizon && output.visibility.len() == input.emitters.len() {
+        output
+            .visibility
+            .par_iter_mut()
+            .zip(input.emitters.par_iter().zip(frame.receivers()))
+            .for_each(|(v, (e, r))| {
+                if let Some(n) = r.normal {
+                    *v = v.min(e.share_above(r.position, n));
+                }
+            });
+    }
     let seconds = start.elapsed().as_secs_f64();
     let n = frame.receivers().len();
     let bad = if output.visibility.len() != n {
@@ -253,80 +466,31 @@ pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, M
     })
 }
 
-/// The method names of DESIGN §8, in the order the default run and the
-/// report list them; `mc:N` stands for any sample count.
-pub const NAMES: &[&str] = &[
-    "exact",
-    "mc:N",
-    "hard",
-    "pcss",
-    "sism",
-    "single-sample",
-    "ssoc",
-    "backprojected-ssoc",
-    "oess",
-];
-
-/// The methods of [`NAMES`] not built yet; [`parse`] says so for them.
-pub const LATER: &[&str] = &["single-sample", "ssoc", "backprojected-ssoc", "oess"];
-
-/// The method called `name` on the command line (DESIGN §8), with its
-/// default options.
+/// Steps 1 and 2 of [`run`] without running the method: checks `frame` for
+/// `method` and builds the shared stages it needs. The [`Input`] it returns
+/// is what [`Method::visibility`] and a method's own diagnostics (such as
+/// [`Sism::passes`]) take.
 ///
 /// # Errors
-/// A message naming the method and what is accepted.
-pub fn parse(name: &str) -> Result<Box<dyn Method>, String> {
-    match name {
-        "exact" => return Ok(Box::new(Exact)),
-        "hard" => return Ok(Box::new(HardShadow)),
-        _ => {}
-    }
-    if option_list(name, "pcss").is_some() {
-        return Ok(Box::new(Pcss::from_name(name)?));
-    }
-    if name == "sism" || name.starts_with("sism:") {
-        return Sism::from_name(name).map(|s| Box::new(s) as Box<dyn Method>);
-    }
-    if let Some(n) = name.strip_prefix("mc:") {
-        use crate::reference::monte_carlo::MIN_SAMPLES;
-        return match n.parse::<u32>() {
-            Ok(n) if n >= MIN_SAMPLES => Ok(Box::new(MonteCarlo::new(n))),
-            _ => Err(format!(
-                "'{name}': the sample count must be an integer from {MIN_SAMPLES} to {}",
-                u32::MAX
-            )),
-        };
-    }
-    let available = "exact, mc:N, hard, pcss, sism";
-    if LATER.contains(&name) {
-        return Err(format!(
-            "method '{name}' is not built yet; available: {available}"
-        ));
-    }
-    Err(format!("unknown method '{name}'; available: {available}"))
+/// As [`run`]'s checks.
+pub fn check<'r, 'a>(
+    method: &dyn Method,
+    stages: &'r Stages<'a>,
+    frame: &'r Frame,
+) -> Result<Input<'r, 'a>, MethodError> {
+    let needs = method.needs();
+    let keep = needs.contains(Needs::EMITTERS) || method.horizon() == Horizon::Clamp;
+    let input = Input::check(method, stages, frame, keep)?;
+    stages.prepare(needs);
+    Ok(input)
 }
 
-/// The options of a method name `base` or `base:opt,opt,…`: `Some` list
-/// (empty for `base` alone) when `name` is of that form, `None` otherwise.
-pub(crate) fn option_list<'a>(name: &'a str, base: &str) -> Option<Vec<&'a str>> {
-    match name.strip_prefix(base)? {
-        "" => Some(Vec::new()),
-        rest => Some(rest.strip_prefix(':')?.split(',').collect()),
-    }
-}
-
-/// The methods the default run (`softshadow` with no arguments) compares,
-/// in order: every available method, Monte Carlo at 16 and 256 samples.
-#[must_use]
-pub fn default_set() -> Vec<Box<dyn Method>> {
-    vec![
-        Box::new(HardShadow),
-        Box::new(Pcss::default()),
-        Box::new(Sism::default()),
-        Box::new(MonteCarlo::new(16)),
-        Box::new(MonteCarlo::new(256)),
-        Box::new(Exact),
-    ]
+/// An [`MethodError::InvalidOption`] for `method` from an options check.
+pub(crate) fn check_options<T: Configurable>(m: &T) -> Result<(), MethodError> {
+    options::check(m).map_err(|message| MethodError::InvalidOption {
+        method: m.name(),
+        message,
+    })
 }
 
 /// The receivers' visibility computed one receiver at a time, in parallel
@@ -334,14 +498,13 @@ pub fn default_set() -> Vec<Box<dyn Method>> {
 /// per chunk; the first error (by receiver index) wins. The result does not
 /// depend on the number of threads.
 pub(crate) fn per_receiver<S, T: Send>(
-    stages: &Stages,
-    frame: &Frame,
+    input: &Input<'_, '_>,
     init: impl Fn() -> S + Send + Sync,
-    f: impl Fn(&mut S, usize, &crate::render::Receiver) -> Result<T, MethodError> + Send + Sync,
+    f: impl Fn(&mut S, usize, &Receiver) -> Result<T, MethodError> + Send + Sync,
 ) -> Result<Vec<T>, MethodError> {
-    use rayon::prelude::*;
     const CHUNK: usize = 256;
-    let receivers = frame.receivers();
+    let receivers = input.receivers();
+    let stages = input.stages();
     let chunks: Vec<Result<Vec<T>, MethodError>> = receivers
         .par_chunks(CHUNK)
         .enumerate()

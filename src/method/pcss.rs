@@ -1,10 +1,11 @@
 //! Percentage-closer soft shadows (Fernando, "Percentage-Closer Soft
 //! Shadows", SIGGRAPH 2005 sketch): the baseline engines ship today.
 
-use super::{per_receiver, Method, MethodError, Output};
-use crate::render::FittedMaps;
-use crate::render::{Frame, Needs, Stages};
-use crate::scene::Light;
+use super::options::{flag, int, real, Configurable, Field};
+use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
+use crate::render::raster::MAX_RESOLUTION;
+use crate::render::{FittedMaps, Needs};
+use crate::scene::LightKind;
 use glam::{DVec2, DVec3};
 
 /// Percentage-closer soft shadows over one light-view depth map from the
@@ -40,24 +41,34 @@ use glam::{DVec2, DVec3};
 /// The paper fixes neither sample counts, resolution nor bias; the defaults
 /// here ([`Pcss::default`]) are ours and documented per field.
 #[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
 pub struct Pcss {
-    /// Side of the square light-view depth map, in texels; default 1024.
+    /// Side of the square light-view depth map, in texels, `1..=16384`;
+    /// default [`Pcss::DEFAULT_RESOLUTION`].
     pub resolution: u32,
-    /// Points read in the blocker search; default 32.
+    /// Points read in the blocker search, `1..=4096`; default
+    /// [`Pcss::DEFAULT_BLOCKER_SAMPLES`].
     pub blocker_samples: u32,
-    /// Points read by the filter; default 64.
+    /// Points read by the filter, `1..=4096`; default
+    /// [`Pcss::DEFAULT_FILTER_SAMPLES`].
     pub filter_samples: u32,
     /// Which depth a texel is compared with; default
-    /// [`PcssBias::ReceiverPlane`].
+    /// [`PcssBias::ReceiverPlane`] (ours: the known improvement on the
+    /// constant bias).
     pub bias: PcssBias,
     /// The margin below that depth, relative to the receiver's depth `z_p`,
-    /// for rounding and curvature; default `1e-3`.
+    /// for rounding and curvature, in `[0, 1]`; default
+    /// [`Pcss::DEFAULT_BIAS_RELATIVE`].
     pub bias_relative: f64,
-    /// The margin below that depth in texels: `bias_texels · t · z_p`, `t`
-    /// the texel's side on the light image plane (so `t · z_p` is its width
-    /// at the receiver); covers a faceted or curved receiver leaving its
-    /// tangent plane within the texel the sample falls in; default `1`.
+    /// The margin below that depth in texels, in `[0, 1000]`:
+    /// `bias_texels · t · z_p`, `t` the texel's side on the light image
+    /// plane (so `t · z_p` is its width at the receiver); covers a faceted
+    /// or curved receiver leaving its tangent plane within the texel the
+    /// sample falls in; default [`Pcss::DEFAULT_BIAS_TEXELS`].
     pub bias_texels: f64,
+    /// The [horizon bound](super::Horizon), `min(V, V_h)`; default off
+    /// (ours).
+    pub horizon: bool,
 }
 
 /// Which depth PCSS compares a depth-map texel with to decide that it blocks
@@ -80,27 +91,138 @@ pub enum PcssBias {
     Constant,
 }
 
+impl Pcss {
+    /// Default [`Pcss::resolution`]: 1024 (ours; the paper fixes none).
+    pub const DEFAULT_RESOLUTION: u32 = 1024;
+    /// Default [`Pcss::blocker_samples`]: 32 (ours; the paper fixes none).
+    pub const DEFAULT_BLOCKER_SAMPLES: u32 = 32;
+    /// Default [`Pcss::filter_samples`]: 64 (ours; the paper fixes none).
+    pub const DEFAULT_FILTER_SAMPLES: u32 = 64;
+    /// Default [`Pcss::bias_relative`]: `1e-3` (ours).
+    pub const DEFAULT_BIAS_RELATIVE: f64 = 1e-3;
+    /// Default [`Pcss::bias_texels`]: one texel (ours).
+    pub const DEFAULT_BIAS_TEXELS: f64 = 1.0;
+
+    /// With a depth map of `side × side` texels.
+    #[must_use]
+    pub fn with_resolution(mut self, side: u32) -> Pcss {
+        self.resolution = side;
+        self
+    }
+
+    /// With `n` blocker-search samples.
+    #[must_use]
+    pub fn with_blocker_samples(mut self, n: u32) -> Pcss {
+        self.blocker_samples = n;
+        self
+    }
+
+    /// With `n` filter samples.
+    #[must_use]
+    pub fn with_filter_samples(mut self, n: u32) -> Pcss {
+        self.filter_samples = n;
+        self
+    }
+
+    /// With the depth comparison `bias`.
+    #[must_use]
+    pub fn with_bias(mut self, bias: PcssBias) -> Pcss {
+        self.bias = bias;
+        self
+    }
+
+    /// With the bias margins, relative and in texels.
+    #[must_use]
+    pub fn with_bias_margins(mut self, relative: f64, texels: f64) -> Pcss {
+        self.bias_relative = relative;
+        self.bias_texels = texels;
+        self
+    }
+
+    /// With or without the horizon bound.
+    #[must_use]
+    pub fn with_horizon(mut self, on: bool) -> Pcss {
+        self.horizon = on;
+        self
+    }
+}
+
 impl Default for Pcss {
     fn default() -> Pcss {
         Pcss {
-            resolution: 1024,
-            blocker_samples: 32,
-            filter_samples: 64,
+            resolution: Pcss::DEFAULT_RESOLUTION,
+            blocker_samples: Pcss::DEFAULT_BLOCKER_SAMPLES,
+            filter_samples: Pcss::DEFAULT_FILTER_SAMPLES,
             bias: PcssBias::ReceiverPlane,
-            bias_relative: 1e-3,
-            bias_texels: 1.0,
+            bias_relative: Pcss::DEFAULT_BIAS_RELATIVE,
+            bias_texels: Pcss::DEFAULT_BIAS_TEXELS,
+            horizon: false,
         }
     }
 }
 
-/// The radius PCSS uses for `light` (see [`Pcss`]).
-fn light_radius(light: &Light) -> f64 {
-    match *light {
-        Light::Sphere { radius, .. } | Light::Disk { radius, .. } => radius,
-        Light::Rect { u, v, .. } => (4.0 * u.cross(v).length() / std::f64::consts::PI).sqrt(),
-        Light::Segment { a, b } => 0.5 * (b - a).length(),
-        Light::Point { .. } => 0.0,
-    }
+impl Configurable for Pcss {
+    const NAME: &'static str = "pcss";
+    const SUMMARY: &'static str = "percentage-closer soft shadows (Fernando 2005)";
+    const LIGHTS: &'static [LightKind] = LightKind::ALL;
+    const DEFAULT_RUN: &'static [&'static str] = &["pcss"];
+    const COMPARE: &'static [&'static str] =
+        &["pcss", "pcss:map=256", "pcss:map=4096", "pcss:horizon"];
+    const FIELDS: &'static [Field<Pcss>] = &[
+        int(
+            "map",
+            "side of the depth map in texels (ours)",
+            (1, MAX_RESOLUTION as u64),
+            |m| u64::from(m.resolution),
+            |m, v| m.resolution = v as u32,
+        ),
+        int(
+            "search",
+            "points read in the blocker search (ours)",
+            (1, 4096),
+            |m| u64::from(m.blocker_samples),
+            |m, v| m.blocker_samples = v as u32,
+        ),
+        int(
+            "filter",
+            "points read by the filter (ours)",
+            (1, 4096),
+            |m| u64::from(m.filter_samples),
+            |m, v| m.filter_samples = v as u32,
+        ),
+        flag(
+            "constant",
+            "compare texels with the receiver's own depth, not its tangent plane's",
+            |m| m.bias == PcssBias::Constant,
+            |m, v| {
+                m.bias = if v {
+                    PcssBias::Constant
+                } else {
+                    PcssBias::ReceiverPlane
+                }
+            },
+        ),
+        real(
+            "relative",
+            "depth margin relative to the receiver's depth (ours)",
+            (0.0, 1.0),
+            |m| m.bias_relative,
+            |m, v| m.bias_relative = v,
+        ),
+        real(
+            "texels",
+            "depth margin in texels at the receiver (ours)",
+            (0.0, 1000.0),
+            |m| m.bias_texels,
+            |m, v| m.bias_texels = v,
+        ),
+        flag(
+            "horizon",
+            "V ≤ the light's share above the receiver's tangent plane (ours)",
+            |m| m.horizon,
+            |m, v| m.horizon = v,
+        ),
+    ];
 }
 
 /// `n` points of the unit disk on a Vogel spiral: radius `√((i + ½)/n)`,
@@ -167,119 +289,41 @@ impl Lookup<'_> {
     }
 }
 
-impl Pcss {
-    /// The method called `name`: `pcss` (the defaults) or `pcss:OPT,…` with
-    /// options `map=N` ([`resolution`](Pcss::resolution)), `search=N`
-    /// ([`blocker_samples`](Pcss::blocker_samples)), `filter=N`
-    /// ([`filter_samples`](Pcss::filter_samples)), `constant`
-    /// ([`PcssBias::Constant`]), `relative=X`
-    /// ([`bias_relative`](Pcss::bias_relative)), `texels=X`
-    /// ([`bias_texels`](Pcss::bias_texels)). [`Method::name`] writes the
-    /// options that differ from the defaults, in that order, so names
-    /// round-trip. Values are checked when the method runs.
-    ///
-    /// # Errors
-    /// A message naming the unknown option or the malformed value.
-    pub fn from_name(name: &str) -> Result<Pcss, String> {
-        let mut p = Pcss::default();
-        let options =
-            super::option_list(name, "pcss").ok_or_else(|| format!("unknown method '{name}'"))?;
-        for opt in options {
-            let bad = || {
-                format!(
-                    "'{name}': option '{opt}' is not one of map=N, search=N, filter=N, \
-                     constant, relative=X, texels=X"
-                )
-            };
-            if opt == "constant" {
-                p.bias = PcssBias::Constant;
-                continue;
-            }
-            let (k, v) = opt.split_once('=').ok_or_else(bad)?;
-            match k {
-                "map" => p.resolution = v.parse().map_err(|_| bad())?,
-                "search" => p.blocker_samples = v.parse().map_err(|_| bad())?,
-                "filter" => p.filter_samples = v.parse().map_err(|_| bad())?,
-                "relative" => p.bias_relative = v.parse().map_err(|_| bad())?,
-                "texels" => p.bias_texels = v.parse().map_err(|_| bad())?,
-                _ => return Err(bad()),
-            }
-        }
-        Ok(p)
-    }
-}
-
 impl Method for Pcss {
     fn name(&self) -> String {
-        let d = Pcss::default();
-        let mut options = Vec::new();
-        if self.resolution != d.resolution {
-            options.push(format!("map={}", self.resolution));
-        }
-        if self.blocker_samples != d.blocker_samples {
-            options.push(format!("search={}", self.blocker_samples));
-        }
-        if self.filter_samples != d.filter_samples {
-            options.push(format!("filter={}", self.filter_samples));
-        }
-        if self.bias == PcssBias::Constant {
-            options.push("constant".to_owned());
-        }
-        // `{:?}` prints the shortest string that parses back to the same f64.
-        if self.bias_relative.to_bits() != d.bias_relative.to_bits() {
-            options.push(format!("relative={:?}", self.bias_relative));
-        }
-        if self.bias_texels.to_bits() != d.bias_texels.to_bits() {
-            options.push(format!("texels={:?}", self.bias_texels));
-        }
-        if options.is_empty() {
-            "pcss".to_owned()
-        } else {
-            format!("pcss:{}", options.join(","))
+        super::options::print(self)
+    }
+
+    fn needs(&self) -> Needs {
+        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS
+    }
+
+    fn requires(&self) -> Requires {
+        Requires {
+            normals: self.bias == PcssBias::ReceiverPlane,
+            normals_hint: "or use PcssBias::Constant (pcss:constant), which needs none",
+            ..Requires::default()
         }
     }
 
-    fn needs(&self, _: &Light) -> Result<Needs, MethodError> {
-        Ok(Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS)
+    fn horizon(&self) -> Horizon {
+        Horizon::clamp_if(self.horizon)
     }
 
-    fn visibility(&self, stages: &Stages, frame: &Frame) -> Result<Output, MethodError> {
-        let invalid = |message: &str| MethodError::InvalidOption {
-            method: self.name(),
-            message: message.to_owned(),
-        };
-        if self.resolution == 0 || self.resolution > 16384 {
-            return Err(invalid("resolution must be from 1 to 16384"));
-        }
-        if self.blocker_samples == 0 || self.filter_samples == 0 {
-            return Err(invalid("sample counts must be at least 1"));
-        }
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        super::check_options(self)?;
         let plane = self.bias == PcssBias::ReceiverPlane;
-        if !(self.bias_relative >= 0.0
-            && self.bias_texels >= 0.0
-            && self.bias_relative + self.bias_texels < 1e6)
-        {
-            return Err(invalid("the bias margins must be finite and at least 0"));
-        }
-        if plane {
-            if let Some(index) = frame.receivers().iter().position(|r| r.normal.is_none()) {
-                return Err(MethodError::NeedsNormal {
-                    method: self.name(),
-                    index,
-                    hint: "or use PcssBias::Constant, which needs none",
-                });
-            }
-        }
+        let (stages, frame) = (input.stages(), input.frame());
         if frame.receivers().is_empty() {
             return Ok(Output::default());
         }
-        let light = stages.scene().light();
+        let light = input.light();
         let maps = stages.light_maps(frame, self.resolution, self.resolution);
         let maps = match &*maps {
             Ok(maps) => maps,
             Err(e) => return Err(MethodError::LightView(*e)),
         };
-        let r = light_radius(light);
+        let r = light.equivalent_radius();
         let view = &maps.view;
         let lf = view.frame();
         let [ax, ay, az] = lf.axes();
@@ -295,13 +339,9 @@ impl Method for Pcss {
         let search = vogel(self.blocker_samples);
         let filter = vogel(self.filter_samples);
         let visibility = per_receiver(
-            stages,
-            frame,
+            input,
             || (),
-            |(), index, rec| {
-                light
-                    .emitter(rec.position)
-                    .map_err(|error| MethodError::Receiver { index, error })?;
+            |(), _, rec| {
                 let p = lf.to_light(rec.position);
                 if !(p.z >= view.near() && z_min < p.z) {
                     return Ok(1.0);
@@ -345,9 +385,6 @@ impl Method for Pcss {
                 Ok(lit as f64 / filter.len() as f64)
             },
         )?;
-        Ok(Output {
-            visibility,
-            stderr: None,
-        })
+        Ok(Output::values(visibility))
     }
 }

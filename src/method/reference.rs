@@ -1,34 +1,47 @@
 //! The two references as methods: [`Exact`] and [`MonteCarlo`].
 
-use super::{per_receiver, Method, MethodError, Output};
+use super::options::{int, positional, Configurable, Field};
+use super::{per_receiver, Input, Method, MethodError, Output};
 use crate::reference::{exact, monte_carlo};
-use crate::render::{Frame, Needs, Stages};
-use crate::scene::Light;
+use crate::render::Needs;
+use crate::scene::LightKind;
 
 /// The exact reference ([`crate::reference::exact`]): the answer every
 /// other method is measured against. Any light.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct Exact;
 
+impl Configurable for Exact {
+    const NAME: &'static str = "exact";
+    const SUMMARY: &'static str =
+        "the exact reference: the union of the occluders' images on the light";
+    const LIGHTS: &'static [LightKind] = LightKind::ALL;
+    const DEFAULT_RUN: &'static [&'static str] = &["exact"];
+    const COMPARE: &'static [&'static str] = &[];
+    const FIELDS: &'static [Field<Exact>] = &[];
+}
+
 impl Method for Exact {
     fn name(&self) -> String {
-        "exact".to_owned()
+        super::options::print(self)
     }
 
-    fn needs(&self, _: &Light) -> Result<Needs, MethodError> {
-        Ok(Needs::BVH)
+    fn needs(&self) -> Needs {
+        Needs::BVH | Needs::EMITTERS
     }
 
-    fn visibility(&self, stages: &Stages, frame: &Frame) -> Result<Output, MethodError> {
-        let (bvh, light) = (stages.bvh(), stages.scene().light());
-        let visibility = per_receiver(stages, frame, exact::Scratch::default, |s, index, r| {
-            exact::visibility_with(bvh, light, r.position, s)
-                .map_err(|error| MethodError::Receiver { index, error })
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        let bvh = input.stages().bvh();
+        let emitters = input.emitters();
+        let visibility = per_receiver(input, exact::Scratch::default, |s, index, r| {
+            Ok(exact::emitter_visibility(
+                bvh,
+                &emitters[index],
+                r.position,
+                s,
+            ))
         })?;
-        Ok(Output {
-            visibility,
-            stderr: None,
-        })
+        Ok(Output::values(visibility))
     }
 }
 
@@ -36,16 +49,20 @@ impl Method for Exact {
 /// fixed sample count per receiver; reports each value's standard error.
 /// Any light.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+#[non_exhaustive]
 pub struct MonteCarlo {
-    /// Samples per receiver (at least
-    /// [`MIN_SAMPLES`](monte_carlo::MIN_SAMPLES); fewer is an error per
-    /// receiver).
+    /// Samples per receiver, from [`MIN_SAMPLES`](monte_carlo::MIN_SAMPLES)
+    /// to `u32::MAX`; default [`MonteCarlo::DEFAULT_SAMPLES`].
     pub samples: u32,
-    /// The seed of the sample sequences.
+    /// The seed of the sample sequences; default
+    /// [`monte_carlo::DEFAULT_SEED`].
     pub seed: u64,
 }
 
 impl MonteCarlo {
+    /// Default [`MonteCarlo::samples`] (ours).
+    pub const DEFAULT_SAMPLES: u32 = 64;
+
     /// `samples` per receiver, the default seed.
     #[must_use]
     pub fn new(samples: u32) -> MonteCarlo {
@@ -54,38 +71,70 @@ impl MonteCarlo {
             seed: monte_carlo::DEFAULT_SEED,
         }
     }
+
+    /// With the seed `seed`.
+    #[must_use]
+    pub fn with_seed(mut self, seed: u64) -> MonteCarlo {
+        self.seed = seed;
+        self
+    }
+}
+
+impl Default for MonteCarlo {
+    fn default() -> MonteCarlo {
+        MonteCarlo::new(MonteCarlo::DEFAULT_SAMPLES)
+    }
+}
+
+impl Configurable for MonteCarlo {
+    const NAME: &'static str = "mc";
+    const SUMMARY: &'static str =
+        "Monte Carlo light sampling: N stratified samples per receiver, with a standard error";
+    const LIGHTS: &'static [LightKind] = LightKind::ALL;
+    const DEFAULT_RUN: &'static [&'static str] = &["mc:16", "mc:256"];
+    const COMPARE: &'static [&'static str] = &[];
+    const FIELDS: &'static [Field<MonteCarlo>] = &[
+        positional(
+            "N",
+            "samples per receiver",
+            (monte_carlo::MIN_SAMPLES as u64, u32::MAX as u64),
+            |m| u64::from(m.samples),
+            |m, v| m.samples = v as u32,
+        ),
+        int(
+            "seed",
+            "the seed of the sample sequences",
+            (0, u64::MAX),
+            |m| m.seed,
+            |m, v| m.seed = v,
+        ),
+    ];
 }
 
 impl Method for MonteCarlo {
     fn name(&self) -> String {
-        format!("mc:{}", self.samples)
+        super::options::print(self)
     }
 
-    fn needs(&self, _: &Light) -> Result<Needs, MethodError> {
-        Ok(Needs::BVH)
+    fn needs(&self) -> Needs {
+        Needs::BVH | Needs::EMITTERS
     }
 
-    fn visibility(&self, stages: &Stages, frame: &Frame) -> Result<Output, MethodError> {
-        let (bvh, light) = (stages.bvh(), stages.scene().light());
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        super::check_options(self)?;
+        let bvh = input.stages().bvh();
+        let emitters = input.emitters();
         let options = monte_carlo::Options::new(self.samples).with_seed(self.seed);
-        let invalid = |e: monte_carlo::Error| MethodError::InvalidOption {
-            method: self.name(),
-            message: e.to_string(),
-        };
-        if self.samples < monte_carlo::MIN_SAMPLES {
-            return Err(invalid(monte_carlo::Error::TooFewSamples {
-                samples: self.samples,
-            }));
-        }
         let estimates = per_receiver(
-            stages,
-            frame,
+            input,
             || (),
             |(), index, r| {
-                monte_carlo::visibility(bvh, light, r.position, &options).map_err(|e| match e {
-                    monte_carlo::Error::Receiver(error) => MethodError::Receiver { index, error },
-                    e => invalid(e),
-                })
+                Ok(monte_carlo::emitter_visibility(
+                    bvh,
+                    &emitters[index],
+                    r.position,
+                    &options,
+                ))
             },
         )?;
         Ok(Output {

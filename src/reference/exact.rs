@@ -139,36 +139,42 @@ pub fn visibility_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<f64, ReceiverError> {
-    let v = match light.emitter(p)? {
+    Ok(emitter_visibility(bvh, &light.emitter(p)?, p, scratch))
+}
+
+/// [`visibility_with`] for a receiver whose view of the light is already
+/// known: `emitter` must be `light.emitter(p)` for the scene's light (the
+/// renderer's methods get it once per receiver from
+/// [`method::run`](crate::method::run)).
+#[must_use]
+pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, scratch: &mut Scratch) -> f64 {
+    let v = match *emitter {
         Emitter::Point(x) => {
-            if bvh.segment_unoccluded(p, x) {
+            if bvh.segment_unoccluded(p, x.position()) {
                 1.0
             } else {
                 0.0
             }
         }
-        Emitter::Segment { a, b } => segment_visibility(bvh, p, a, b, scratch),
-        Emitter::Disk {
-            center,
-            normal,
-            radius,
-        } => {
-            let (t, b) = normal.any_orthonormal_pair();
+        Emitter::Segment(s) => segment_visibility(bvh, p, s.a(), s.b(), scratch),
+        Emitter::Disk(d) => {
+            let (center, radius) = (d.center(), d.radius());
+            let (t, b) = d.normal().any_orthonormal_pair();
             // Orthonormal coordinates about the centre; a square around the
             // disk, with margin, so that clipping happens well outside it.
             let view = View::orthonormal(p, center, [t, b], 1.5 * radius);
             let covered = view.covered_area(bvh, scratch, Measure::Disk(radius));
             1.0 - covered / (PI * radius * radius)
         }
-        Emitter::Rect { center, u, v } => {
+        Emitter::Rect(r) => {
             // The rect's own affine coordinates: x = c + s u + t v, the
             // light is the square [−1, 1]², and area ratios are kept.
-            let view = View::new(p, center, [u, v], 1.0);
+            let view = View::new(p, r.center(), [r.u(), r.v()], 1.0);
             let covered = view.covered_area(bvh, scratch, Measure::Square);
             1.0 - covered / 4.0
         }
     };
-    Ok(v.clamp(0.0, 1.0))
+    v.clamp(0.0, 1.0)
 }
 
 /// A projected triangle, counter-clockwise, with its bounds.

@@ -154,16 +154,26 @@ pub fn visibility(
             samples: options.samples,
         });
     }
-    let emitter = light.emitter(p)?;
+    Ok(emitter_visibility(bvh, &light.emitter(p)?, p, options))
+}
+
+/// [`visibility`] for a receiver whose view of the light is already known:
+/// `emitter` must be `light.emitter(p)` for the scene's light (the
+/// renderer's methods get it once per receiver from
+/// [`method::run`](crate::method::run)). A sample count below
+/// [`MIN_SAMPLES`] is raised to it.
+#[must_use]
+pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Options) -> Estimate {
     if let Emitter::Point(x) = emitter {
-        let visible = bvh.segment_unoccluded(p, x);
-        return Ok(Estimate {
+        let visible = bvh.segment_unoccluded(p, x.position());
+        return Estimate {
             visibility: if visible { 1.0 } else { 0.0 },
             stderr: 0.0,
-        });
+        };
     }
-    let k = REPLICATES.min(options.samples);
-    let m = options.samples.div_ceil(k);
+    let samples = options.samples.max(MIN_SAMPLES);
+    let k = REPLICATES.min(samples);
+    let m = samples.div_ceil(k);
     let mut rng = SplitMix64(receiver_key(options.seed, p));
     let mut means = [0.0f64; REPLICATES as usize];
     for mean in means.iter_mut().take(k as usize) {
@@ -177,10 +187,10 @@ pub fn visibility(
     let kf = f64::from(k);
     let v = means.iter().sum::<f64>() / kf;
     let ss = means.iter().map(|&x| (x - v) * (x - v)).sum::<f64>();
-    Ok(Estimate {
+    Estimate {
         visibility: v.clamp(0.0, 1.0),
         stderr: (ss / (kf - 1.0) / kf).sqrt(),
-    })
+    }
 }
 
 /// [`visibility`] for every point, in parallel over receivers (rayon's

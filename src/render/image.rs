@@ -86,11 +86,7 @@ pub fn irradiance_factor(light: &Light, p: DVec3, n: DVec3) -> f64 {
     let Some(dir) = l.try_normalize() else {
         return 0.0;
     };
-    let cos_light = match *light {
-        Light::Disk { normal, .. } => normal.dot(dir).abs(),
-        Light::Rect { u, v, .. } => u.cross(v).normalize_or_zero().dot(dir).abs(),
-        _ => 1.0,
-    };
+    let cos_light = light.plane_normal().map_or(1.0, |n| n.dot(dir).abs());
     let e = n.dot(dir).max(0.0) * cos_light / d2;
     if e.is_finite() {
         e

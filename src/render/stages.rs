@@ -7,8 +7,10 @@ use super::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
 use crate::kernel::silhouette::MeshTopology;
 use crate::reference::bvh::Bvh;
 use crate::reference::Occluders;
-use crate::scene::{Light, LightFrame, Scene};
+use crate::scene::{LightFrame, Scene};
 use glam::DVec3;
+use std::any::{Any, TypeId};
+use std::collections::HashMap;
 use std::fmt;
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
@@ -30,6 +32,10 @@ impl Needs {
     /// A light-view depth/object map fitted to the frame's receivers and the
     /// occluders ([`Stages::light_maps`]); the resolution is the method's.
     pub const LIGHT_MAPS: Needs = Needs(8);
+    /// Each receiver's view of the light ([`Emitter`](crate::scene::Emitter)),
+    /// computed once by [`method::run`](crate::method::run) and handed to
+    /// the method ([`Input::emitters`](crate::method::Input::emitters)).
+    pub const EMITTERS: Needs = Needs(16);
 
     /// Whether every stage of `other` is in `self`.
     #[must_use]
@@ -45,6 +51,7 @@ impl Needs {
             (Needs::TOPOLOGY, "topology"),
             (Needs::LIGHT_FRAME, "light frame"),
             (Needs::LIGHT_MAPS, "light maps"),
+            (Needs::EMITTERS, "emitters"),
         ]
         .into_iter()
         .filter(|&(n, _)| self.contains(n))
@@ -59,9 +66,6 @@ impl std::ops::BitOr for Needs {
         Needs(self.0 | rhs.0)
     }
 }
-
-/// The cache key of light maps: (frame id, width, height).
-type MapKey = (u64, u32, u32);
 
 /// Light maps as [`Stages::light_maps`] hands them out.
 pub type SharedMaps = Arc<Result<FittedMaps, RasterError>>;
@@ -170,11 +174,18 @@ pub struct Stages<'a> {
     bvh: OnceLock<Bvh>,
     topology: OnceLock<Vec<Option<MeshTopology>>>,
     light_frame: OnceLock<LightFrame>,
-    /// Light maps by (frame id, width, height).
-    light_maps: Mutex<Vec<(MapKey, SharedMaps)>>,
+    /// Method-owned stages and the light maps, by (type, name, key).
+    cache: Mutex<HashMap<CacheKey, Slot>>,
     log: Mutex<Stats>,
     progress: Mutex<Option<Progress<'a>>>,
 }
+
+/// The key of a cached stage: the type of what it holds, its name, and the
+/// key its owner chose (frame, parameters).
+type CacheKey = (TypeId, &'static str, String);
+
+/// A cached stage, built once by whoever asks first.
+type Slot = Arc<OnceLock<Arc<dyn Any + Send + Sync>>>;
 
 /// A progress callback: called with the number of receivers just finished.
 pub type Progress<'a> = Arc<dyn Fn(usize) + Send + Sync + 'a>;
@@ -196,7 +207,7 @@ impl<'a> Stages<'a> {
             bvh: OnceLock::new(),
             topology: OnceLock::new(),
             light_frame: OnceLock::new(),
-            light_maps: Mutex::new(Vec::new()),
+            cache: Mutex::new(HashMap::new()),
             log: Mutex::new(Stats::default()),
             progress: Mutex::new(None),
         }
@@ -298,11 +309,7 @@ impl<'a> Stages<'a> {
             let light = self.scene.light();
             let c = light.center();
             let center = self.scene.bounds().map(|(lo, hi)| (lo + hi) * 0.5);
-            let normal = match *light {
-                Light::Disk { normal, .. } => Some(normal),
-                Light::Rect { u, v, .. } => Some(u.cross(v)),
-                _ => None,
-            };
+            let normal = light.plane_normal();
             let toward = match (normal, center) {
                 (Some(n), Some(m)) => {
                     let side = if (m - c).dot(n) < 0.0 { -1.0 } else { 1.0 };
@@ -330,18 +337,10 @@ impl<'a> Stages<'a> {
     /// [`RasterError`] from fitting the view, e.g. when nothing is in front
     /// of the light.
     pub fn light_maps(&self, frame: &Frame, width: u32, height: u32) -> SharedMaps {
-        let key = (frame.id(), width, height);
-        let mut cache = self
-            .light_maps
-            .lock()
-            .unwrap_or_else(std::sync::PoisonError::into_inner);
-        if let Some((_, m)) = cache.iter().find(|(k, _)| *k == key) {
-            return Arc::clone(m);
-        }
-        let light_frame = self.light_frame();
-        let bvh = self.bvh();
-        let maps = self.timed("light maps", || {
-            let occluders = bvh.occluders();
+        let key = format!("frame {} {width}×{height}", frame.id());
+        self.cached("light maps", key, || {
+            let light_frame = self.light_frame();
+            let occluders = self.bvh().occluders();
             let points = frame
                 .receivers()
                 .iter()
@@ -357,10 +356,42 @@ impl<'a> Stages<'a> {
                 Err(e) => format!("not built: {e}"),
             };
             (maps, detail)
+        })
+    }
+
+    /// A stage a method builds for itself — distortion maps, endpoint maps,
+    /// projected edges — kept here so that it is built once per scene and
+    /// `key` and shared by every later run: the first call runs `build`
+    /// (which returns the value and a description of what it built), logs
+    /// it as the stage `name` and keeps it; later calls with the same type,
+    /// `name` and `key` return the same value. The key is the owner's to
+    /// choose: it must name everything the value depends on besides the
+    /// scene (the frame's [`id`](Frame::id), resolutions, options).
+    ///
+    /// Thread-safe: concurrent callers with one key wait for one build;
+    /// `build` may itself ask for other cached stages (not for its own key).
+    pub fn cached<T: Send + Sync + 'static>(
+        &self,
+        name: &'static str,
+        key: String,
+        build: impl FnOnce() -> (T, String),
+    ) -> Arc<T> {
+        let slot = Arc::clone(
+            self.cache
+                .lock()
+                .unwrap_or_else(std::sync::PoisonError::into_inner)
+                .entry((TypeId::of::<T>(), name, key))
+                .or_default(),
+        );
+        let value = slot.get_or_init(|| {
+            let value: Arc<dyn Any + Send + Sync> = Arc::new(self.timed(name, build));
+            value
         });
-        let maps = Arc::new(maps);
-        cache.push((key, Arc::clone(&maps)));
-        maps
+        // The slot's type is `T` by its key.
+        match Arc::clone(value).downcast::<T>() {
+            Ok(v) => v,
+            Err(_) => unreachable!("a cache slot holds the type of its key"),
+        }
     }
 
     /// Runs `build`, which returns a value and a description of what it

@@ -70,6 +70,40 @@ impl LightFrame {
         Ok(LightFrame { origin, x, y, z })
     }
 
+    /// The frame at `origin` whose `+z` is `direction` (any length) and
+    /// whose `+x` is the part of `x_hint` orthogonal to it, normalised; `y =
+    /// z × x`. For views that must share an axis: OESS's two endpoint maps
+    /// put `x` along the segment light.
+    ///
+    /// # Errors
+    /// [`FrameError::NonFinite`]; [`FrameError::NoDirection`] when
+    /// `direction` is zero or `x_hint` is parallel to it (no `x` is
+    /// defined).
+    pub fn with_x_axis(
+        origin: DVec3,
+        direction: DVec3,
+        x_hint: DVec3,
+    ) -> Result<LightFrame, FrameError> {
+        if !(origin.is_finite() && direction.is_finite() && x_hint.is_finite()) {
+            return Err(FrameError::NonFinite);
+        }
+        let z = direction.try_normalize().ok_or(FrameError::NoDirection)?;
+        // Gram–Schmidt twice: once is not orthogonal to rounding when the
+        // hint is nearly parallel to `z` (the difference cancels).
+        let orthogonal = |h: DVec3| (h - z * h.dot(z)).try_normalize();
+        let x = x_hint
+            .try_normalize()
+            .and_then(orthogonal)
+            .and_then(orthogonal)
+            .ok_or(FrameError::NoDirection)?;
+        Ok(LightFrame {
+            origin,
+            x,
+            y: z.cross(x),
+            z,
+        })
+    }
+
     /// The frame at the world origin with `+z` world `−y`, `x` world `+x`,
     /// `y` world `+z`: a total fallback where no other frame is defined.
     #[must_use]
@@ -199,5 +233,43 @@ mod tests {
             LightFrame::toward(DVec3::ONE, DVec3::new(f64::NAN, 0.0, 0.0)),
             Err(FrameError::NonFinite)
         );
+    }
+
+    #[test]
+    fn a_chosen_x_axis_gives_a_right_handed_orthonormal_frame_with_that_x() {
+        let mut rng = Rng::new(17);
+        let mut v = || {
+            DVec3::new(
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+            )
+        };
+        for _ in 0..10_000 {
+            let (o, d, h) = (v(), v(), v());
+            let Ok(f) = LightFrame::with_x_axis(o, d, h) else {
+                continue;
+            };
+            let [x, y, z] = f.axes();
+            for (a, b) in [(x, y), (y, z), (z, x)] {
+                assert!(a.dot(b).abs() < 8.0 * f64::EPSILON, "{a} {b}");
+            }
+            assert!((x.cross(y) - z).length() < 8.0 * f64::EPSILON);
+            // x lies in the plane of z and the hint, on the hint's side.
+            assert!(z.cross(h).normalize().dot(x).abs() < 1e-12);
+            assert!(x.dot(h) > 0.0);
+            assert!((z - d.normalize()).length() < 4.0 * f64::EPSILON);
+        }
+        let o = DVec3::ZERO;
+        assert_eq!(
+            LightFrame::with_x_axis(o, DVec3::Y, DVec3::Y * 3.0),
+            Err(FrameError::NoDirection)
+        );
+        assert_eq!(
+            LightFrame::with_x_axis(o, DVec3::Y, DVec3::NAN),
+            Err(FrameError::NonFinite)
+        );
+        let f = LightFrame::with_x_axis(o, -DVec3::Y, DVec3::X).unwrap();
+        assert_eq!(f.axes(), [DVec3::X, DVec3::Z, -DVec3::Y]);
     }
 }

@@ -87,48 +87,266 @@ impl fmt::Display for ReceiverError {
 
 impl std::error::Error for ReceiverError {}
 
-/// A light of one of the five kinds. Fields are private: every value was
-/// validated by its constructor.
+/// The five kinds of light, for naming and for what a method handles.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
+pub enum LightKind {
+    /// [`Light::Sphere`].
+    Sphere,
+    /// [`Light::Disk`].
+    Disk,
+    /// [`Light::Rect`].
+    Rect,
+    /// [`Light::Segment`].
+    Segment,
+    /// [`Light::Point`].
+    Point,
+}
+
+impl LightKind {
+    /// Every kind, in the order of the scene file's documentation.
+    pub const ALL: &'static [LightKind] = &[
+        LightKind::Sphere,
+        LightKind::Disk,
+        LightKind::Rect,
+        LightKind::Segment,
+        LightKind::Point,
+    ];
+
+    /// The kind's name in the scene file (`"sphere"`, `"disk"`, …).
+    #[must_use]
+    pub const fn name(self) -> &'static str {
+        match self {
+            LightKind::Sphere => "sphere",
+            LightKind::Disk => "disk",
+            LightKind::Rect => "rect",
+            LightKind::Segment => "segment",
+            LightKind::Point => "point",
+        }
+    }
+}
+
+impl fmt::Display for LightKind {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str(self.name())
+    }
+}
+
+/// A uniform sphere of light, seen from a receiver as its facing disk.
+/// Built only by [`Sphere::new`], so its centre is finite and its radius
+/// finite and positive.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Sphere {
+    center: DVec3,
+    radius: f64,
+}
+
+impl Sphere {
+    /// A sphere light.
+    ///
+    /// # Errors
+    /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`].
+    pub fn new(center: DVec3, radius: f64) -> Result<Sphere, LightError> {
+        Ok(Sphere {
+            center: finite(center, "center")?,
+            radius: positive(radius)?,
+        })
+    }
+
+    /// The centre.
+    #[must_use]
+    pub fn center(&self) -> DVec3 {
+        self.center
+    }
+
+    /// The radius, `> 0`.
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+}
+
+/// A uniform disk of light (occlusion does not depend on the side it emits
+/// from), also a sphere light's facing disk as a receiver sees it. Built
+/// only by [`Disk::new`]: finite centre, unit normal, finite positive
+/// radius.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Disk {
+    center: DVec3,
+    normal: DVec3,
+    radius: f64,
+}
+
+impl Disk {
+    /// A disk light; `normal` need not be unit length (it is normalised).
+    ///
+    /// # Errors
+    /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`],
+    /// [`LightError::ZeroNormal`].
+    pub fn new(center: DVec3, normal: DVec3, radius: f64) -> Result<Disk, LightError> {
+        let normal = finite(normal, "normal")?
+            .try_normalize()
+            .ok_or(LightError::ZeroNormal)?;
+        Ok(Disk {
+            center: finite(center, "center")?,
+            normal,
+            radius: positive(radius)?,
+        })
+    }
+
+    /// The centre.
+    #[must_use]
+    pub fn center(&self) -> DVec3 {
+        self.center
+    }
+
+    /// The unit normal.
+    #[must_use]
+    pub fn normal(&self) -> DVec3 {
+        self.normal
+    }
+
+    /// The radius, `> 0`.
+    #[must_use]
+    pub fn radius(&self) -> f64 {
+        self.radius
+    }
+}
+
+/// A uniform parallelogram of light, `center + s u + t v` for
+/// `s, t ∈ [−1, 1]`. Built only by [`Rect::new`]: finite centre and
+/// half-axes spanning a finite, non-zero area.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Rect {
+    center: DVec3,
+    u: DVec3,
+    v: DVec3,
+}
+
+impl Rect {
+    /// A rect light with half-axes `u`, `v` (any non-parallel pair: the
+    /// light is the parallelogram they span).
+    ///
+    /// # Errors
+    /// [`LightError::NonFinite`], [`LightError::DegenerateRect`] when
+    /// `u × v` is zero or not finite.
+    pub fn new(center: DVec3, u: DVec3, v: DVec3) -> Result<Rect, LightError> {
+        let (u, v) = (finite(u, "u")?, finite(v, "v")?);
+        let n = u.cross(v);
+        if !(n.is_finite() && n.length_squared() > 0.0) {
+            return Err(LightError::DegenerateRect);
+        }
+        Ok(Rect {
+            center: finite(center, "center")?,
+            u,
+            v,
+        })
+    }
+
+    /// The centre.
+    #[must_use]
+    pub fn center(&self) -> DVec3 {
+        self.center
+    }
+
+    /// The first half-axis.
+    #[must_use]
+    pub fn u(&self) -> DVec3 {
+        self.u
+    }
+
+    /// The second half-axis (not parallel to [`Rect::u`]).
+    #[must_use]
+    pub fn v(&self) -> DVec3 {
+        self.v
+    }
+
+    /// The unit normal `u × v / ‖u × v‖`.
+    #[must_use]
+    pub fn normal(&self) -> DVec3 {
+        self.u.cross(self.v).normalize_or_zero()
+    }
+}
+
+/// A uniform segment of light from `a` to `b`. Built only by
+/// [`Segment::new`]: finite, distinct ends.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Segment {
+    a: DVec3,
+    b: DVec3,
+}
+
+impl Segment {
+    /// A segment light.
+    ///
+    /// # Errors
+    /// [`LightError::NonFinite`], [`LightError::ZeroLengthSegment`].
+    pub fn new(a: DVec3, b: DVec3) -> Result<Segment, LightError> {
+        let (a, b) = (finite(a, "a")?, finite(b, "b")?);
+        if a == b {
+            return Err(LightError::ZeroLengthSegment);
+        }
+        Ok(Segment { a, b })
+    }
+
+    /// One end.
+    #[must_use]
+    pub fn a(&self) -> DVec3 {
+        self.a
+    }
+
+    /// The other end.
+    #[must_use]
+    pub fn b(&self) -> DVec3 {
+        self.b
+    }
+}
+
+/// A point light. Built only by [`Point::new`]: a finite position.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Point {
+    position: DVec3,
+}
+
+impl Point {
+    /// A point light.
+    ///
+    /// # Errors
+    /// [`LightError::NonFinite`].
+    pub fn new(position: DVec3) -> Result<Point, LightError> {
+        Ok(Point {
+            position: finite(position, "position")?,
+        })
+    }
+
+    /// The position.
+    #[must_use]
+    pub fn position(&self) -> DVec3 {
+        self.position
+    }
+}
+
+/// A light of one of the five kinds. Each variant holds a struct whose
+/// fields are private, so every light was validated by its constructor:
+/// no light can be built with a NaN, a non-positive radius or a
+/// degenerate shape, and every part of the crate can rely on that.
+///
+/// ```compile_fail
+/// use softshadow::scene::Light;
+/// // The kinds' fields are private: a light cannot be written out unchecked.
+/// let light = Light::Sphere(softshadow::scene::light::Sphere { center: glam::DVec3::ZERO, radius: f64::NAN });
+/// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {
     /// A uniform sphere, seen as its facing disk.
-    Sphere {
-        /// Centre.
-        center: DVec3,
-        /// Radius, `> 0`.
-        radius: f64,
-    },
-    /// A uniform one-sided-or-two-sided disk (occlusion does not depend on
-    /// the side).
-    Disk {
-        /// Centre.
-        center: DVec3,
-        /// Unit normal.
-        normal: DVec3,
-        /// Radius, `> 0`.
-        radius: f64,
-    },
-    /// A uniform parallelogram `center + s u + t v`, `s, t ∈ [−1, 1]`.
-    Rect {
-        /// Centre.
-        center: DVec3,
-        /// First half-axis.
-        u: DVec3,
-        /// Second half-axis (not parallel to `u`).
-        v: DVec3,
-    },
-    /// A uniform segment from `a` to `b`.
-    Segment {
-        /// One end.
-        a: DVec3,
-        /// The other end.
-        b: DVec3,
-    },
+    Sphere(Sphere),
+    /// A uniform disk.
+    Disk(Disk),
+    /// A uniform parallelogram.
+    Rect(Rect),
+    /// A uniform segment.
+    Segment(Segment),
     /// A point light.
-    Point {
-        /// Position.
-        position: DVec3,
-    },
+    Point(Point),
 }
 
 fn finite(v: DVec3, field: &'static str) -> Result<DVec3, LightError> {
@@ -150,83 +368,94 @@ fn positive(radius: f64) -> Result<f64, LightError> {
 }
 
 impl Light {
-    /// A sphere light.
+    /// A sphere light ([`Sphere::new`]).
     ///
     /// # Errors
     /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`].
     pub fn sphere(center: DVec3, radius: f64) -> Result<Light, LightError> {
-        Ok(Light::Sphere {
-            center: finite(center, "center")?,
-            radius: positive(radius)?,
-        })
+        Sphere::new(center, radius).map(Light::Sphere)
     }
 
-    /// A disk light; `normal` need not be unit length (it is normalised).
+    /// A disk light ([`Disk::new`]); `normal` need not be unit length.
     ///
     /// # Errors
     /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`],
     /// [`LightError::ZeroNormal`].
     pub fn disk(center: DVec3, normal: DVec3, radius: f64) -> Result<Light, LightError> {
-        let normal = finite(normal, "normal")?
-            .try_normalize()
-            .ok_or(LightError::ZeroNormal)?;
-        Ok(Light::Disk {
-            center: finite(center, "center")?,
-            normal,
-            radius: positive(radius)?,
-        })
+        Disk::new(center, normal, radius).map(Light::Disk)
     }
 
-    /// A rect light with half-axes `u`, `v` (any non-parallel pair: the
-    /// light is the parallelogram they span).
+    /// A rect light ([`Rect::new`]).
     ///
     /// # Errors
-    /// [`LightError::NonFinite`], [`LightError::DegenerateRect`] when
-    /// `u × v` is zero or not finite.
+    /// [`LightError::NonFinite`], [`LightError::DegenerateRect`].
     pub fn rect(center: DVec3, u: DVec3, v: DVec3) -> Result<Light, LightError> {
-        let (u, v) = (finite(u, "u")?, finite(v, "v")?);
-        let n = u.cross(v);
-        if !(n.is_finite() && n.length_squared() > 0.0) {
-            return Err(LightError::DegenerateRect);
-        }
-        Ok(Light::Rect {
-            center: finite(center, "center")?,
-            u,
-            v,
-        })
+        Rect::new(center, u, v).map(Light::Rect)
     }
 
-    /// A segment light.
+    /// A segment light ([`Segment::new`]).
     ///
     /// # Errors
     /// [`LightError::NonFinite`], [`LightError::ZeroLengthSegment`].
     pub fn segment(a: DVec3, b: DVec3) -> Result<Light, LightError> {
-        let (a, b) = (finite(a, "a")?, finite(b, "b")?);
-        if a == b {
-            return Err(LightError::ZeroLengthSegment);
-        }
-        Ok(Light::Segment { a, b })
+        Segment::new(a, b).map(Light::Segment)
     }
 
-    /// A point light.
+    /// A point light ([`Point::new`]).
     ///
     /// # Errors
     /// [`LightError::NonFinite`].
     pub fn point(position: DVec3) -> Result<Light, LightError> {
-        Ok(Light::Point {
-            position: finite(position, "position")?,
-        })
+        Point::new(position).map(Light::Point)
+    }
+
+    /// The light's kind.
+    #[must_use]
+    pub fn kind(&self) -> LightKind {
+        match self {
+            Light::Sphere(_) => LightKind::Sphere,
+            Light::Disk(_) => LightKind::Disk,
+            Light::Rect(_) => LightKind::Rect,
+            Light::Segment(_) => LightKind::Segment,
+            Light::Point(_) => LightKind::Point,
+        }
     }
 
     /// The light's centre (the segment's midpoint).
     #[must_use]
     pub fn center(&self) -> DVec3 {
-        match *self {
-            Light::Sphere { center, .. }
-            | Light::Disk { center, .. }
-            | Light::Rect { center, .. } => center,
-            Light::Segment { a, b } => a.midpoint(b),
-            Light::Point { position } => position,
+        match self {
+            Light::Sphere(s) => s.center,
+            Light::Disk(d) => d.center,
+            Light::Rect(r) => r.center,
+            Light::Segment(s) => s.a.midpoint(s.b),
+            Light::Point(p) => p.position,
+        }
+    }
+
+    /// The radius of the disk the light's measure is drawn as when a method
+    /// projects it from its centre: a sphere's or disk's radius; for a rect
+    /// the radius of the disk of equal area; for a segment half its length;
+    /// `0` for a point.
+    #[must_use]
+    pub fn equivalent_radius(&self) -> f64 {
+        match self {
+            Light::Sphere(s) => s.radius,
+            Light::Disk(d) => d.radius,
+            Light::Rect(r) => (4.0 * r.u.cross(r.v).length() / std::f64::consts::PI).sqrt(),
+            Light::Segment(s) => 0.5 * (s.b - s.a).length(),
+            Light::Point(_) => 0.0,
+        }
+    }
+
+    /// The unit normal of a disk or rect light's plane, `None` for the
+    /// other kinds.
+    #[must_use]
+    pub fn plane_normal(&self) -> Option<DVec3> {
+        match self {
+            Light::Disk(d) => Some(d.normal),
+            Light::Rect(r) => Some(r.normal()),
+            _ => None,
         }
     }
 
@@ -243,36 +472,29 @@ impl Light {
             return Err(ReceiverError::NonFinite);
         }
         match *self {
-            Light::Sphere { center, radius } => {
+            Light::Sphere(Sphere { center, radius }) => {
                 // Halved, so that the difference cannot overflow.
                 let half = center * 0.5 - p * 0.5;
                 let normal = half.try_normalize().ok_or(ReceiverError::InsideSphere)?;
                 if half.length() * 2.0 <= radius {
                     return Err(ReceiverError::InsideSphere);
                 }
-                Ok(Emitter::Disk {
+                Ok(Emitter::Disk(Disk {
                     center,
                     normal,
                     radius,
-                })
+                }))
             }
-            Light::Disk {
-                center,
-                normal,
-                radius,
-            } => {
-                off_plane(p, center, normal)?;
-                Ok(Emitter::Disk {
-                    center,
-                    normal,
-                    radius,
-                })
+            Light::Disk(d) => {
+                off_plane(p, d.center, d.normal)?;
+                Ok(Emitter::Disk(d))
             }
-            Light::Rect { center, u, v } => {
-                off_plane(p, center, u.cross(v))?;
-                Ok(Emitter::Rect { center, u, v })
+            Light::Rect(r) => {
+                off_plane(p, r.center, r.u.cross(r.v))?;
+                Ok(Emitter::Rect(r))
             }
-            Light::Segment { a, b } => {
+            Light::Segment(s) => {
+                let Segment { a, b } = s;
                 // Collinear exactly: all three coordinate projections are.
                 let on_line = [(0, 1), (1, 2), (2, 0)].iter().all(|&(i, j)| {
                     let q = |v: DVec3| DVec2::new(v[i], v[j]);
@@ -282,13 +504,13 @@ impl Light {
                 if on_line && between {
                     return Err(ReceiverError::OnLight);
                 }
-                Ok(Emitter::Segment { a, b })
+                Ok(Emitter::Segment(s))
             }
-            Light::Point { position } => {
-                if p == position {
+            Light::Point(x) => {
+                if p == x.position {
                     return Err(ReceiverError::OnLight);
                 }
-                Ok(Emitter::Point(position))
+                Ok(Emitter::Point(x))
             }
         }
     }
@@ -310,36 +532,18 @@ fn off_plane(p: DVec3, c: DVec3, n: DVec3) -> Result<(), ReceiverError> {
     }
 }
 
-/// A light's emitting measure as one receiver sees it.
+/// A light's emitting measure as one receiver sees it: the kinds' own
+/// validated structs, so an emitter is as valid as the light it came from.
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Emitter {
     /// A uniform disk (a disk light, or a sphere light's facing disk).
-    Disk {
-        /// Centre.
-        center: DVec3,
-        /// Unit normal.
-        normal: DVec3,
-        /// Radius.
-        radius: f64,
-    },
-    /// A uniform parallelogram `center + s u + t v`, `s, t ∈ [−1, 1]`.
-    Rect {
-        /// Centre.
-        center: DVec3,
-        /// First half-axis.
-        u: DVec3,
-        /// Second half-axis.
-        v: DVec3,
-    },
+    Disk(Disk),
+    /// A uniform parallelogram.
+    Rect(Rect),
     /// A uniform segment.
-    Segment {
-        /// One end.
-        a: DVec3,
-        /// The other end.
-        b: DVec3,
-    },
+    Segment(Segment),
     /// A point.
-    Point(DVec3),
+    Point(Point),
 }
 
 impl Emitter {
@@ -351,22 +555,116 @@ impl Emitter {
     #[must_use]
     pub fn point_at(&self, s: DVec2) -> DVec3 {
         match *self {
-            Emitter::Disk {
-                center,
-                normal,
-                radius,
-            } => {
-                let (t, b) = normal.any_orthonormal_pair();
-                let q = concentric_disk(s) * radius;
-                center + t * q.x + b * q.y
+            Emitter::Disk(d) => {
+                let (t, b) = d.normal.any_orthonormal_pair();
+                let q = concentric_disk(s) * d.radius;
+                d.center + t * q.x + b * q.y
             }
-            Emitter::Rect { center, u, v } => {
-                center + u * (2.0 * s.x - 1.0) + v * (2.0 * s.y - 1.0)
-            }
-            Emitter::Segment { a, b } => a.lerp(b, s.x),
-            Emitter::Point(p) => p,
+            Emitter::Rect(r) => r.center + r.u * (2.0 * s.x - 1.0) + r.v * (2.0 * s.y - 1.0),
+            Emitter::Segment(g) => g.a.lerp(g.b, s.x),
+            Emitter::Point(p) => p.position,
         }
     }
+}
+
+impl Emitter {
+    /// The share `V_h ∈ [0, 1]` of the measure strictly on the side of the
+    /// plane through `p` with normal `n` that `n` points to — for a
+    /// receiver's tangent plane, the part of the light its own surface does
+    /// not hide, so `V(p) ≤ V_h` (the methods' `horizon` option).
+    ///
+    /// - **Disk**: with `h = n·(c − p)` the height of the centre above the
+    ///   plane and `s = ‖n − (n·m)m‖` the slope between the two planes
+    ///   (`m` the disk's normal), the plane cuts the disk along a chord at
+    ///   `−h/s` from its centre; the share beyond it is the straight-edge
+    ///   disk falloff ([`disk_edge_falloff`]) at `(1 + h/(r s))/2`, exact
+    ///   to its ulp. A plane parallel to the disk gives 1 above it, 0 below,
+    ///   1 in it.
+    /// - **Rect**: the area of the unit square `[−1, 1]²` of the rect's own
+    ///   coordinates where `h + s (n·u) + t (n·v) > 0` (the square clipped
+    ///   by a half-plane, shoelace area), over 4.
+    /// - **Segment**: the length fraction above the plane, where the
+    ///   heights of the ends change sign.
+    /// - **Point**: 1 when strictly above, else 0.
+    ///
+    /// `n` need not be unit length; a zero or non-finite `n` (or `p`) puts
+    /// no bound: 1.
+    ///
+    /// [`disk_edge_falloff`]: crate::kernel::falloff::f64::disk_edge_falloff
+    #[must_use]
+    pub fn share_above(&self, p: DVec3, n: DVec3) -> f64 {
+        if !(n.is_finite() && p.is_finite()) || n == DVec3::ZERO {
+            return 1.0;
+        }
+        let share = match *self {
+            Emitter::Disk(d) => {
+                let h = n.dot(d.center - p);
+                let slope = (n - d.normal * n.dot(d.normal)).length() * d.radius;
+                let k = h / slope;
+                if k.is_nan() {
+                    1.0
+                } else if k >= 1.0 {
+                    1.0
+                } else if k <= -1.0 {
+                    0.0
+                } else {
+                    crate::kernel::falloff::f64::disk_edge_falloff(0.5 + 0.5 * k)
+                }
+            }
+            Emitter::Rect(r) => square_share_above(n.dot(r.center - p), n.dot(r.u), n.dot(r.v)),
+            Emitter::Segment(g) => {
+                let (ha, hb) = (n.dot(g.a - p), n.dot(g.b - p));
+                match (ha > 0.0, hb > 0.0) {
+                    (true, true) => 1.0,
+                    (false, false) => 0.0,
+                    // The crossing at t = ha / (ha − hb), a difference of
+                    // opposite signs: no cancellation.
+                    (true, false) => ha / (ha - hb),
+                    (false, true) => hb / (hb - ha),
+                }
+            }
+            Emitter::Point(x) => {
+                if n.dot(x.position - p) > 0.0 {
+                    1.0
+                } else {
+                    0.0
+                }
+            }
+        };
+        if share.is_nan() {
+            1.0
+        } else {
+            share.clamp(0.0, 1.0)
+        }
+    }
+}
+
+/// The share of the square `[−1, 1]²` where `h + a x + b y > 0`:
+/// Sutherland–Hodgman against the half-plane, shoelace area over 4.
+fn square_share_above(h: f64, a: f64, b: f64) -> f64 {
+    let f = |q: DVec2| h + a * q.x + b * q.y;
+    let corners = [
+        DVec2::new(-1.0, -1.0),
+        DVec2::new(1.0, -1.0),
+        DVec2::new(1.0, 1.0),
+        DVec2::new(-1.0, 1.0),
+    ];
+    let mut poly: Vec<DVec2> = Vec::with_capacity(5);
+    for k in 0..4 {
+        let (p, q) = (corners[k], corners[(k + 1) % 4]);
+        let (fp, fq) = (f(p), f(q));
+        if fp > 0.0 {
+            poly.push(p);
+        }
+        if (fp > 0.0) != (fq > 0.0) {
+            let t = fp / (fp - fq);
+            poly.push(p + (q - p) * t);
+        }
+    }
+    let twice: f64 = (0..poly.len())
+        .map(|k| poly[k].perp_dot(poly[(k + 1) % poly.len()]))
+        .sum();
+    0.125 * twice
 }
 
 /// Shirley and Chiu's concentric map from `[0, 1)²` to the unit disk
@@ -458,11 +756,9 @@ mod tests {
     /// σ = √(p(1 − p)/N) (fixed seed). Every sample lies on the disk.
     #[test]
     fn disk_samples_are_uniform_by_area() {
-        let emitter = Emitter::Disk {
-            center: DVec3::new(1.0, 2.0, 3.0),
-            normal: DVec3::new(1.0, 1.0, 0.0).normalize(),
-            radius: 2.0,
-        };
+        let emitter = Emitter::Disk(
+            Disk::new(DVec3::new(1.0, 2.0, 3.0), DVec3::new(1.0, 1.0, 0.0), 2.0).unwrap(),
+        );
         let mut rng = crate::arbitrary::Rng::new(3);
         const N: usize = 200_000;
         let mut inner = 0;
@@ -480,20 +776,14 @@ mod tests {
 
     #[test]
     fn rect_and_segment_samples_cover_the_measure() {
-        let rect = Emitter::Rect {
-            center: DVec3::ZERO,
-            u: DVec3::X,
-            v: DVec3::new(0.5, 2.0, 0.0),
-        };
+        let rect =
+            Emitter::Rect(Rect::new(DVec3::ZERO, DVec3::X, DVec3::new(0.5, 2.0, 0.0)).unwrap());
         assert_eq!(
             rect.point_at(DVec2::ZERO),
             -DVec3::X - DVec3::new(0.5, 2.0, 0.0)
         );
         assert_eq!(rect.point_at(DVec2::splat(0.5)), DVec3::ZERO);
-        let seg = Emitter::Segment {
-            a: DVec3::ZERO,
-            b: DVec3::new(4.0, 0.0, 0.0),
-        };
+        let seg = Emitter::Segment(Segment::new(DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0)).unwrap());
         assert_eq!(seg.point_at(DVec2::new(0.25, 0.9)), DVec3::X);
     }
 
@@ -501,23 +791,22 @@ mod tests {
     fn facing_disk_faces_the_receiver() {
         let sphere = Light::sphere(DVec3::new(1.0, 5.0, 0.0), 0.5).unwrap();
         let p = DVec3::new(1.0, 0.0, 0.0);
-        let Ok(Emitter::Disk { normal, radius, .. }) = sphere.emitter(p) else {
+        let Ok(Emitter::Disk(disk)) = sphere.emitter(p) else {
             panic!("a disk");
         };
+        let (normal, radius) = (disk.normal(), disk.radius());
         assert_eq!(normal, DVec3::Y);
         assert_eq!(radius, 0.5);
     }
 
     fn emitter_is_finite(e: &Emitter) -> bool {
         match *e {
-            Emitter::Disk {
-                center,
-                normal,
-                radius,
-            } => center.is_finite() && normal.is_finite() && radius.is_finite(),
-            Emitter::Rect { center, u, v } => center.is_finite() && u.is_finite() && v.is_finite(),
-            Emitter::Segment { a, b } => a.is_finite() && b.is_finite(),
-            Emitter::Point(p) => p.is_finite(),
+            Emitter::Disk(d) => {
+                d.center().is_finite() && d.normal().is_finite() && d.radius().is_finite()
+            }
+            Emitter::Rect(r) => r.center().is_finite() && r.u().is_finite() && r.v().is_finite(),
+            Emitter::Segment(g) => g.a().is_finite() && g.b().is_finite(),
+            Emitter::Point(p) => p.position().is_finite(),
         }
     }
 
@@ -541,7 +830,7 @@ mod tests {
             {
                 if let Ok(e) = light.emitter(p) {
                     proptest::prop_assert!(emitter_is_finite(&e), "{:?} from {:?}", e, p);
-                    proptest::prop_assert!(emitter_is_finite(&Emitter::Point(e.point_at(DVec2::splat(0.3)))));
+                    proptest::prop_assert!(e.point_at(DVec2::splat(0.3)).is_finite());
                 }
             }
         }

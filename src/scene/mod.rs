@@ -31,7 +31,7 @@ pub use builtin::{builtin, BUILTIN_NAMES};
 #[cfg(feature = "scene-file")]
 pub use file::{FileError, Place, Receiver};
 pub use frame::{FrameError, LightFrame, Projected};
-pub use light::{Emitter, Light, LightError, ReceiverError};
+pub use light::{Emitter, Light, LightError, LightKind, ReceiverError};
 pub use mesh::{Mesh, MeshError};
 pub use primitive::{PrimitiveError, Transform};
 pub use scene::{Camera, CameraError, Scene};

@@ -47,8 +47,25 @@ enum Command {
 /// Exit status for bad input (a file, an argument).
 const BAD_INPUT: u8 = 2;
 
+/// The command with the registry's list of methods under `--help`.
+fn command() -> clap::Command {
+    use clap::CommandFactory;
+    let methods = format!(
+        "Methods (--method NAME, or NAME:OPTION,… with the options listed):\n{}",
+        softshadow::method::registry::help()
+    );
+    Cli::command()
+        .after_help(methods.clone())
+        .mut_subcommand("render", |c| c.after_help(methods.clone()))
+        .mut_subcommand("visibility", |c| c.after_help(methods.clone()))
+}
+
 fn main() -> ExitCode {
-    let cli = match Cli::try_parse() {
+    use clap::FromArgMatches;
+    let parsed = command()
+        .try_get_matches()
+        .and_then(|m| Cli::from_arg_matches(&m));
+    let cli = match parsed {
         Ok(cli) => cli,
         Err(e) => {
             use clap::error::ErrorKind;

@@ -17,7 +17,7 @@ pub struct Args {
     /// a camera.
     #[arg(long)]
     scene: String,
-    /// The method: exact, mc:N, hard, pcss, sism (or sism:OPT,… — see `softshadow::method::Sism::from_name`).
+    /// The method, NAME or NAME:OPTION,… (the list is below).
     #[arg(long, value_parser = parse_method)]
     method: String,
     /// The directory the PNG files are written to (created if missing).
@@ -29,9 +29,10 @@ pub struct Args {
     /// Image height (default: the scene camera's).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
     height: Option<u32>,
-    /// Seed of the Monte Carlo samples.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
+    /// Seed of the Monte Carlo samples (the same as the option seed=S of
+    /// mc:N; default the method's own).
+    #[arg(long)]
+    seed: Option<u64>,
     /// Print each stage's time and what was built.
     #[arg(long)]
     stats: bool,
@@ -126,7 +127,7 @@ pub fn default_run() -> Result<(), String> {
     );
     let exact = run_method(&Exact, &stages, &frame).map_err(|e| format!("exact: {e}"))?;
     let mut runs = Vec::new();
-    for m in method::default_set() {
+    for m in method::default_set(scene.light().kind()) {
         if m.name() == "exact" {
             runs.push(exact.clone());
             continue;

@@ -2,7 +2,7 @@
 //! method.
 
 use crate::progress::Progress;
-use softshadow::method::{self, Method, MethodError, MonteCarlo};
+use softshadow::method::{self, Method, MethodError};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::{load_points, load_scene};
@@ -19,12 +19,13 @@ pub struct Args {
     /// The points file: {"points": [{"p": [x, y, z], "object": i, "normal": [x, y, z]}, …]}.
     #[arg(long)]
     points: PathBuf,
-    /// The method: exact, mc:N, hard, pcss, sism (or sism:OPT,… — see `softshadow::method::Sism::from_name`).
+    /// The method, NAME or NAME:OPTION,… (the list is below).
     #[arg(long, value_parser = parse_method)]
     method: String,
-    /// Seed of the Monte Carlo samples.
-    #[arg(long, default_value_t = 0)]
-    seed: u64,
+    /// Seed of the Monte Carlo samples (the same as the option seed=S of
+    /// mc:N; default the method's own).
+    #[arg(long)]
+    seed: Option<u64>,
 }
 
 /// Checks a method name (clap's value parser), keeping the name.
@@ -32,15 +33,16 @@ pub fn parse_method(s: &str) -> Result<String, String> {
     method::parse(s).map(|_| s.to_owned())
 }
 
-/// The method `name` with the seed applied (Monte Carlo only).
-pub fn method_with_seed(name: &str, seed: u64) -> Result<Box<dyn Method>, String> {
-    let m = method::parse(name)?;
-    Ok(
-        match name.strip_prefix("mc:").and_then(|n| n.parse().ok()) {
-            Some(samples) => Box::new(MonteCarlo { samples, seed }),
-            None => m,
-        },
-    )
+/// The method `name`, with `seed=S` added to a Monte Carlo method's
+/// options when a seed is given.
+pub fn method_with_seed(name: &str, seed: Option<u64>) -> Result<Box<dyn Method>, String> {
+    match seed {
+        Some(seed) if name == "mc" || name.starts_with("mc:") => {
+            let sep = if name.contains(':') { ',' } else { ':' };
+            method::parse(&format!("{name}{sep}seed={seed}"))
+        }
+        _ => method::parse(name),
+    }
 }
 
 /// A built-in scene by name, else a scene file.

@@ -307,6 +307,28 @@ impl Grid {
         let pad = self.cell * 1e-6 + DVec2::splat(lo.abs().max(hi.abs()).max_element() * 1e-12);
         (lo - pad, hi + pad)
     }
+
+    /// Splits `data` (one value per stored receiver) into the consecutive
+    /// ranges of the bins.
+    pub fn split_bins<'a, T>(&self, mut data: &'a mut [T]) -> Vec<&'a mut [T]> {
+        let mut out = Vec::with_capacity(self.bins());
+        for b in 0..self.bins() {
+            let len = self.bin_range(b).len();
+            let (head, tail) = std::mem::take(&mut data).split_at_mut(len);
+            out.push(head);
+            data = tail;
+        }
+        out
+    }
+
+    /// The first depth slice whose receivers can be deeper than `z` (the
+    /// per-slice maxima grow with the slice; empty slices read 0).
+    pub fn first_slice_deeper(&self, z: f64) -> u32 {
+        self.slice_zmax
+            .iter()
+            .position(|&m| m > z)
+            .map_or(self.slices, |k| k as u32)
+    }
 }
 
 #[cfg(test)]

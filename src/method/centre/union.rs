@@ -32,7 +32,7 @@ use std::f64::consts::PI;
 /// One mapped chain edge: from `a` to `b`, covered side on the left, the
 /// layer count rising by `weight` from its right to its left.
 #[derive(Clone, Copy, Debug)]
-pub(super) struct MappedEdge {
+pub(crate) struct MappedEdge {
     pub a: DVec2,
     pub b: DVec2,
     pub weight: f64,
@@ -101,14 +101,14 @@ fn circle_hits(a: DVec2, b: DVec2, out: &mut Vec<f64>) {
 
 /// Reusable buffers.
 #[derive(Default)]
-pub(super) struct Scratch {
+pub(crate) struct Scratch {
     kept: Vec<MappedEdge>,
     params: Vec<f64>,
     angles: Vec<f64>,
 }
 
 /// The covered fraction of the unit disk (see the module docs).
-pub(super) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scratch) -> f64 {
+pub(crate) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scratch) -> f64 {
     let Scratch {
         kept,
         params,
