@@ -73,22 +73,8 @@ macro_rules! distortion_kernels {
         #[must_use]
         #[inline]
         pub fn max_distortion(light_radius: $T, z_near: $T, z_receiver: $T) -> $T {
-            let (r, zn, zp) = (light_radius, z_near, z_receiver);
-            // Comparisons with NaN are false: every NaN lands here.
-            if !(r > 0.0 && zn > 0.0 && zp > zn && zn < <$T>::INFINITY) {
-                return 0.0;
-            }
-            // w = 1 − z_n/z_p ∈ (0, 1], each form a correctly rounded
-            // monotone function of z_p, so dmax never decreases with depth.
-            let behind = if zp <= 2.0 * zn {
-                // Exact difference (Sterbenz): a receiver a few ulps behind
-                // the edge keeps full relative accuracy.
-                (zp - zn) / zp
-            } else {
-                // z_n/z_p < 1/2: no cancellation; z_p = +∞ gives 1.
-                1.0 - zn / zp
-            };
-            2.0 * ((r * behind) / zn)
+            // Exactly twice the footprint radius (the doubling is exact).
+            2.0 * crate::kernel::footprint::$T::radius(light_radius, z_near, z_receiver)
         }
 
         /// The normalised penumbra position `t = 1 − d/dmax ∈ [0, 1]` of a

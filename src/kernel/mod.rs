@@ -10,6 +10,7 @@
 //! | [`wedge`] | penumbra wedges and the light-image-plane penumbra quad (SISM's coarse test) |
 //! | [`disk`] | area of a polygon ∩ a disk, signed circle-segment occlusion (SISM eq. 3) |
 //! | [`falloff`] | Bernstein smoothstep and the exact straight-edge disk falloff |
+//! | [`footprint`] | the light's footprint on the light image plane: its radius, the projection, near and far clips, an edge mapped into the footprint; the rounding bound `γ(n)` |
 //! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
 //! | [`linear_light`] | OESS: visible fraction of a segment light and its endpoint weights |
 //!
@@ -21,6 +22,7 @@ pub mod disk;
 pub mod distortion;
 mod eft;
 pub mod falloff;
+pub mod footprint;
 pub mod linear_light;
 pub mod predicate;
 pub mod silhouette;

@@ -675,13 +675,7 @@ fn collinear(a: DVec3, b: DVec3, c: DVec3) -> bool {
         && orient2d(zx(a), zx(b), zx(c)) == Sign::Zero
 }
 
-/// `γ(n) = nu / (1 − nu)`, `u = 2⁻⁵³` (Higham, *Accuracy and Stability of
-/// Numerical Algorithms*, §3.1): `n` roundings multiply a value by a factor in
-/// `[1 − γ(n), 1 + γ(n)]`.
-const fn gamma(n: u32) -> f64 {
-    let nu = n as f64 * (f64::EPSILON / 2.0);
-    nu / (1.0 - nu)
-}
+use super::footprint::f64::gamma;
 
 /// The smallest positive subnormal: the absolute error bound of a rounded
 /// product or quotient in gradual underflow is half of it.

@@ -130,12 +130,7 @@ macro_rules! wedge_kernels {
     ($T:ident, $V2:ident, $V3:ident) => {
         use super::{WedgeError, WedgePlaneKind};
 
-        /// `γ(n) = nu / (1 − nu)`, `u` the unit roundoff of this precision
-        /// (Higham, *Accuracy and Stability of Numerical Algorithms*, §3.1).
-        const fn gamma(n: u32) -> $T {
-            let nu = n as $T * (<$T>::EPSILON / 2.0);
-            nu / (1.0 - nu)
-        }
+        use crate::kernel::footprint::$T::gamma;
 
         /// Number of times the radius margin is raised (eightfold each).
         const RETRIES: i32 = 12;

@@ -3,6 +3,7 @@
 
 use super::options::{flag, int, real, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
+use crate::kernel::footprint::f64::project;
 use crate::render::raster::MAX_RESOLUTION;
 use crate::render::{FittedMaps, Needs};
 use crate::scene::LightKind;
@@ -361,7 +362,7 @@ impl Method for Pcss {
                     margin: p.z * (self.bias_relative + self.bias_texels * texel),
                     own_surface_blocks: n.is_some() && facing.is_none(),
                 };
-                let s = DVec2::new(p.x / p.z, p.y / p.z);
+                let s = project(p);
                 // 1. Blocker search.
                 let radius = r * (1.0 / z_min - 1.0 / p.z);
                 let (mut sum, mut count) = (0.0, 0u32);

@@ -311,7 +311,7 @@ impl LightView {
             if !(q.is_finite() && q.z >= near) {
                 continue;
             }
-            let u = DVec2::new(q.x / q.z, q.y / q.z);
+            let u = crate::kernel::footprint::f64::project(q);
             if !u.is_finite() {
                 return Err(RasterError::NonFiniteWindow);
             }

@@ -148,7 +148,7 @@ impl LightFrame {
     pub fn project(&self, p: DVec3) -> Option<Projected> {
         let q = self.to_light(p);
         (q.z > 0.0 && q.is_finite()).then(|| Projected {
-            point: DVec2::new(q.x / q.z, q.y / q.z),
+            point: crate::kernel::footprint::f64::project(q),
             depth: q.z,
         })
     }

@@ -522,9 +522,7 @@ impl Light {
 /// kε/(1 − kε)`, Higham).
 fn off_plane(p: DVec3, c: DVec3, n: DVec3) -> Result<(), ReceiverError> {
     let d = p - c;
-    let eps = f64::EPSILON / 2.0;
-    let gamma5 = 5.0 * eps / (1.0 - 5.0 * eps);
-    let bound = gamma5 * n.abs().dot(d.abs());
+    let bound = crate::kernel::footprint::f64::gamma(5) * n.abs().dot(d.abs());
     if n.dot(d).abs() > bound {
         Ok(())
     } else {

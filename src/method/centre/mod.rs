@@ -14,6 +14,7 @@
 
 pub(crate) mod union;
 
+use crate::kernel::footprint::f64::{clip_near, project};
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use crate::kernel::silhouette::MeshTopology;
 use crate::render::Stages;
@@ -69,28 +70,6 @@ pub(crate) fn left(a: DVec2, b: DVec2, s: DVec2) -> bool {
         Sign::Positive => true,
         Sign::Negative => false,
         Sign::Zero => (b.y, b.x) < (a.y, a.x),
-    }
-}
-
-/// The light image plane projection `(x/z, y/z)` of a light-frame point.
-#[must_use]
-pub(crate) fn project(q: DVec3) -> DVec2 {
-    DVec2::new(q.x / q.z, q.y / q.z)
-}
-
-/// The part of segment `[a, b]` (light frame) at depth `z ≥ near`; a cut
-/// point lies exactly at `near`.
-#[must_use]
-pub(crate) fn clip_near(a: DVec3, b: DVec3, near: f64) -> Option<(DVec3, DVec3)> {
-    match (a.z >= near, b.z >= near) {
-        (true, true) => Some((a, b)),
-        (false, false) => None,
-        (ina, _) => {
-            let t = (near - a.z) / (b.z - a.z);
-            let mut c = a + (b - a) * t;
-            c.z = near;
-            Some(if ina { (a, c) } else { (c, b) })
-        }
     }
 }
 

@@ -147,9 +147,10 @@ mod umbra;
 
 pub use crate::method::centre::EdgeSource;
 
-use super::centre::{self, project};
+use super::centre;
 use super::options::{flag, int, real, Configurable, Field};
 use super::{Horizon, Input, Method, MethodError, Output};
+use crate::kernel::footprint::f64::project;
 use crate::render::Needs;
 use crate::scene::LightKind;
 use glam::DVec3;

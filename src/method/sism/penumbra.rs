@@ -7,9 +7,10 @@
 use super::grid::Grid;
 use super::{Bound, Composition, Sism};
 use crate::kernel::disk::f64::circle_segment_occlusion;
+use crate::kernel::footprint::f64::project;
 use crate::kernel::wedge::f64::{penumbra_quad, PenumbraWedge, QuadBound};
 use crate::method::centre::union::{self, MappedEdge};
-use crate::method::centre::{left, project, projected_edges, HorizonEdge, ProjectedEdge};
+use crate::method::centre::{left, projected_edges, HorizonEdge, ProjectedEdge};
 use crate::render::Stages;
 use glam::DVec2;
 use rayon::prelude::*;

@@ -5,8 +5,9 @@
 //! the light's centre.
 
 use super::grid::Grid;
+use crate::kernel::footprint::f64::{clip_near, project};
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
-use crate::method::centre::{clip_near, layer_weights, left, project};
+use crate::method::centre::{layer_weights, left};
 use crate::render::Stages;
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;

@@ -1,0 +1,288 @@
+//! The light as one receiver sees it, drawn on the light image plane: the
+//! geometry every method that projects from the light's centre shares.
+//!
+//! In the light frame (origin at the light's centre, `+z` toward the
+//! scene), a point `(x, y, z)`, `z > 0`, projects to `(x/z, y/z)` on the
+//! image plane `z = 1` ([`f64::project`]). A light of radius `r` in the
+//! plane `z = 0`, seen from a receiver `p` at depth `z_p` through the depth
+//! `z_q` of an occluder point, covers the disk of radius
+//!
+//! `R = r·(1/z_q − 1/z_p)` ([`f64::radius`])
+//!
+//! around `p`'s projection — the receiver's *footprint* at that depth
+//! (Johnson et al. 2009, §2.2; SSOC's distortion is `2R`). An occluder
+//! point at depth `z_q` projecting to `π(q)` hides the light point
+//! `r·(π(q) − π(p))/R`: dividing by `R` maps an occluder's projected edge
+//! into the *unit footprint* ([`f64::map_edge`]), where the light is the
+//! unit disk and the disk-occlusion kernels apply.
+//!
+//! Also here: the near- and far-depth clips of a light-frame segment
+//! ([`f64::clip_near`], [`f64::clip_far`]) and the rounding bound
+//! `γ(n) = nu/(1 − nu)` ([`f64::gamma`], Higham's notation) every error
+//! analysis of the crate uses. Everything is in [`f32`](mod@f32) and
+//! [`f64`](mod@f64) from one body.
+
+macro_rules! footprint_kernels {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use glam::{$V2, $V3};
+
+        /// `γ(n) = n·u/(1 − n·u)`, `u = ε/2` the unit roundoff: `n` rounded
+        /// operations (additions, products, quotients) multiply a result by
+        /// a factor in `[1 − γ(n), 1 + γ(n)]` (Higham, *Accuracy and
+        /// Stability of Numerical Algorithms*, §3.1). Valid for `n·u < 1`.
+        #[must_use]
+        pub const fn gamma(n: u32) -> $T {
+            let nu = n as $T * (<$T>::EPSILON / 2.0);
+            nu / (1.0 - nu)
+        }
+
+        /// The footprint radius `R = r·(1/z_q − 1/z_p)` of a light of
+        /// radius `light_radius` seen from a receiver at depth `z_receiver`
+        /// through depth `z_occluder`, in light-image-plane units (module
+        /// docs).
+        ///
+        /// **Domain**: `r ≥ 0`, `0 < z_q < z_p ≤ +∞`. `z_p = +∞` gives the
+        /// limit `r/z_q`.
+        ///
+        /// **Edge of the domain**: a receiver not behind the occluder
+        /// (`z_p ≤ z_q`) sees no footprint there: `0`; so does any input
+        /// outside the domain (`r ≤ 0`, `z_q ≤ 0`, `z_q = +∞`, a NaN).
+        /// Never NaN, never negative; `+∞` only when the true value
+        /// overflows (or `r = +∞`).
+        ///
+        /// **Numerics**: the difference of reciprocals cancels as
+        /// `z_p → z_q`; it is evaluated as `(r·w)/z_q` with `w = 1 −
+        /// z_q/z_p` formed as `(z_p − z_q)/z_p` for `z_p ≤ 2z_q`, where the
+        /// difference is exact (Sterbenz), and as `1 − z_q/z_p` beyond,
+        /// where nothing cancels. No product `z_q·z_p` can overflow. Each
+        /// step is correctly rounded and monotone, so `R` never decreases
+        /// with `z_p`.
+        ///
+        /// **Accuracy**: relative error at most `4u` (4 ulp) when the result
+        /// is a normal number; measured through [`max_distortion`], which is
+        /// exactly `2R` (`docs/accuracy/kernels.md`: max 2.54 ulp in `f64`,
+        /// 2.66 ulp in `f32`).
+        ///
+        /// [`max_distortion`]: crate::kernel::distortion::f64::max_distortion
+        #[must_use]
+        #[inline]
+        pub fn radius(light_radius: $T, z_occluder: $T, z_receiver: $T) -> $T {
+            let (r, zq, zp) = (light_radius, z_occluder, z_receiver);
+            // Comparisons with NaN are false: every NaN lands here.
+            if !(r > 0.0 && zq > 0.0 && zp > zq && zq < <$T>::INFINITY) {
+                return 0.0;
+            }
+            let behind = if zp <= 2.0 * zq {
+                // Exact difference (Sterbenz).
+                (zp - zq) / zp
+            } else {
+                // z_q/z_p < 1/2: no cancellation; z_p = +∞ gives 1.
+                1.0 - zq / zp
+            };
+            (r * behind) / zq
+        }
+
+        /// The depth at which a light of radius `light_radius`, seen
+        /// through depth `z_occluder`, has a footprint of radius `reach`:
+        /// the `z_p` solving `r·(1/z_q − 1/z_p) = reach`, i.e.
+        /// `1/z_p = 1/z_q − reach/r`; receivers shallower than it have a
+        /// smaller footprint. `+∞` when no depth reaches that far (`reach ≥
+        /// r/z_q`), `z_q` for `reach ≤ 0`; NaN input gives `+∞` (no bound).
+        ///
+        /// **Accuracy**: a few roundings (relative `γ(4)` on `1/z_p` away
+        /// from cancellation): callers widen it by a relative margin.
+        #[must_use]
+        #[inline]
+        pub fn reach_depth(light_radius: $T, z_occluder: $T, reach: $T) -> $T {
+            if reach <= 0.0 {
+                return z_occluder;
+            }
+            let inv = 1.0 / z_occluder - reach / light_radius;
+            if inv > 0.0 {
+                1.0 / inv
+            } else {
+                <$T>::INFINITY
+            }
+        }
+
+        /// The light-image-plane projection `(x/z, y/z)` of a light-frame
+        /// point. Not finite for `z = 0` or non-finite input; callers keep
+        /// `z > 0` (see [`clip_near`]).
+        #[must_use]
+        #[inline]
+        pub fn project(q: $V3) -> $V2 {
+            $V2::new(q.x / q.z, q.y / q.z)
+        }
+
+        /// The point of segment `[a, b]` at depth `z` (exactly `z`), for
+        /// `z` strictly between the ends' depths.
+        #[inline]
+        fn cut(a: $V3, b: $V3, z: $T) -> $V3 {
+            let t = (z - a.z) / (b.z - a.z);
+            let mut c = a + (b - a) * t;
+            c.z = z;
+            c
+        }
+
+        /// The part of the light-frame segment `[a, b]` at depth `z ≥ near`
+        /// (in front of a near plane), its order kept; `None` when none is.
+        /// An end already in front is returned bit for bit, so an edge
+        /// shared by two triangles is cut at the same point from both.
+        #[must_use]
+        #[inline]
+        pub fn clip_near(a: $V3, b: $V3, near: $T) -> Option<($V3, $V3)> {
+            match (a.z >= near, b.z >= near) {
+                (true, true) => Some((a, b)),
+                (false, false) => None,
+                (true, false) => Some((a, cut(a, b, near))),
+                (false, true) => Some((cut(a, b, near), b)),
+            }
+        }
+
+        /// The part of `[a, b]` at depth `z < far` (in front of a receiver
+        /// at depth `far`), its order kept; `None` when none is. Ends
+        /// already in front are returned bit for bit.
+        #[must_use]
+        #[inline]
+        pub fn clip_far(a: $V3, b: $V3, far: $T) -> Option<($V3, $V3)> {
+            match (a.z < far, b.z < far) {
+                (true, true) => Some((a, b)),
+                (false, false) => None,
+                (true, false) => Some((a, cut(a, b, far))),
+                (false, true) => Some((cut(a, b, far), b)),
+            }
+        }
+
+        /// An occluder edge mapped into the unit footprint of a receiver:
+        /// the edge's light-frame ends `la`, `lb` (depths `> 0`) with their
+        /// projections `a`, `b`; the receiver at image point `s`, depth
+        /// `z_p`; the light's radius `r`. The edge is first clipped to the
+        /// part in front of the receiver (depth below `z_p·(1 − 10⁻⁶)`, a
+        /// relative hair that keeps the radii away from the `0/0` at the
+        /// receiver's own depth); each end is then mapped with its own
+        /// depth's [`radius`], `(a − s)/R_a`, so that a chain of edges
+        /// stays closed. `None` when no part is in front or a radius is
+        /// not positive.
+        ///
+        /// The image of a straight edge is straight only when its ends
+        /// share a depth; a sloped edge's mapped chord is the method's
+        /// approximation (SISM §5.1's single point of projection).
+        #[must_use]
+        pub fn map_edge(
+            a: $V2,
+            b: $V2,
+            la: $V3,
+            lb: $V3,
+            s: $V2,
+            z_p: $T,
+            r: $T,
+        ) -> Option<($V2, $V2)> {
+            let (ca, cb) = clip_far(la, lb, z_p * (1.0 - 1e-6))?;
+            let pa = if ca == la { a } else { project(ca) };
+            let pb = if cb == lb { b } else { project(cb) };
+            let ra = radius(r, ca.z, z_p);
+            let rb = radius(r, cb.z, z_p);
+            if !(ra > 0.0 && rb > 0.0) {
+                return None;
+            }
+            Some(((pa - s) / ra, (pb - s) / rb))
+        }
+    };
+}
+
+/// `f64` versions.
+pub mod f64 {
+    footprint_kernels!(f64, DVec2, DVec3);
+}
+
+/// `f32` versions.
+pub mod f32 {
+    footprint_kernels!(f32, Vec2, Vec3);
+}
+
+#[cfg(test)]
+mod tests {
+    use super::f64::*;
+    use glam::{DVec2, DVec3};
+
+    #[test]
+    fn the_radius_is_the_difference_of_reciprocals_and_zero_in_front() {
+        let (r, zq, zp) = (0.5, 2.0, 5.0);
+        assert!((radius(r, zq, zp) - r * (1.0 / zq - 1.0 / zp)).abs() < 1e-16);
+        assert_eq!(radius(r, 5.0, 2.0), 0.0);
+        assert_eq!(radius(r, 2.0, 2.0), 0.0);
+        assert_eq!(radius(f64::NAN, 2.0, 3.0), 0.0);
+        assert_eq!(radius(r, 2.0, f64::INFINITY), r / 2.0);
+        // A receiver one ulp behind keeps its relative accuracy.
+        let zp = 2f64.next_up();
+        let want = r * (zp - 2.0) / (zp * 2.0);
+        assert!((radius(r, 2.0, zp) / want - 1.0).abs() < 4.0 * f64::EPSILON);
+        // Twice the radius is SSOC's maximal distortion, bit for bit.
+        for (zq, zp) in [(1.0, 3.0), (2.5, 2.6), (0.3, 1e9)] {
+            assert_eq!(
+                2.0 * radius(0.7, zq, zp),
+                crate::kernel::distortion::f64::max_distortion(0.7, zq, zp)
+            );
+        }
+    }
+
+    #[test]
+    fn the_reach_depth_inverts_the_radius() {
+        let (r, zq) = (0.5, 2.0);
+        for reach in [0.01, 0.1, 0.2] {
+            let zp = reach_depth(r, zq, reach);
+            assert!((radius(r, zq, zp) - reach).abs() < 1e-15, "{reach}");
+        }
+        assert_eq!(reach_depth(r, zq, 0.25), f64::INFINITY);
+        assert_eq!(reach_depth(r, zq, 0.0), zq);
+    }
+
+    #[test]
+    fn clips_keep_ends_bit_for_bit_and_cut_at_the_plane() {
+        let (a, b) = (DVec3::new(0.1, 0.2, 0.5), DVec3::new(0.7, -0.3, 3.0));
+        assert_eq!(clip_near(a, b, 0.1), Some((a, b)));
+        assert_eq!(clip_near(a, b, 4.0), None);
+        let (c, d) = clip_near(a, b, 1.0).unwrap();
+        assert_eq!((c.z, d), (1.0, b));
+        let (c, d) = clip_near(b, a, 1.0).unwrap();
+        assert_eq!((c, d.z), (b, 1.0));
+        let (c, d) = clip_far(a, b, 1.0).unwrap();
+        assert_eq!((c, d.z), (a, 1.0));
+        assert_eq!(clip_far(a, b, 0.5), None);
+        assert_eq!(gamma(1), (f64::EPSILON / 2.0) / (1.0 - f64::EPSILON / 2.0));
+    }
+
+    #[test]
+    fn a_mapped_edge_hides_the_light_points_it_hides_from_the_receiver() {
+        // A receiver at light-frame p, an occluder edge at depth 2 through
+        // the image point s + R·u: the light point r·u is hidden.
+        let (r, zp) = (0.5, 5.0);
+        let p = DVec3::new(0.3, -0.2, zp);
+        let s = project(p);
+        let rad = radius(r, 2.0, zp);
+        let u = DVec2::new(0.4, -0.1);
+        // The occluder point hiding light point ℓ = r·u: on the segment
+        // from ℓ (depth 0) to p, at depth 2.
+        let l = DVec3::new(r * u.x, r * u.y, 0.0);
+        let q = l + (p - l) * (2.0 / zp);
+        assert!((project(q) - (s + u * rad)).length() < 1e-15);
+        let q2 = q + DVec3::new(0.1, 0.0, 0.0);
+        let (ma, mb) = map_edge(project(q), project(q2), q, q2, s, zp, r).unwrap();
+        assert!((ma - u).length() < 1e-14, "{ma}");
+        assert!((mb - (u + DVec2::new(0.1 / 2.0 / rad, 0.0))).length() < 1e-13);
+        // An edge behind the receiver maps to nothing.
+        let behind = DVec3::new(0.0, 0.0, 6.0);
+        assert_eq!(
+            map_edge(
+                project(behind),
+                project(behind + DVec3::X),
+                behind,
+                behind + DVec3::X,
+                s,
+                zp,
+                r
+            ),
+            None
+        );
+    }
+}
