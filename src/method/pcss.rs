@@ -3,7 +3,7 @@
 
 use super::options::{flag, int, real, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
-use crate::kernel::footprint::f64::project;
+use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::MAX_RESOLUTION;
 use crate::render::{FittedMaps, Needs};
 use crate::scene::LightKind;
@@ -364,7 +364,7 @@ impl Method for Pcss {
                 };
                 let s = project(p);
                 // 1. Blocker search.
-                let radius = r * (1.0 / z_min - 1.0 / p.z);
+                let radius = footprint::radius(r, z_min, p.z);
                 let (mut sum, mut count) = (0.0, 0u32);
                 for o in &search {
                     if let Some(d) = lookup.blocker(s + *o * radius) {
@@ -377,7 +377,7 @@ impl Method for Pcss {
                 }
                 // 2. Penumbra estimate.
                 let z_b = sum / f64::from(count);
-                let w = r * (1.0 / z_b - 1.0 / p.z).max(0.0);
+                let w = footprint::radius(r, z_b, p.z);
                 // 3. Filtering.
                 let lit = filter
                     .iter()

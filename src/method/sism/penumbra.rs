@@ -7,7 +7,7 @@
 use super::grid::Grid;
 use super::{Bound, Composition, Sism};
 use crate::kernel::disk::f64::circle_segment_occlusion;
-use crate::kernel::footprint::f64::project;
+use crate::kernel::footprint::f64 as footprint;
 use crate::kernel::wedge::f64::{penumbra_quad, PenumbraWedge, QuadBound};
 use crate::method::centre::union::{self, MappedEdge};
 use crate::method::centre::{left, projected_edges, HorizonEdge, ProjectedEdge};
@@ -100,8 +100,8 @@ pub(super) fn pass(pass: &Pass<'_>, occlusion: &mut [f64], evaluations: &mut [u3
 fn quad(sism: &Sism, e: &PenEdge, r: f64, z_max: f64) -> Option<Quad> {
     match sism.bound {
         Bound::Paper => {
-            let radius = r * (1.0 / e.z_min - 1.0 / z_max);
-            if radius.is_nan() || radius <= 0.0 {
+            let radius = footprint::radius(r, e.z_min, z_max);
+            if radius <= 0.0 {
                 return None;
             }
             let d = e.b - e.a;
@@ -187,12 +187,10 @@ fn penumbra_bin(
                     let dmin = (point_segment_distance((lo + hi) * 0.5, e.a, e.b)
                         - 0.5 * (hi - lo).length())
                     .max(0.0);
-                    let inv = 1.0 / e.z_min - dmin / r;
-                    first = if inv > 0.0 {
-                        grid.first_slice_deeper((1.0 / inv) * (1.0 - 1e-9))
-                    } else {
-                        grid.slices
-                    };
+                    // The depth where the footprint reaches the cell;
+                    // shallower receivers cannot.
+                    let reach = footprint::reach_depth(r, e.z_min, dmin);
+                    first = grid.first_slice_deeper(reach * (1.0 - 1e-9));
                     counts.saved_wedge +=
                         (grid.column(cx, cy, 0).len() - grid.column(cx, cy, first).len()) as u64;
                 }
@@ -360,9 +358,10 @@ fn segment_occlusion(e: &PenEdge, s: DVec2, zp: f64, r: f64) -> f64 {
         return 0.0;
     }
     let t = ((s - e.a).dot(d) / len2).clamp(0.0, 1.0);
+    // 1/z is linear along the projected edge.
     let inv_zq = (1.0 - t) / e.la.z + t / e.lb.z;
-    let radius = r * (inv_zq - 1.0 / zp);
-    if radius.is_nan() || radius <= 0.0 {
+    let radius = footprint::radius(r, 1.0 / inv_zq, zp);
+    if radius <= 0.0 {
         return 0.0;
     }
     let len = len2.sqrt();
@@ -378,36 +377,13 @@ fn segment_occlusion(e: &PenEdge, s: DVec2, zp: f64, r: f64) -> f64 {
     circle_segment_occlusion(signed, w0, w1)
 }
 
-/// Edge `e` seen from the receiver at image point `s`, depth `zp`, mapped
-/// into the unit footprint for the exact composition: clipped to the part
-/// in front of the receiver, each endpoint scaled by its own depth's
-/// footprint radius.
+/// Edge `e` mapped into the unit footprint of the receiver at image point
+/// `s`, depth `zp`, for the exact composition ([`footprint::map_edge`]).
 fn map_edge(e: &ProjectedEdge, s: DVec2, zp: f64, r: f64) -> Option<MappedEdge> {
-    let zc = zp * (1.0 - 1e-6);
-    let (la, lb) = match (e.la.z < zc, e.lb.z < zc) {
-        (true, true) => (e.la, e.lb),
-        (false, false) => return None,
-        (ina, _) => {
-            let t = (zc - e.la.z) / (e.lb.z - e.la.z);
-            let mut c = e.la + (e.lb - e.la) * t;
-            c.z = zc;
-            if ina {
-                (e.la, c)
-            } else {
-                (c, e.lb)
-            }
-        }
-    };
-    let pa = if la == e.la { e.a } else { project(la) };
-    let pb = if lb == e.lb { e.b } else { project(lb) };
-    let ra = r * (1.0 / la.z - 1.0 / zp);
-    let rb = r * (1.0 / lb.z - 1.0 / zp);
-    if !(ra > 0.0 && rb > 0.0) {
-        return None;
-    }
+    let (a, b) = footprint::map_edge(e.a, e.b, e.la, e.lb, s, zp, r)?;
     Some(MappedEdge {
-        a: (pa - s) / ra,
-        b: (pb - s) / rb,
+        a,
+        b,
         weight: e.weight,
     })
 }
