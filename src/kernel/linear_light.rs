@@ -237,6 +237,48 @@ macro_rules! linear_light_kernels {
                 weight_l: 0.5,
             };
 
+            /// Nothing visible: the empty interval at 0.
+            pub const EMPTY: VisiblePart = VisiblePart {
+                start: 0.0,
+                end: 0.0,
+                fraction: 0.0,
+                weight_r: 0.0,
+                weight_l: 0.0,
+            };
+
+            /// The interval `[start, end]` of the light's parameter, clamped
+            /// to `[0, 1]` (an empty interval where `end ≤ start`, or for a
+            /// NaN bound), with its fraction `end − start` and the endpoint
+            /// weights `A = (end² − start²)/2`, `B = fraction − A`, each
+            /// formed without cancellation: `A = (end − start)(end +
+            /// start)/2`, `B = (end − start)(2 − end − start)/2`.
+            #[must_use]
+            pub fn interval(start: $T, end: $T) -> VisiblePart {
+                let (s, e) = (start.clamp(0.0, 1.0), end.clamp(0.0, 1.0));
+                if !(e > s) {
+                    return VisiblePart {
+                        start: if s.is_nan() { 0.0 } else { s },
+                        end: if s.is_nan() { 0.0 } else { s },
+                        ..VisiblePart::EMPTY
+                    };
+                }
+                let i = e - s;
+                VisiblePart {
+                    start: s,
+                    end: e,
+                    fraction: i,
+                    weight_r: 0.5 * i * (e + s),
+                    weight_l: 0.5 * i * ((1.0 - e) + (1.0 - s)),
+                }
+            }
+
+            /// The part visible in both `self` and `other` (the
+            /// intersection of the intervals), as [`VisiblePart::interval`].
+            #[must_use]
+            pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
+                VisiblePart::interval(self.start.max(other.start), self.end.min(other.end))
+            }
+
             /// `[0, s]`, given `s` and `q = 1 − s` (each computed directly).
             #[inline]
             fn up_to(s: $T, q: $T) -> VisiblePart {
@@ -535,5 +577,32 @@ mod tests {
         let down = DVec2::new(3.5, (-0.5f64).next_down());
         assert_eq!(cross_sign(l, r, f, up), Sign::Positive);
         assert_eq!(cross_sign(l, r, f, down), Sign::Negative);
+    }
+
+    #[test]
+    fn intervals_carry_their_weights_and_intersect() {
+        use super::f64::VisiblePart;
+        let v = VisiblePart::interval(0.25, 0.75);
+        assert_eq!((v.start, v.end, v.fraction), (0.25, 0.75, 0.5));
+        // A = ∫ s ds = (0.75² − 0.25²)/2 = 0.25, B = 0.5 − 0.25.
+        assert_eq!((v.weight_r, v.weight_l), (0.25, 0.25));
+        assert_eq!(VisiblePart::interval(0.0, 1.0), VisiblePart::FULL);
+        assert_eq!(VisiblePart::interval(-3.0, 7.0), VisiblePart::FULL);
+        let empty = VisiblePart::interval(0.6, 0.4);
+        assert_eq!(
+            (empty.fraction, empty.weight_l, empty.weight_r),
+            (0.0, 0.0, 0.0)
+        );
+        assert_eq!(VisiblePart::interval(f64::NAN, 0.5).fraction, 0.0);
+        let w = VisiblePart::interval(0.5, 0.9).intersect(&v);
+        assert_eq!((w.start, w.end), (0.5, 0.75));
+        assert!(v.intersect(&VisiblePart::interval(0.8, 1.0)).fraction == 0.0);
+        // The weights sum to the fraction.
+        for (a, b) in [(0.1, 0.3), (0.0, 1e-300), (0.999, 1.0)] {
+            let p = VisiblePart::interval(a, b);
+            assert!(
+                (p.weight_l + p.weight_r - p.fraction).abs() <= 4.0 * f64::EPSILON * p.fraction
+            );
+        }
     }
 }

@@ -45,22 +45,57 @@ impl Rgb {
         }
     }
 
-    /// Writes the image as a PNG file.
+    /// Writes the image as a PNG file, atomically: the bytes go to a
+    /// temporary file in the same folder, which is renamed to `path` only
+    /// once complete, so a reader never sees a partial picture, whatever
+    /// stops the program; an existing file or symlink at `path` is
+    /// replaced, never written through.
     ///
     /// # Errors
-    /// The file's I/O errors, and the encoder's as [`io::ErrorKind::Other`].
+    /// The file's I/O errors, and the encoder's as [`io::ErrorKind::Other`];
+    /// the temporary file is removed on error.
     pub fn write_png(&self, path: &Path) -> io::Result<()> {
-        let file = io::BufWriter::new(std::fs::File::create(path)?);
-        let mut encoder = png::Encoder::new(file, self.width, self.height);
-        encoder.set_color(png::ColorType::Rgb);
-        encoder.set_depth(png::BitDepth::Eight);
-        encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
-        let mut writer = encoder.write_header().map_err(io::Error::other)?;
-        writer
-            .write_image_data(&self.data)
-            .map_err(io::Error::other)?;
-        writer.finish().map_err(io::Error::other)
+        let mut bytes = Vec::new();
+        {
+            let mut encoder = png::Encoder::new(&mut bytes, self.width, self.height);
+            encoder.set_color(png::ColorType::Rgb);
+            encoder.set_depth(png::BitDepth::Eight);
+            encoder.set_source_srgb(png::SrgbRenderingIntent::Perceptual);
+            let mut writer = encoder.write_header().map_err(io::Error::other)?;
+            writer
+                .write_image_data(&self.data)
+                .map_err(io::Error::other)?;
+            writer.finish().map_err(io::Error::other)?;
+        }
+        write_atomically(path, &bytes)
     }
+}
+
+/// Writes `bytes` to `path` through a temporary file in the same folder
+/// (`.NAME.PID.tmp`), synced, then renamed over `path`.
+///
+/// # Errors
+/// The I/O errors of writing or renaming; the temporary file is removed on
+/// error.
+pub fn write_atomically(path: &Path, bytes: &[u8]) -> io::Result<()> {
+    use std::io::Write as _;
+    let name = path
+        .file_name()
+        .ok_or_else(|| io::Error::new(io::ErrorKind::InvalidInput, "no file name"))?;
+    let mut tmp_name = std::ffi::OsString::from(".");
+    tmp_name.push(name);
+    tmp_name.push(format!(".{}.tmp", std::process::id()));
+    let tmp = path.with_file_name(tmp_name);
+    let result = (|| {
+        let mut file = std::fs::File::create(&tmp)?;
+        file.write_all(bytes)?;
+        file.sync_all()?;
+        std::fs::rename(&tmp, path)
+    })();
+    if result.is_err() {
+        let _ = std::fs::remove_file(&tmp);
+    }
+    result
 }
 
 /// Linear `[0, 1]` to an 8-bit sRGB code (IEC 61966-2-1).
@@ -345,5 +380,37 @@ mod tests {
             ErrorSummary::new(&values, &reference, |_| false),
             ErrorSummary::default()
         );
+    }
+
+    #[cfg(unix)]
+    #[test]
+    fn pictures_replace_a_symlink_and_leave_no_temporary_file() {
+        let dir = std::env::temp_dir().join(format!("softshadow-atomic-{}", std::process::id()));
+        let _ = std::fs::remove_dir_all(&dir);
+        std::fs::create_dir_all(&dir).unwrap();
+        let target = dir.join("precious.txt");
+        std::fs::write(&target, b"keep me").unwrap();
+        let link = dir.join("picture.png");
+        std::os::unix::fs::symlink(&target, &link).unwrap();
+        let img = Rgb::new(3, 2, [10, 20, 30]);
+        img.write_png(&link).unwrap();
+        assert_eq!(std::fs::read(&target).unwrap(), b"keep me");
+        assert!(!std::fs::symlink_metadata(&link)
+            .unwrap()
+            .file_type()
+            .is_symlink());
+        let decoded =
+            png::Decoder::new(std::io::BufReader::new(std::fs::File::open(&link).unwrap()))
+                .read_info()
+                .unwrap();
+        assert_eq!((decoded.info().width, decoded.info().height), (3, 2));
+        let names: Vec<_> = std::fs::read_dir(&dir)
+            .unwrap()
+            .map(|e| e.unwrap().file_name())
+            .collect();
+        assert_eq!(names.len(), 2, "{names:?}");
+        // A folder that does not exist: an error, and nothing left behind.
+        assert!(img.write_png(&dir.join("missing").join("x.png")).is_err());
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
