@@ -23,7 +23,7 @@ use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use robust::Coord;
 use softshadow::arbitrary::Rng;
-use softshadow::reference::Occluders;
+use softshadow::bvh::Occluders;
 use softshadow::render::raster::{
     rasterize, rasterize_into, rasterize_occluders, rasterize_triangle, LightMaps, LightView,
     RasterError,

@@ -12,6 +12,7 @@
 //! | [`falloff`] | Bernstein smoothstep and the exact straight-edge disk falloff |
 //! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
 //! | [`linear_light`] | OESS: visible fraction of a segment light and its endpoint weights |
+//! | [`segment`] | exact open-segment–triangle test (`f64`): blocked or not, and where it crosses |
 //!
 //! Scalar kernels exist in `f32` and `f64` as submodules generated from one
 //! body (`disk::f32`, `disk::f64`, …).
@@ -23,5 +24,6 @@ mod eft;
 pub mod falloff;
 pub mod linear_light;
 pub mod predicate;
+pub mod segment;
 pub mod silhouette;
 pub mod wedge;

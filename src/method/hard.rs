@@ -11,7 +11,7 @@ use crate::scene::Light;
 /// bit. Receivers the light itself cannot be seen from (inside a sphere
 /// light, …) are errors, as for every method.
 ///
-/// [`Bvh::segment_unoccluded`]: crate::reference::bvh::Bvh::segment_unoccluded
+/// [`Bvh::segment_unoccluded`]: crate::bvh::Bvh::segment_unoccluded
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 pub struct HardShadow;
 

@@ -1,7 +1,7 @@
 //! Receivers: the points every method computes `V` at, one per pixel of a
 //! camera image or one per point of a points file.
 
-use crate::reference::bvh::Bvh;
+use crate::bvh::Bvh;
 use crate::scene::Camera;
 use glam::DVec3;
 use rayon::prelude::*;

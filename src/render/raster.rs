@@ -98,8 +98,8 @@
 //! this keeps every predicate inside [`orient2d`]'s exact range, so
 //! coverage is exact for every triangle rasterised.
 
+use crate::bvh::Occluders;
 use crate::kernel::predicate::{orient2d, Sign};
-use crate::reference::Occluders;
 use crate::scene::{LightFrame, Projected};
 use glam::{DVec2, DVec3};
 use std::fmt;
