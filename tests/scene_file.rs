@@ -9,12 +9,12 @@
 use glam::{DMat3, DVec3};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::{
-    load_points, load_scene, mesh_from_obj, points_from_str, scene_from_str, Receiver,
+    load_points, load_scene, mesh_from_obj, points_from_str, scene_from_str,
 };
 use softshadow::scene::primitive::{
     cuboid, merge, quad, sphere, sphere_bands, Transform, MAX_SEGMENTS, MIN_SEGMENTS,
 };
-use softshadow::scene::{Camera, FileError, Light, Mesh, Place, Scene};
+use softshadow::scene::{Camera, FileError, Light, Mesh, Place, Receiver, Scene};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};
 
@@ -487,12 +487,12 @@ fn points_file_is_checked() {
         ok,
         vec![
             Receiver {
-                p: DVec3::new(0.0, 1.0, 2.0),
+                position: DVec3::new(0.0, 1.0, 2.0),
                 object: Some(1),
                 normal: Some(DVec3::Y)
             },
             Receiver {
-                p: DVec3::new(3.0, 4.0, 5.0),
+                position: DVec3::new(3.0, 4.0, 5.0),
                 object: None,
                 normal: None
             }

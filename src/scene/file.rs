@@ -62,7 +62,7 @@
 //! moving a vertex past `f64::MAX`) are reported at the field that did it.
 
 use super::primitive::{self, axis_name, PrimitiveError, Transform};
-use super::{Camera, CameraError, Light, LightError, Mesh, MeshError, Scene};
+use super::{Camera, CameraError, Light, LightError, Mesh, MeshError, Receiver, Scene};
 use glam::DVec3;
 use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
 use std::borrow::Cow;
@@ -74,18 +74,6 @@ pub const MAX_IMAGE_SIDE: u32 = 16384;
 
 /// The number of longitudes of a sphere primitive without `segments`.
 pub const DEFAULT_SEGMENTS: u32 = 32;
-
-/// A receiver point of the points file.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Receiver {
-    /// The point, finite.
-    pub p: DVec3,
-    /// The object id (mesh index) the point lies on, when given; always
-    /// less than the scene's mesh count.
-    pub object: Option<u32>,
-    /// The unit surface normal, when given.
-    pub normal: Option<DVec3>,
-}
 
 /// Where in a file a [`FileError`] is.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -231,7 +219,8 @@ pub fn load_points(path: &Path, mesh_count: usize) -> Result<Vec<Receiver>, File
 
 /// Parses a points file's text for a scene of `mesh_count` meshes; `name`
 /// is used in error messages only. An empty `points` list gives an empty
-/// vector.
+/// vector. Each receiver's `object`, when given, is less than
+/// `mesh_count`; its `normal`, when given, is a unit vector.
 ///
 /// # Errors
 /// [`FileError`] for malformed JSON, an empty text, unknown or duplicate
@@ -283,7 +272,11 @@ pub fn points_from_str(
                 )
             }
         };
-        out.push(Receiver { p, object, normal });
+        out.push(Receiver {
+            position: p,
+            normal,
+            object,
+        });
     }
     Ok(out)
 }
