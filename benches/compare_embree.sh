@@ -1,6 +1,6 @@
 #!/usr/bin/env bash
 # Opt-in (not in CI): occlusion-ray throughput of our exact f64
-# `reference::bvh::Bvh::segment_unoccluded` against Intel Embree 4
+# `bvh::Bvh::segment_unoccluded` against Intel Embree 4
 # (`rtcOccluded1` through PyPI embreex), same rays, same machine, same run:
 #
 #     bash benches/compare_embree.sh [outdir]

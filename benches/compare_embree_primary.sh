@@ -1,5 +1,5 @@
 #!/usr/bin/env bash
-# Opt-in (not in CI): closest-hit throughput of `reference::bvh::Bvh::closest_hit`
+# Opt-in (not in CI): closest-hit throughput of `bvh::Bvh::closest_hit`
 # against Intel Embree 4 (`rtcIntersect1` through PyPI embreex) on the
 # renderer's primary rays — one per pixel of the default scene's 512 x 512
 # camera (bunny over a floor, 3676 triangles) — same rays, same machine,

@@ -8,7 +8,7 @@
 //! `cargo bench --features render,scene-file --bench raster`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use softshadow::reference::Occluders;
+use softshadow::bvh::Occluders;
 use softshadow::render::raster::{rasterize_into, rasterize_occluders, LightMaps, LightView};
 use softshadow::scene::builtin::builtin;
 use softshadow::scene::LightFrame;

@@ -14,10 +14,9 @@
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
 use glam::DVec3;
 use softshadow::arbitrary::Rng;
-use softshadow::reference::bvh::Bvh;
+use softshadow::bvh::{Bvh, Occluders};
 use softshadow::reference::exact::{self, Scratch};
 use softshadow::reference::monte_carlo::{self, Options};
-use softshadow::reference::Occluders;
 use softshadow::scene::builtin::{builtin, floor_receivers};
 use softshadow::scene::Light;
 use std::hint::black_box;

@@ -15,9 +15,8 @@
 //! `cargo bench --bench render`; figures in `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
+use softshadow::bvh::{Bvh, Occluders};
 use softshadow::method::{self, Exact, HardShadow, Method, Pcss};
-use softshadow::reference::bvh::Bvh;
-use softshadow::reference::Occluders;
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin;
 use std::hint::black_box;

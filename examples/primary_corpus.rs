@@ -53,8 +53,7 @@
 
 use glam::DVec3;
 use rayon::prelude::*;
-use softshadow::reference::bvh::{Bvh, Hit};
-use softshadow::reference::Occluders;
+use softshadow::bvh::{Bvh, Hit, Occluders};
 use softshadow::scene::Camera;
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};

@@ -14,13 +14,23 @@
 //! - [`scene`]: lights, meshes, the camera and the scene, validated at
 //!   construction; primitives; with `scene-file`, the JSON scene and points
 //!   files and the built-in scenes.
+//! - `bvh` (feature `bvh`): the scene's triangles in one flat list
+//!   (`Occluders`) and the BVH over them (`Bvh`): conservative occlusion
+//!   rays, watertight closest hits, culling; shared by the references, the
+//!   renderer and the methods.
 //! - `reference` (feature `reference`): the exact and Monte Carlo
-//!   visibility references, the BVH they share, and the statistics that
-//!   compare them.
+//!   visibility references and the statistics that compare them.
+//! - `render` (feature `render`): the scalar renderer — receivers from the
+//!   camera's primary rays or a points file (`Frame`), the light-view
+//!   rasterizer, the lazily built stages every method draws on, shading,
+//!   error heat-maps and PNG files.
+//! - `method` (feature `render`): the shadow methods behind one `Method`
+//!   trait (exact, Monte Carlo, hard shadows, PCSS, SISM), run against a
+//!   frame's receivers.
 //! - [`kernel`]: the pure geometry kernels (silhouettes, penumbra wedges,
-//!   disk occlusion, falloff, SSOC distortion, the linear-light kernel) and
-//!   the exact orientation predicates they decide topology with. Depends on
-//!   `glam` alone.
+//!   disk occlusion, falloff, SSOC distortion, the linear-light kernel, the
+//!   exact segment–triangle test) and the exact orientation predicates they
+//!   decide topology with. Depends on `glam` alone.
 //!
 //! ## Example
 //!
@@ -53,9 +63,13 @@
 //! With `--no-default-features` the crate is the kernels alone, on `glam`.
 //!
 //! - `cli` (default): the `softshadow` command-line program (turns on
-//!   `reference` and `scene-file`).
+//!   `render` and `scene-file`).
+//! - `bvh`: `softshadow::bvh`, the occluders and the BVH over them
+//!   (`obvhs` for the build, `rayon`).
 //! - `reference`: `softshadow::reference`, the visibility references
-//!   (`obvhs`, `rayon`).
+//!   (turns on `bvh`).
+//! - `render`: `softshadow::render` and `softshadow::method`, the renderer
+//!   and the shadow methods (turns on `bvh` and `reference`; `png`).
 //! - `scene-file`: `scene::file` and `scene::builtin`: JSON scene and points
 //!   files, OBJ meshes, the built-in scenes (`serde`, `serde_json`, `tobj`).
 //! - `arbitrary`: [`arbitrary`], deterministic generators of near-degenerate
@@ -66,6 +80,8 @@
 
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;
+#[cfg(feature = "bvh")]
+pub mod bvh;
 pub mod kernel;
 #[cfg(feature = "render")]
 pub mod method;

@@ -17,10 +17,10 @@ mod support;
 
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
-use softshadow::reference::bvh::Bvh;
+use softshadow::bvh::{Bvh, Occluders};
+use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
-use softshadow::reference::{exact, Occluders};
 
 const ALPHA: f64 = 1e-3;
 const SAMPLES: u32 = 4096;

@@ -242,7 +242,8 @@ fn visibility_answers_match_the_library() {
         .collect();
 
     use glam::DVec3;
-    use softshadow::reference::{bvh::Bvh, exact, Occluders};
+    use softshadow::bvh::{Bvh, Occluders};
+    use softshadow::reference::exact;
     use softshadow::scene::{Light, Mesh, Scene};
     let mesh = Mesh::new(
         vec![

@@ -7,8 +7,8 @@ use glam::DVec3;
 use softshadow::arbitrary::mesh::{closed_mesh, icosphere, Mesh as IndexedMesh};
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
-use softshadow::reference::bvh::{segment_crossing, Bvh, Hit};
-use softshadow::reference::Occluders;
+use softshadow::bvh::{Bvh, Hit, Occluders};
+use softshadow::kernel::segment::segment_crossing;
 use softshadow::scene::primitive::{cuboid, sphere};
 use softshadow::scene::Mesh;
 

@@ -6,9 +6,8 @@
 #![cfg(feature = "reference")]
 
 use glam::DVec3;
-use softshadow::reference::bvh::Bvh;
+use softshadow::bvh::{Bvh, Occluders};
 use softshadow::reference::exact::visibility;
-use softshadow::reference::Occluders;
 use softshadow::scene::{Light, ReceiverError};
 use std::f64::consts::PI;
 

@@ -24,7 +24,7 @@ fn camera_frame(name: &str, side: u32) -> (softshadow::scene::Scene, Frame) {
 #[test]
 fn the_share_above_a_plane_matches_a_stratified_count() {
     let mut rng = Rng::new(0x40_5e);
-    let mut v = |rng: &mut Rng| {
+    let v = |rng: &mut Rng| {
         DVec3::new(
             rng.uniform(-1.0, 1.0),
             rng.uniform(-1.0, 1.0),

@@ -18,7 +18,8 @@
 use glam::DVec3;
 use proptest::prelude::*;
 use softshadow::arbitrary::Rng;
-use softshadow::reference::bvh::{segment_blocked, Bvh};
+use softshadow::bvh::{Bvh, Occluders};
+use softshadow::kernel::segment::segment_blocked;
 use softshadow::reference::monte_carlo::{
     visibility, visibility_many, Error, Estimate, Options, REPLICATES,
 };
@@ -26,7 +27,6 @@ use softshadow::reference::stats::{
     normal_two_sided_quantile as z_quantile, sidak, student_t_coverage as t_coverage,
     student_t_two_sided_quantile as t_quantile,
 };
-use softshadow::reference::Occluders;
 use softshadow::scene::{Light, ReceiverError};
 use std::f64::consts::PI;
 

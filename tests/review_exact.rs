@@ -14,10 +14,11 @@ mod support;
 
 use glam::DVec3;
 use softshadow::arbitrary::Rng;
+use softshadow::bvh::{Bvh, Occluders};
 use softshadow::kernel::predicate::{orient3d, Sign};
+use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, REPLICATES};
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
-use softshadow::reference::{bvh::Bvh, exact, Occluders};
 use softshadow::scene::Light;
 use support::Big;
 

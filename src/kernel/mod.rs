@@ -13,6 +13,7 @@
 //! | [`footprint`] | the light's footprint on the light image plane: its radius, the projection, near and far clips, an edge mapped into the footprint; the rounding bound `γ(n)` |
 //! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
 //! | [`linear_light`] | OESS: visible fraction of a segment light and its endpoint weights |
+//! | [`segment`] | exact open-segment–triangle test (`f64`): blocked or not, and where it crosses |
 //!
 //! Scalar kernels exist in `f32` and `f64` as submodules generated from one
 //! body (`disk::f32`, `disk::f64`, …).
@@ -25,5 +26,6 @@ pub mod falloff;
 pub mod footprint;
 pub mod linear_light;
 pub mod predicate;
+pub mod segment;
 pub mod silhouette;
 pub mod wedge;

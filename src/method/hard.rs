@@ -11,7 +11,7 @@ use crate::scene::LightKind;
 /// equals the Monte Carlo and exact references for that point light bit for
 /// bit. Any light.
 ///
-/// [`Bvh::segment_unoccluded`]: crate::reference::bvh::Bvh::segment_unoccluded
+/// [`Bvh::segment_unoccluded`]: crate::bvh::Bvh::segment_unoccluded
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub struct HardShadow {

@@ -85,9 +85,10 @@
 //! stops at the first that covers it whole (see `benches/README.md` for
 //! measured costs against the number of occluders).
 
-use super::bvh::{segment_blocked, Bvh};
+use crate::bvh::Bvh;
 use crate::kernel::disk::f64::segment_disk_area;
 use crate::kernel::predicate::{orient2d, orient2d_value, orient3d, orient3d_value, Sign};
+use crate::kernel::segment::segment_blocked;
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::{DVec2, DVec3};
 use std::f64::consts::PI;

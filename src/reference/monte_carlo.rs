@@ -42,7 +42,7 @@
 //! A segment light uses only `s.x`: a scrambled van der Corput sequence,
 //! stratified in 1D. A point light casts one ray: `V ∈ {0, 1}`, `stderr = 0`.
 
-use super::bvh::Bvh;
+use crate::bvh::Bvh;
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;

@@ -1,25 +1,11 @@
 //! Receivers: the points every method computes `V` at, one per pixel of a
 //! camera image or one per point of a points file.
 
-use crate::reference::bvh::Bvh;
-use crate::scene::Camera;
+use crate::bvh::Bvh;
+use crate::scene::{Camera, Receiver};
 use glam::DVec3;
 use rayon::prelude::*;
 use std::sync::atomic::{AtomicU64, Ordering};
-
-/// A receiver: a point where `V` is wanted, with what is known of the
-/// surface it lies on.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Receiver {
-    /// The point, finite.
-    pub position: DVec3,
-    /// The unit geometric normal of the surface, on the side the point is
-    /// seen from, when known. Camera receivers always have one.
-    pub normal: Option<DVec3>,
-    /// The object id (mesh index) of the surface, when known. Camera
-    /// receivers always have one.
-    pub object: Option<u32>,
-}
 
 /// The pixel value of a background pixel in [`Frame::pixels`].
 pub const BACKGROUND: u32 = u32::MAX;

@@ -5,6 +5,8 @@
 //! - [`Frame`]: the receivers, one per pixel of a camera image
 //!   ([`Frame::from_camera`], primary rays through the BVH) or one per
 //!   point of a points file ([`Frame::from_receivers`]).
+//! - [`Receiver`]: one receiver; the scene's type
+//!   ([`crate::scene::Receiver`]), re-exported here.
 //! - [`Stages`]: the BVH, mesh topology, light frame and light maps, built
 //!   lazily and once, timed into [`Stats`].
 //! - [`raster`]: the light-view rasterizer every shadow-map method uses.
@@ -18,5 +20,6 @@ pub mod image;
 pub mod raster;
 mod stages;
 
-pub use frame::{Frame, Receiver, BACKGROUND, RECEIVER_OFFSET};
+pub use crate::scene::Receiver;
+pub use frame::{Frame, BACKGROUND, RECEIVER_OFFSET};
 pub use stages::{FittedMaps, Needs, Progress, SharedMaps, StageTime, Stages, Stats};

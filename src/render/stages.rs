@@ -4,9 +4,8 @@
 
 use super::frame::Frame;
 use super::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
+use crate::bvh::{Bvh, Occluders};
 use crate::kernel::silhouette::MeshTopology;
-use crate::reference::bvh::Bvh;
-use crate::reference::Occluders;
 use crate::scene::{LightFrame, Scene};
 use glam::DVec3;
 use std::any::{Any, TypeId};

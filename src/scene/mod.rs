@@ -6,6 +6,8 @@
 //!   emitting measure each presents to a receiver.
 //! - [`frame`]: the light frame and the light image plane of §2.
 //! - [`mesh`]: occluder meshes, validated.
+//! - [`receiver`]: a receiver point with its surface normal and object id,
+//!   when known (from a points file or the renderer's camera).
 //! - [`primitive`]: closed, outward sphere and box meshes, quads, merging,
 //!   and the similarity transform of the scene file.
 //! - [`scene`](mod@scene): the whole scene (meshes, light, camera).
@@ -23,15 +25,17 @@ pub mod frame;
 pub mod light;
 pub mod mesh;
 pub mod primitive;
+pub mod receiver;
 #[allow(clippy::module_inception)]
 pub mod scene;
 
 #[cfg(feature = "scene-file")]
 pub use builtin::{builtin, BUILTIN_NAMES};
 #[cfg(feature = "scene-file")]
-pub use file::{FileError, Place, Receiver};
+pub use file::{FileError, Place};
 pub use frame::{FrameError, LightFrame, Projected};
 pub use light::{Emitter, Light, LightError, LightKind, ReceiverError};
 pub use mesh::{Mesh, MeshError};
 pub use primitive::{PrimitiveError, Transform};
+pub use receiver::Receiver;
 pub use scene::{Camera, CameraError, Scene};

@@ -1,5 +1,8 @@
 //! Shared test support: 256-bit reference arithmetic and Monte Carlo
 //! statistics. Included with `mod support;` by the test files that need it.
+//! (`raster.rs` and `scene_file.rs` here are not part of it: the
+//! rasterizer's and the scene file's tests include each on its own, with
+//! `#[path]`.)
 #![allow(dead_code)]
 
 pub mod dd;

@@ -5,10 +5,10 @@
 
 use crate::selfcheck;
 use glam::DVec3;
-use softshadow::reference::bvh::Bvh;
+use softshadow::bvh::{Bvh, Occluders};
+use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
-use softshadow::reference::{exact, Occluders};
 use softshadow::scene::builtin::floor_receivers;
 use softshadow::scene::{builtin, Scene};
 use std::process::ExitCode;

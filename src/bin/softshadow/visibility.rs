@@ -3,7 +3,7 @@
 
 use crate::progress::Progress;
 use softshadow::method::{self, Method, MethodError};
-use softshadow::render::{Frame, Receiver, Stages};
+use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::{load_points, load_scene};
 use softshadow::scene::Scene;
@@ -82,16 +82,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     let scene = resolve_scene(&args.scene)?;
     let method = method_with_seed(&args.method, args.seed)?;
     let points = load_points(&args.points, scene.meshes().len()).map_err(|e| e.to_string())?;
-    let frame = Frame::from_receivers(
-        points
-            .iter()
-            .map(|r| Receiver {
-                position: r.p,
-                normal: r.normal,
-                object: r.object,
-            })
-            .collect(),
-    );
+    let frame = Frame::from_receivers(points);
     let stages = Stages::new(&scene);
     let file = args.points.display();
     let run = run_method(method.as_ref(), &stages, &frame).map_err(|e| match e {

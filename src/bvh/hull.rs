@@ -1,0 +1,160 @@
+//! The culling query of the exact reference
+//! ([`Bvh::triangles_meeting_hull`]): every triangle whose box may meet the
+//! convex hull of a few points.
+
+use super::node::{Node, EMPTY, LEAF, WIDTH};
+use super::{in_f32_range, Bvh};
+use glam::DVec3;
+
+impl Bvh {
+    /// Writes to `out` (after clearing it), in increasing order and without
+    /// repetition, the index (into [`Bvh::occluders`]) of every triangle
+    /// whose box may meet the convex hull of `points`: a superset of the
+    /// triangles that meet the hull. Any finite point set is accepted; the
+    /// intended one is a pyramid, the receiver plus the corners of a box or
+    /// polygon around the light's measure.
+    ///
+    /// A box is dropped only when it is separated from the hull, decided
+    /// with rounding bounds (never wrongly): by the hull's bounding box
+    /// (exact comparisons), or along a normal `n` of one of the hull's faces
+    /// — found among the planes through three of the points (for at most
+    /// [`Bvh::HULL_FACE_POINTS`] points; any `n` is a valid separating axis,
+    /// the face normals are merely the tight ones) — when the box's interval
+    /// of `n · (q − points[0])` lies beyond the hull's. Each dot product is
+    /// bounded by `γ₆ Σ|nᵢ||qᵢ − aᵢ|` (one rounded difference, product and
+    /// two sums need `γ₄`).
+    ///
+    /// No points: `out` is empty. A non-finite point, or one beyond
+    /// `f32::MAX`: every indexed triangle. Triangles beyond `±2⁶⁰`, kept out
+    /// of the tree, are always reported; triangles with a non-finite corner
+    /// never (they block nothing).
+    pub fn triangles_meeting_hull(&self, points: &[DVec3], out: &mut Vec<u32>) {
+        out.clear();
+        if points.is_empty() {
+            return;
+        }
+        out.extend_from_slice(&self.outlier_ids);
+        if self.nodes.is_empty() || !points.iter().all(|&v| in_f32_range(v)) {
+            out.extend_from_slice(&self.ids);
+            out.sort_unstable();
+            return;
+        }
+        let hull = Hull::new(points);
+        let mut stack = vec![0u32];
+        while let Some(node) = stack.pop() {
+            let n = &self.nodes[node as usize];
+            for lane in 0..WIDTH {
+                let child = n.child[lane];
+                if child == EMPTY || hull.separated(n, lane) {
+                    continue;
+                }
+                if child & LEAF == 0 {
+                    stack.push(child);
+                } else {
+                    out.push(self.ids[(child & !LEAF) as usize]);
+                }
+            }
+        }
+        out.sort_unstable();
+    }
+
+    /// The most points whose face planes [`Bvh::triangles_meeting_hull`]
+    /// looks for (`C(n, 3)` candidate planes); beyond it, only the hull's
+    /// bounding box culls.
+    pub const HULL_FACE_POINTS: usize = 16;
+}
+
+/// The separating tests of [`Bvh::triangles_meeting_hull`].
+struct Hull {
+    lo: DVec3,
+    hi: DVec3,
+    /// Reference point `a` of the axes (the first point).
+    origin: DVec3,
+    /// `(n, lo, hi)`: the hull lies in `lo ≤ n · (q − a) ≤ hi`.
+    axes: Vec<(DVec3, f64, f64)>,
+}
+
+/// `γ₆ = 6u/(1 − 6u)`, `u = 2⁻⁵³`.
+const GAMMA6: f64 = 6.0 * (f64::EPSILON / 2.0) / (1.0 - 6.0 * (f64::EPSILON / 2.0));
+
+impl Hull {
+    fn new(points: &[DVec3]) -> Hull {
+        let (mut lo, mut hi) = (points[0], points[0]);
+        for &v in points {
+            lo = lo.min(v);
+            hi = hi.max(v);
+        }
+        let origin = points[0];
+        let mut hull = Hull {
+            lo,
+            hi,
+            origin,
+            axes: Vec::new(),
+        };
+        let n = points.len();
+        if !(3..=Bvh::HULL_FACE_POINTS).contains(&n) {
+            return hull;
+        }
+        let mut normals: Vec<DVec3> = Vec::new();
+        for i in 0..n {
+            for j in i + 1..n {
+                for k in j + 1..n {
+                    let (a, b, c) = (points[i], points[j], points[k]);
+                    let normal = (b - a).cross(c - a);
+                    let Some(unit) = normal.try_normalize() else {
+                        continue;
+                    };
+                    // A face: no point strictly on both sides (rounded test;
+                    // only tightness, not soundness, depends on it).
+                    let tol = 1e-9 * (b - a).length().max((c - a).length());
+                    let (mut below, mut above) = (false, false);
+                    for &v in points {
+                        let s = unit.dot(v - a);
+                        below |= s < -tol;
+                        above |= s > tol;
+                    }
+                    let duplicate = normals.iter().any(|m| m.dot(unit).abs() > 1.0 - 1e-12);
+                    let face = !(below && above);
+                    if face && !duplicate {
+                        normals.push(unit);
+                    }
+                }
+            }
+        }
+        for normal in normals {
+            let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
+            for &v in points {
+                let (s, bound) = dot_bounded(normal, v, origin);
+                l = l.min(s - bound);
+                h = h.max(s + bound);
+            }
+            if l.is_finite() && h.is_finite() {
+                hull.axes.push((normal, l, h));
+            }
+        }
+        hull
+    }
+
+    /// Whether lane `lane` of `n` is certainly disjoint from the hull.
+    fn separated(&self, n: &Node, lane: usize) -> bool {
+        let (lo, hi) = n.lane_box(lane);
+        if lo.cmpgt(self.hi).any() || hi.cmplt(self.lo).any() {
+            return true;
+        }
+        self.axes.iter().any(|&(normal, l, h)| {
+            // The corners minimising and maximising `normal · q`.
+            let q_min = DVec3::select(normal.cmpge(DVec3::ZERO), lo, hi);
+            let q_max = DVec3::select(normal.cmpge(DVec3::ZERO), hi, lo);
+            let (s_min, b_min) = dot_bounded(normal, q_min, self.origin);
+            let (s_max, b_max) = dot_bounded(normal, q_max, self.origin);
+            // NaN (never expected with finite inputs) compares false: kept.
+            s_min - b_min > h || s_max + b_max < l
+        })
+    }
+}
+
+/// `n · (q − a)` rounded, and a bound on its rounding error.
+fn dot_bounded(n: DVec3, q: DVec3, a: DVec3) -> (f64, f64) {
+    let d = q - a;
+    (n.dot(d), GAMMA6 * n.abs().dot(d.abs()))
+}

@@ -1,0 +1,313 @@
+//! The scene's triangles ([`Occluders`]: one flat list over all meshes,
+//! each triangle tagged with its object id) and a bounding volume hierarchy
+//! over them ([`Bvh`]), for the occlusion rays of the Monte Carlo reference
+//! and of the hard shadow, for culling the triangles a receiver's view of
+//! the light can meet (the exact reference), and for the renderer's primary
+//! rays ([`Bvh::closest_hit`]: the nearest triangle on a ray, decided with
+//! the same exact test).
+//!
+//! # How it decides
+//!
+//! The tree is built by `obvhs` (PLOC with reinsertion, `Bvh2`) over boxes
+//! computed in `f64` and rounded *outward* to `f32`, then collapsed into a
+//! 4-wide tree of our own — one 64-byte node per four children, boxes
+//! quantised outward to 8 bits per plane — whose traversal is conservative
+//! (see [`Bvh::segment_unoccluded`]): the `f32` tree only ever prunes boxes
+//! the true `f64` segment cannot meet. Every triangle the traversal reaches is decided
+//! exactly by [`segment_blocked`], in `f64` with the exact
+//! [`orient3d`]. The answer is therefore
+//! exactly DESIGN §1's: the light point `x` is visible from `p` iff the open
+//! segment `(p, x)` meets no triangle, with an edge shared by two triangles
+//! never leaking light.
+//!
+//! obvhs's own traversals are not used for rays: its `Triangle::intersect` is
+//! not watertight, its CWBVH node test clamps `t` below at `1e-4` (a box near
+//! the receiver would be skipped), and its slab tests round without a bound.
+//!
+//! # Domain
+//!
+//! Exact for every triangle corner and endpoint coordinate that is zero or of
+//! magnitude in `[1e-90, 1e90]` (the domain of `orient3d`). The `f32` tree
+//! holds triangles within `±2⁶⁰` (`1.2e18`; see `TREE_RANGE`); farther ones
+//! are tested by every query, and queries reaching beyond `f32::MAX`
+//! (`3.4e38`) test every triangle (slow, still exact).
+//! Triangles with a non-finite corner are left out at build and block
+//! nothing; zero-area triangles block nothing (the predicate says so).
+//!
+//! # Layout
+//!
+//! This file holds the tree and its build; `node.rs` the quantised 4-wide
+//! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
+//! traversal ([`Bvh::segment_unoccluded`]); `closest.rs` the closest hit
+//! ([`Bvh::closest_hit`], [`Hit`]); `hull.rs` the culling query of the exact
+//! reference ([`Bvh::triangles_meeting_hull`]); `occluders.rs` the
+//! triangle list. The exact segment–triangle test itself is a kernel,
+//! [`crate::kernel::segment`].
+//!
+//! [`segment_blocked`]: crate::kernel::segment::segment_blocked
+//! [`orient3d`]: crate::kernel::predicate::orient3d
+
+mod closest;
+mod hull;
+mod node;
+mod occluders;
+mod ray;
+#[cfg(test)]
+mod tests;
+
+pub use closest::Hit;
+pub use occluders::Occluders;
+
+use glam::{DVec3, Vec3A};
+use node::{Node, LEAF, WIDTH};
+use obvhs::aabb::Aabb;
+use obvhs::bvh2::builder::build_bvh2;
+use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
+use obvhs::bvh2::Bvh2;
+use obvhs::BvhBuildParams;
+use std::fmt;
+use std::time::Duration;
+
+/// An entry of a node under construction: an obvhs node, or a run of
+/// `primitive_indices` (a leaf of more than one triangle, split in halves).
+#[derive(Clone, Copy)]
+enum Item {
+    Node(usize),
+    Prims(usize, usize),
+}
+
+/// A BVH over a scene's occluders (owns them). Immutable once built, `Sync`:
+/// share one between threads.
+pub struct Bvh {
+    occluders: Occluders,
+    nodes: Vec<Node>,
+    /// The finite triangles, in leaf order.
+    triangles: Vec<[DVec3; 3]>,
+    /// The index in `occluders` of each of `triangles`.
+    ids: Vec<u32>,
+    /// Stack entries a traversal can need.
+    stack_need: usize,
+    /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
+    /// tree and tested by every query, and their indices in `occluders`.
+    outliers: Vec<[DVec3; 3]>,
+    outlier_ids: Vec<u32>,
+    /// The exact bounding box `(lo, hi)` of every finite triangle (in the
+    /// tree or not); `None` when there is none.
+    bounds: Option<(DVec3, DVec3)>,
+}
+
+/// The largest coordinate magnitude a triangle in the tree may have, 2⁶⁰:
+/// the builder works with `f32` surface areas, and any box within
+/// `±2⁶⁰` has a finite one (a side of at most 2⁶¹, an area below 2¹²⁴).
+/// Beyond it areas overflow to ∞, their differences are NaN, and obvhs's
+/// PLOC builder can pair a node with itself (found by the `exact` fuzz
+/// target). Far triangles are rare; they are tested by every query.
+const TREE_RANGE: f64 = (1u64 << 60) as f64;
+
+impl fmt::Debug for Bvh {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.debug_struct("Bvh")
+            .field("triangles", &self.occluders.len())
+            .field("indexed", &self.triangles.len())
+            .field("nodes", &self.nodes.len())
+            .finish()
+    }
+}
+
+/// `v` rounded down to an `f32`, clamped to the finite range.
+fn f32_down(v: f64) -> f32 {
+    let r = v as f32;
+    let r = if f64::from(r) > v { r.next_down() } else { r };
+    r.clamp(-f32::MAX, f32::MAX)
+}
+
+/// `v` rounded up to an `f32`, clamped to the finite range.
+fn f32_up(v: f64) -> f32 {
+    let r = v as f32;
+    let r = if f64::from(r) < v { r.next_up() } else { r };
+    r.clamp(-f32::MAX, f32::MAX)
+}
+
+/// Whether every coordinate is finite and at most `f32::MAX` in magnitude:
+/// the region the `f32` boxes are valid in (see [`Bvh::new`]).
+fn in_f32_range(v: DVec3) -> bool {
+    v.abs().max_element() <= f64::from(f32::MAX)
+}
+
+impl Bvh {
+    /// Builds the hierarchy (single-threaded; about 0.3 s per 100k
+    /// triangles).
+    ///
+    /// Each triangle's box is computed in `f64` and rounded outward to `f32`,
+    /// so it contains the triangle exactly; coordinates beyond `f32::MAX`
+    /// clamp to it, which keeps the box valid inside `[−f32::MAX,
+    /// f32::MAX]³`, the only region queries use the tree in. Triangles with
+    /// a non-finite corner are left out.
+    #[must_use]
+    pub fn new(occluders: Occluders) -> Bvh {
+        let mut boxes = Vec::with_capacity(occluders.len());
+        let mut kept = Vec::with_capacity(occluders.len());
+        let (mut outliers, mut outlier_ids) = (Vec::new(), Vec::new());
+        let mut bounds: Option<(DVec3, DVec3)> = None;
+        for (i, t) in occluders.triangles().iter().enumerate() {
+            if !t.iter().all(|v| v.is_finite()) {
+                continue;
+            }
+            let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+            bounds = Some(bounds.map_or((lo, hi), |(l, h)| (l.min(lo), h.max(hi))));
+            if t.iter().any(|v| v.abs().max_element() > TREE_RANGE) {
+                outliers.push(*t);
+                outlier_ids.push(i as u32);
+                continue;
+            }
+            let (lo, hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+            boxes.push(Aabb::new(
+                Vec3A::new(f32_down(lo.x), f32_down(lo.y), f32_down(lo.z)),
+                Vec3A::new(f32_up(hi.x), f32_up(hi.y), f32_up(hi.z)),
+            ));
+            kept.push(i as u32);
+        }
+        let mut bvh = Bvh {
+            occluders,
+            nodes: Vec::new(),
+            triangles: Vec::with_capacity(kept.len()),
+            ids: Vec::with_capacity(kept.len()),
+            stack_need: 1,
+            outliers,
+            outlier_ids,
+            bounds,
+        };
+        if kept.len() >= LEAF as usize {
+            // Beyond the leaf encoding (2³¹ triangles, 144 GiB of corners):
+            // no tree, every query tests every triangle.
+            for &id in &kept {
+                bvh.ids.push(id);
+                bvh.triangles.push(bvh.occluders.triangles()[id as usize]);
+            }
+            return bvh;
+        }
+        if boxes.is_empty() {
+            return bvh;
+        }
+        // One triangle per leaf: the 4-wide node test then culls single
+        // triangles, cheaper than their exact test (measured: 1.2–2× the
+        // rays/s of 4 or 8 per leaf on benches/rays.rs). obvhs's slowest
+        // preset: its two full reinsertion passes visit 16 % fewer nodes
+        // per ray than `medium_build` on the 100k-triangle soup of
+        // `examples/ray_corpus.rs` (soup rays/s 1.26×), for a build about
+        // 4× as long. The passes run here rather than in `build_bvh2`,
+        // whose debug-build validation rejects their result when many
+        // boxes coincide (a stale `max_depth`, which only obvhs's own
+        // traversal uses).
+        let preset = BvhBuildParams::very_slow_build();
+        let params = BvhBuildParams {
+            max_prims_per_leaf: 1,
+            reinsertion_batch_ratio: 0.0,
+            ..preset
+        };
+        let mut tree = build_bvh2(&boxes, params, &mut Duration::default());
+        let mut reinsertion = ReinsertionOptimizer::default();
+        let ratio = preset.reinsertion_batch_ratio;
+        reinsertion.run(&mut tree, ratio, None);
+        reinsertion.run(
+            &mut tree,
+            ratio * preset.post_collapse_reinsertion_batch_ratio_multiplier,
+            None,
+        );
+        bvh.collapse(&tree, &boxes, &kept);
+        bvh
+    }
+
+    /// Turns obvhs's binary tree into ours: each node takes up to [`WIDTH`]
+    /// descendants (repeatedly opening the entry of largest area), every
+    /// leaf lane holds one triangle, and the triangles are copied in leaf
+    /// order.
+    fn collapse(&mut self, tree: &Bvh2, boxes: &[Aabb], kept: &[u32]) {
+        let prims = &tree.primitive_indices;
+        let aabb = |item: Item| -> Aabb {
+            match item {
+                Item::Node(n) => *tree.nodes[n].aabb(),
+                Item::Prims(first, count) => prims[first..first + count]
+                    .iter()
+                    .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize])),
+            }
+        };
+        // An obvhs leaf is the run of its primitives.
+        let normal = |item: Item| match item {
+            Item::Node(n) if tree.nodes[n].is_leaf() => {
+                let node = &tree.nodes[n];
+                Item::Prims(node.first_index as usize, node.prim_count as usize)
+            }
+            other => other,
+        };
+        let children = |item: Item| -> Option<[Item; 2]> {
+            match item {
+                Item::Node(n) => {
+                    let first = tree.nodes[n].first_index as usize;
+                    Some([normal(Item::Node(first)), normal(Item::Node(first + 1))])
+                }
+                Item::Prims(first, count) if count > 1 => {
+                    let half = count / 2;
+                    Some([
+                        Item::Prims(first, half),
+                        Item::Prims(first + half, count - half),
+                    ])
+                }
+                Item::Prims(..) => None,
+            }
+        };
+        // (entry, our node, depth of our node)
+        let mut work = vec![(normal(Item::Node(0)), 0usize, 1usize)];
+        self.nodes.push(Node::EMPTY_NODE);
+        let mut depth = 1;
+        while let Some((src, dst, level)) = work.pop() {
+            depth = depth.max(level);
+            let mut lanes = vec![src];
+            while lanes.len() < WIDTH {
+                let widest = lanes
+                    .iter()
+                    .enumerate()
+                    .filter(|(_, &item)| children(item).is_some())
+                    .max_by(|(_, &a), (_, &b)| aabb(a).half_area().total_cmp(&aabb(b).half_area()))
+                    .map(|(k, _)| k);
+                let Some(k) = widest else { break };
+                let [left, right] = children(lanes[k]).expect("filtered");
+                lanes[k] = left;
+                lanes.push(right);
+            }
+            // (obvhs leaves are never empty; an empty run would not end.)
+            lanes.retain(|item| !matches!(item, Item::Prims(_, 0)));
+            let lane_boxes: Vec<([f32; 3], [f32; 3])> = lanes
+                .iter()
+                .map(|&item| {
+                    let b = aabb(item);
+                    (b.min.to_array(), b.max.to_array())
+                })
+                .collect();
+            let mut node = Node::quantised(&lane_boxes);
+            for (lane, &item) in lanes.iter().enumerate() {
+                node.child[lane] = match item {
+                    Item::Prims(first, 1) => {
+                        let id = kept[prims[first] as usize];
+                        self.ids.push(id);
+                        self.triangles.push(self.occluders.triangles()[id as usize]);
+                        LEAF | (self.triangles.len() - 1) as u32
+                    }
+                    _ => {
+                        work.push((item, self.nodes.len(), level + 1));
+                        self.nodes.push(Node::EMPTY_NODE);
+                        (self.nodes.len() - 1) as u32
+                    }
+                };
+            }
+            self.nodes[dst] = node;
+        }
+        self.stack_need = depth * (WIDTH - 1) + 1;
+    }
+
+    /// The triangles it was built over.
+    #[must_use]
+    pub fn occluders(&self) -> &Occluders {
+        &self.occluders
+    }
+}

@@ -1,0 +1,160 @@
+//! The invariants the conservative traversal rests on: decoded boxes contain
+//! their triangles, ray origins are padded outward, quantisation is tight.
+
+use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
+use super::ray::Ray32;
+use super::{Bvh, Occluders};
+use crate::arbitrary::Rng;
+use glam::DVec3;
+
+/// A coordinate near `centre`, `scale` across, with now and then a value
+/// clamped by the `f32` range or a repeated one.
+fn coordinate(rng: &mut Rng, centre: f64, scale: f64) -> f64 {
+    match rng.below(8) {
+        0 => f64::from(f32::MAX) * rng.sign(),
+        1 => centre,
+        _ => centre + rng.uniform(-1.0, 1.0) * scale,
+    }
+}
+
+/// The invariant the traversal's conservativeness rests on: every
+/// decoded lane box contains, exactly, every corner of every triangle
+/// below it (clamped to the `f32` range). Returns the subtree's corner
+/// bounds.
+fn check_subtree(bvh: &Bvh, node: u32, depth: usize) -> (DVec3, DVec3) {
+    let clamp = |v: DVec3| {
+        v.clamp(
+            DVec3::splat(-f64::from(f32::MAX)),
+            DVec3::splat(f64::from(f32::MAX)),
+        )
+    };
+    let n = &bvh.nodes[node as usize];
+    let (mut lo, mut hi) = (DVec3::INFINITY, DVec3::NEG_INFINITY);
+    for lane in 0..WIDTH {
+        let child = n.child[lane];
+        if child == EMPTY {
+            continue;
+        }
+        let (c_lo, c_hi) = if child & LEAF == 0 {
+            check_subtree(bvh, child, depth + 1)
+        } else {
+            let t = bvh.triangles[(child & !LEAF) as usize].map(clamp);
+            (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]))
+        };
+        let (b_lo, b_hi) = n.lane_box(lane);
+        assert!(
+            b_lo.cmple(c_lo).all() && b_hi.cmpge(c_hi).all(),
+            "lane {lane} of node {node} (depth {depth}): box {b_lo:?}..{b_hi:?} misses {c_lo:?}..{c_hi:?}"
+        );
+        lo = lo.min(c_lo);
+        hi = hi.max(c_hi);
+    }
+    (lo, hi)
+}
+
+#[test]
+fn decoded_boxes_contain_their_triangles() {
+    let mut rng = Rng::new(11);
+    for case in 0..300 {
+        let centre = rng.log_uniform(-30.0, 30.0) * rng.sign();
+        let scale = centre.abs() * rng.log_uniform(-12.0, 0.5) + rng.log_uniform(-40.0, -20.0);
+        let count = 1 + rng.below(if case % 10 == 0 { 3000 } else { 300 }) as usize;
+        let triangles: Vec<[DVec3; 3]> = (0..count)
+            .map(|_| {
+                let mut corner = || {
+                    DVec3::new(
+                        coordinate(&mut rng, centre, scale),
+                        coordinate(&mut rng, centre, scale),
+                        coordinate(&mut rng, centre, scale),
+                    )
+                };
+                [corner(), corner(), corner()]
+            })
+            .collect();
+        let bvh = Bvh::new(Occluders::from_triangles(triangles));
+        // Triangles beyond TREE_RANGE are kept out of the tree.
+        assert_eq!(bvh.triangles.len() + bvh.outliers.len(), count);
+        if !bvh.nodes.is_empty() {
+            check_subtree(&bvh, 0, 0);
+        }
+    }
+}
+
+#[test]
+fn ray_origins_are_padded_outward() {
+    // `near`/`far` bracket `fl32(p) ± δ` (the argument of
+    // `Bvh::segment_unoccluded`), over many decades and at the edge of
+    // the `f32` range.
+    let mut rng = Rng::new(13);
+    for _ in 0..100_000 {
+        let mut point = || {
+            DVec3::new(
+                rng.log_uniform(-40.0, 38.5) * rng.sign(),
+                if rng.chance(0.1) {
+                    0.0
+                } else {
+                    rng.log_uniform(-40.0, 38.5) * rng.sign()
+                },
+                coordinate(&mut rng, 1.0, 1e-3),
+            )
+        };
+        let (p, x) = (point(), point());
+        let Some(ray) = Ray32::new(p, x) else {
+            continue;
+        };
+        let d = x - p;
+        for i in 0..3 {
+            let o = f64::from(p[i] as f32);
+            let delta = (p[i].abs() + d[i].abs()) / f64::from(1u32 << 21);
+            let max = f64::from(f32::MAX);
+            let (lo, hi) = if ray.entry[i] == 1 {
+                (ray.near[i], ray.far[i])
+            } else {
+                (ray.far[i], ray.near[i])
+            };
+            assert!(
+                f64::from(hi) >= (o + delta).min(max),
+                "{p:?} {x:?} axis {i}"
+            );
+            assert!(
+                f64::from(lo) <= (o - delta).max(-max),
+                "{p:?} {x:?} axis {i}"
+            );
+        }
+    }
+}
+
+#[test]
+fn quantisation_is_tight_on_its_grid() {
+    // Each plane is the nearest grid value on the safe side.
+    let mut rng = Rng::new(12);
+    for _ in 0..2000 {
+        let centre = rng.log_uniform(-20.0, 20.0) * rng.sign();
+        let scale = centre.abs() * rng.log_uniform(-9.0, 1.0);
+        let boxes: Vec<([f32; 3], [f32; 3])> = (0..1 + rng.below(WIDTH as u64) as usize)
+            .map(|_| {
+                let a: [f32; 3] =
+                    std::array::from_fn(|_| coordinate(&mut rng, centre, scale) as f32);
+                let b: [f32; 3] =
+                    std::array::from_fn(|_| coordinate(&mut rng, centre, scale) as f32);
+                (
+                    std::array::from_fn(|i| a[i].min(b[i])),
+                    std::array::from_fn(|i| a[i].max(b[i])),
+                )
+            })
+            .collect();
+        let node = Node::quantised(&boxes);
+        for (lane, (lo, hi)) in boxes.iter().enumerate() {
+            for axis in 0..3 {
+                let (o, s) = (node.origin[axis], node.scale[axis]);
+                let (ql, qh) = (node.q[0][axis][lane], node.q[1][axis][lane]);
+                assert!(
+                    decode(o, ql, s) <= lo[axis] && (ql == 255 || decode(o, ql + 1, s) > lo[axis])
+                );
+                assert!(
+                    decode(o, qh, s) >= hi[axis] && (qh == 0 || decode(o, qh - 1, s) < hi[axis])
+                );
+            }
+        }
+    }
+}

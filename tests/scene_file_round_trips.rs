@@ -1,0 +1,141 @@
+//! The scene file and the points file: round trips of DESIGN.md §8's
+//! examples, every light kind, and the example files in
+//! `examples/scenes/`.
+
+#![cfg(feature = "scene-file")]
+
+use glam::DVec3;
+use softshadow::scene::file::{load_points, load_scene, scene_from_str};
+use softshadow::scene::primitive::sphere;
+use softshadow::scene::{Camera, Light, Mesh};
+
+#[path = "support/scene_file.rs"]
+mod scene_file_support;
+use scene_file_support::{manifest, with_light, LIGHT};
+
+// -------------------------------------------------------------- round trips
+
+/// DESIGN.md §8's example, with the floor spelled out and the bunny taken
+/// from `src/scene/data`.
+#[test]
+fn design_example_round_trips() {
+    let text = r#"{
+      "camera": {"eye": [0,3,6], "target": [0,0,0], "up": [0,1,0],
+                 "fov_y_deg": 45, "width": 512, "height": 512},
+      "light":  {"type": "sphere", "center": [0,5,0], "radius": 0.5},
+      "meshes": [
+        {"name": "floor", "positions": [[-3,0,3],[3,0,3],[3,0,-3],[-3,0,-3]],
+         "triangles": [[0,1,2],[0,2,3]]},
+        {"name": "bunny", "obj": "bunny.obj",
+         "transform": {"scale": 1.0, "rotate_y_deg": 0, "translate": [0,0,0]}},
+        {"name": "ball",  "primitive": {"type": "sphere", "center": [0,1,0],
+                                         "radius": 1, "segments": 32}}
+      ]
+    }"#;
+    let scene = scene_from_str("scene.json", text, &manifest().join("src/scene/data")).unwrap();
+    assert_eq!(
+        scene.camera(),
+        Some(
+            &Camera::new(
+                DVec3::new(0.0, 3.0, 6.0),
+                DVec3::ZERO,
+                DVec3::Y,
+                45.0,
+                512,
+                512
+            )
+            .unwrap()
+        )
+    );
+    assert_eq!(
+        scene.light(),
+        &Light::sphere(DVec3::new(0.0, 5.0, 0.0), 0.5).unwrap()
+    );
+    assert_eq!(scene.names(), ["floor", "bunny", "ball"]);
+    assert_eq!(
+        scene.meshes()[0],
+        Mesh::new(
+            vec![
+                DVec3::new(-3.0, 0.0, 3.0),
+                DVec3::new(3.0, 0.0, 3.0),
+                DVec3::new(3.0, 0.0, -3.0),
+                DVec3::new(-3.0, 0.0, -3.0)
+            ],
+            vec![[0, 1, 2], [0, 2, 3]]
+        )
+        .unwrap()
+    );
+    let bunny = &scene.meshes()[1];
+    assert_eq!(
+        (bunny.positions().len(), bunny.triangles().len()),
+        (1839, 3674)
+    );
+    assert_eq!(scene.meshes()[2], sphere(DVec3::Y, 1.0, 32).unwrap());
+}
+
+/// Every light kind of DESIGN.md §8 and both optional parts (camera,
+/// transform) load to the values the constructors give.
+#[test]
+fn every_light_kind_round_trips() {
+    let v = DVec3::new;
+    let cases = [
+        (
+            r#"{"type":"sphere","center":[0,5,0],"radius":0.5}"#,
+            Light::sphere(v(0.0, 5.0, 0.0), 0.5),
+        ),
+        (
+            r#"{"type":"disk","center":[0,5,0],"normal":[0,-2,0],"radius":0.5}"#,
+            Light::disk(v(0.0, 5.0, 0.0), v(0.0, -1.0, 0.0), 0.5),
+        ),
+        (
+            r#"{"type":"rect","center":[0,5,0],"u":[1,0,0],"v":[0,0,0.5]}"#,
+            Light::rect(v(0.0, 5.0, 0.0), v(1.0, 0.0, 0.0), v(0.0, 0.0, 0.5)),
+        ),
+        (
+            r#"{"type":"segment","a":[-1,5,0],"b":[1,5,0]}"#,
+            Light::segment(v(-1.0, 5.0, 0.0), v(1.0, 5.0, 0.0)),
+        ),
+        (
+            r#"{"type":"point","position":[0,5,0]}"#,
+            Light::point(v(0.0, 5.0, 0.0)),
+        ),
+    ];
+    for (json, light) in cases {
+        let scene = scene_from_str("s.json", &with_light(json), manifest()).unwrap();
+        assert_eq!(scene.light(), &light.unwrap());
+        assert!(scene.camera().is_none());
+        assert_eq!(scene.names(), ["mesh0"]);
+    }
+    // Camera defaults: up +y, 45°, 512 × 512.
+    let scene = scene_from_str(
+        "s.json",
+        &format!(r#"{{{LIGHT}, "meshes": [], "camera": {{"eye": [0,1,5], "target": [0,0,0]}}}}"#),
+        manifest(),
+    )
+    .unwrap();
+    assert_eq!(
+        scene.camera(),
+        Some(&Camera::new(v(0.0, 1.0, 5.0), DVec3::ZERO, DVec3::Y, 45.0, 512, 512).unwrap())
+    );
+    assert!(scene.meshes().is_empty());
+}
+
+#[test]
+fn example_files_load() {
+    let dir = manifest().join("examples/scenes");
+    let bunny = load_scene(&dir.join("bunny.json")).unwrap();
+    assert_eq!(bunny.names(), ["floor", "bunny"]);
+    let (lo, hi) = bunny.meshes()[1].bounds().unwrap();
+    assert!((hi.y - lo.y - 1.0).abs() < 1e-4, "{lo} {hi}");
+    assert!(lo.y.abs() < 1e-4);
+    let quads = load_scene(&dir.join("two_quads.json")).unwrap();
+    assert_eq!(quads.triangle_count(), 6);
+    assert_eq!(quads.camera().unwrap().resolution(), (256, 256));
+    let prims = load_scene(&dir.join("primitives.json")).unwrap();
+    assert_eq!(prims.names(), ["floor", "ball", "box", "triangle"]);
+    assert_eq!(prims.triangle_count(), 2 + 960 + 12 + 1);
+    let points = load_points(&dir.join("points.json"), prims.meshes().len()).unwrap();
+    assert_eq!(points.len(), 5);
+    assert_eq!(points[0].object, Some(0));
+    assert_eq!(points[2].normal, None);
+}
