@@ -25,12 +25,14 @@
 //!   rasterizer, the lazily built stages every method draws on, shading,
 //!   error heat-maps and PNG files.
 //! - `method` (feature `render`): the shadow methods behind one `Method`
-//!   trait (exact, Monte Carlo, hard shadows, PCSS, SISM), run against a
-//!   frame's receivers.
+//!   trait (exact, Monte Carlo, hard shadows, PCSS, SISM), listed once in
+//!   `method::registry` with their options, and `method::run`, which checks
+//!   a frame once, runs a method on it and times it.
 //! - [`kernel`]: the pure geometry kernels (silhouettes, penumbra wedges,
-//!   disk occlusion, falloff, SSOC distortion, the linear-light kernel, the
-//!   exact segment–triangle test) and the exact orientation predicates they
-//!   decide topology with. Depends on `glam` alone.
+//!   disk occlusion, falloff, the light's footprint on the image plane, SSOC
+//!   distortion, the linear-light kernel, the exact segment–triangle test)
+//!   and the exact orientation predicates they decide topology with.
+//!   Depends on `glam` alone.
 //!
 //! ## Example
 //!

@@ -74,8 +74,8 @@ struct Hull {
     axes: Vec<(DVec3, f64, f64)>,
 }
 
-/// `γ₆ = 6u/(1 − 6u)`, `u = 2⁻⁵³`.
-const GAMMA6: f64 = 6.0 * (f64::EPSILON / 2.0) / (1.0 - 6.0 * (f64::EPSILON / 2.0));
+/// `γ(6)`.
+const GAMMA6: f64 = crate::kernel::footprint::f64::gamma(6);
 
 impl Hull {
     fn new(points: &[DVec3]) -> Hull {

@@ -255,10 +255,11 @@ macro_rules! linear_light_kernels {
             #[must_use]
             pub fn interval(start: $T, end: $T) -> VisiblePart {
                 let (s, e) = (start.clamp(0.0, 1.0), end.clamp(0.0, 1.0));
-                if !(e > s) {
+                if s.is_nan() || e.is_nan() || e <= s {
+                    let at = if s.is_nan() { 0.0 } else { s };
                     return VisiblePart {
-                        start: if s.is_nan() { 0.0 } else { s },
-                        end: if s.is_nan() { 0.0 } else { s },
+                        start: at,
+                        end: at,
                         ..VisiblePart::EMPTY
                     };
                 }

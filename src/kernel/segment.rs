@@ -93,9 +93,8 @@ fn segment_blocked_exact(p: DVec3, x: DVec3, t: &[DVec3; 3]) -> bool {
     sp != Sign::Zero && orient3d(a, b, c, x) == sp.flip()
 }
 
-/// `γ₁₀ = 10u/(1 − 10u)`, `u = 2⁻⁵³`, times the 6 terms of a 3×3
-/// determinant.
-const DET3_BOUND: f64 = 6.0 * 10.0 * (f64::EPSILON / 2.0) / (1.0 - 10.0 * (f64::EPSILON / 2.0));
+/// `γ(10)` times the 6 terms of a 3×3 determinant.
+const DET3_BOUND: f64 = 6.0 * super::footprint::f64::gamma(10);
 /// Covers the absolute error of products that underflow.
 const DET3_FLOOR: f64 = 1e-290;
 

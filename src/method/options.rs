@@ -12,8 +12,8 @@
 //! - a **positional** value, `value` alone (Monte Carlo's sample count,
 //!   `mc:256`), at most one per method.
 //!
-//! [`print`] writes the positional value first, then the fields that differ
-//! from the default in table order; [`parse`] reads items in any order. For
+//! [`print()`] writes the positional value first, then the fields that differ
+//! from the default in table order; [`parse()`] reads items in any order. For
 //! every method and every field, `parse(print(m)) == m`: integers print
 //! exactly, reals in Rust's shortest round-trip form. Unknown keys and bad
 //! values are errors that name what the method accepts.

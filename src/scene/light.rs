@@ -599,9 +599,7 @@ impl Emitter {
                 let h = n.dot(d.center - p);
                 let slope = (n - d.normal * n.dot(d.normal)).length() * d.radius;
                 let k = h / slope;
-                if k.is_nan() {
-                    1.0
-                } else if k >= 1.0 {
+                if k.is_nan() || k >= 1.0 {
                     1.0
                 } else if k <= -1.0 {
                     0.0

@@ -179,8 +179,10 @@ pub enum Bound {
     /// Exactly the receivers the paper's footprint can reach.
     Paper,
     /// The kernel's rigorous bounds for the true (tilted) facing disk:
-    /// [`penumbra_quad`] and, with [`Sism::wedge_column`],
-    /// [`PenumbraWedge::contains`] per receiver. They contain the paper's
+    /// [`penumbra_quad`](crate::kernel::wedge::f64::penumbra_quad) and, with
+    /// [`Sism::wedge_column`],
+    /// [`PenumbraWedge::contains`](crate::kernel::wedge::f64::PenumbraWedge::contains)
+    /// per receiver. They contain the paper's
     /// region, so the values do not change (the paper's footprint, not its
     /// quad, is what misses true penumbrae); only the evaluation count does.
     Conservative,
