@@ -30,6 +30,13 @@ fn every_registered_setting_parses_prints_and_round_trips() {
             assert_eq!(format!("{again:?}"), format!("{m:?}"), "{name}");
             settings += 1;
         }
+        let m = method::parse(e.default_run.first().unwrap_or(&e.name)).unwrap();
+        assert_eq!(
+            m.lights(),
+            e.lights,
+            "{}: the method handles what the registry says",
+            e.name
+        );
         if e.usage() == e.name {
             assert_eq!(method::parse(e.name).unwrap().name(), e.name);
         }

@@ -1,6 +1,6 @@
 //! The hard shadow: the point-light answer at the light's centre.
 
-use super::options::{flag, Configurable, Field};
+use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output};
 use crate::render::Needs;
 use crate::scene::LightKind;
@@ -20,14 +20,10 @@ pub struct HardShadow {
     pub horizon: bool,
 }
 
-impl HardShadow {
+builders!(HardShadow {
     /// With or without the horizon bound.
-    #[must_use]
-    pub fn with_horizon(mut self, on: bool) -> HardShadow {
-        self.horizon = on;
-        self
-    }
-}
+    with_horizon => horizon: bool,
+});
 
 impl Configurable for HardShadow {
     const NAME: &'static str = "hard";
@@ -35,21 +31,13 @@ impl Configurable for HardShadow {
     const LIGHTS: &'static [LightKind] = LightKind::ALL;
     const DEFAULT_RUN: &'static [&'static str] = &["hard"];
     const COMPARE: &'static [&'static str] = &["hard", "hard:horizon"];
-    const FIELDS: &'static [Field<HardShadow>] = &[flag(
-        "horizon",
-        "V ≤ the light's share above the receiver's tangent plane (ours)",
-        |m| m.horizon,
-        |m, v| m.horizon = v,
-    )];
+    const FIELDS: &'static [Field<HardShadow>] = &[field!(flag "horizon", horizon,
+        "V ≤ the light's share above the receiver's tangent plane (ours)")];
 }
 
 impl Method for HardShadow {
     fn name(&self) -> String {
         super::options::print(self)
-    }
-
-    fn lights(&self) -> &'static [LightKind] {
-        Self::LIGHTS
     }
 
     fn needs(&self) -> Needs {

@@ -333,83 +333,65 @@ pub fn help<T: Configurable>() -> Vec<String> {
         .collect()
 }
 
+/// A static string (a key, a doc line, a word).
+type Str = &'static str;
+/// A field's getter.
+type Get<T, V> = fn(&T) -> V;
+/// A field's setter.
+type Set<T, V> = fn(&mut T, V);
+
+const fn named<T>(key: Str, doc: Str, kind: Kind<T>) -> Field<T> {
+    Field {
+        key,
+        doc,
+        positional: false,
+        kind,
+    }
+}
+
 /// A flag field.
-pub const fn flag<T>(
-    key: &'static str,
-    doc: &'static str,
-    get: fn(&T) -> bool,
-    set: fn(&mut T, bool),
-) -> Field<T> {
-    Field {
-        key,
-        doc,
-        positional: false,
-        kind: Kind::Flag { get, set },
-    }
+pub const fn flag<T>(key: Str, doc: Str, get: Get<T, bool>, set: Set<T, bool>) -> Field<T> {
+    named(key, doc, Kind::Flag { get, set })
 }
 
-/// An integer field `key=N`, `N` in `min..=max`.
-pub const fn int<T>(
-    key: &'static str,
-    doc: &'static str,
-    (min, max): (u64, u64),
-    get: fn(&T) -> u64,
-    set: fn(&mut T, u64),
-) -> Field<T> {
-    Field {
-        key,
-        doc,
-        positional: false,
-        kind: Kind::Int { get, set, min, max },
-    }
+/// The constructor of a numeric field, `key=N` for `u64` or `key=X` for
+/// `f64`, the value in `r.0..=r.1`.
+macro_rules! number_field {
+    ($(#[$doc:meta])* $name:ident, $V:ty, $kind:ident) => {
+        $(#[$doc])*
+        pub const fn $name<T>(key: Str, doc: Str, r: ($V, $V), get: Get<T, $V>, set: Set<T, $V>) -> Field<T> {
+            named(key, doc, Kind::$kind { get, set, min: r.0, max: r.1 })
+        }
+    };
 }
 
-/// A real field `key=X`, `X` finite in `min..=max`.
-pub const fn real<T>(
-    key: &'static str,
-    doc: &'static str,
-    (min, max): (f64, f64),
-    get: fn(&T) -> f64,
-    set: fn(&mut T, f64),
-) -> Field<T> {
-    Field {
-        key,
-        doc,
-        positional: false,
-        kind: Kind::Real { get, set, min, max },
-    }
-}
+number_field!(
+    /// An integer field `key=N`, `N` in `r.0..=r.1`.
+    int, u64, Int
+);
+number_field!(
+    /// A real field `key=X`, `X` finite in `r.0..=r.1`.
+    real, f64, Real
+);
 
-/// A choice field `key=word`.
+/// A choice field `key=word`, the word one of `choices`.
 pub const fn choice<T>(
-    key: &'static str,
-    doc: &'static str,
-    choices: &'static [&'static str],
-    get: fn(&T) -> usize,
-    set: fn(&mut T, usize),
+    key: Str,
+    doc: Str,
+    choices: &'static [Str],
+    get: Get<T, usize>,
+    set: Set<T, usize>,
 ) -> Field<T> {
-    Field {
-        key,
-        doc,
-        positional: false,
-        kind: Kind::Choice { get, set, choices },
-    }
+    named(key, doc, Kind::Choice { get, set, choices })
 }
 
-/// The positional field: an integer standing alone (`mc:256`), always
-/// printed.
-pub const fn positional<T>(
-    key: &'static str,
-    doc: &'static str,
-    (min, max): (u64, u64),
-    get: fn(&T) -> u64,
-    set: fn(&mut T, u64),
-) -> Field<T> {
+/// `field` (an integer) made the positional field: its value stands alone
+/// (`mc:256`) and is always printed; its key is the word it is described
+/// by.
+pub const fn positional<T>(field: Field<T>) -> Field<T> {
     Field {
-        key,
-        doc,
         positional: true,
-        kind: Kind::Int { get, set, min, max },
+        ..field
     }
 }
 
@@ -475,3 +457,55 @@ pub fn round_trip<T: Configurable>() -> Result<(), String> {
     }
     Ok(())
 }
+
+/// One entry of a method's [`Configurable::FIELDS`] table, on one line:
+///
+/// - `field!(flag "key", field, "doc")`: a `bool` field, on when present;
+/// - `field!(flag "key", !field, "doc")`: a `bool` field on by default,
+///   off when the flag is present (`no-bin-depth`);
+/// - `field!(flag "key", field == ON else OFF, "doc")`: a two-valued field,
+///   `ON` when present;
+/// - `field!(int "key", field: u32, (min, max), "doc")`: an integer field;
+/// - `field!(real "key", field, (min, max), "doc")`: an `f64` field.
+macro_rules! field {
+    (flag $key:literal, !$f:ident, $doc:literal) => {
+        $crate::method::options::flag($key, $doc, |m| !m.$f, |m, v| m.$f = !v)
+    };
+    (flag $key:literal, $f:ident == $on:path, else $off:path, $doc:literal) => {
+        $crate::method::options::flag(
+            $key,
+            $doc,
+            |m| m.$f == $on,
+            |m, v| m.$f = if v { $on } else { $off },
+        )
+    };
+    (flag $key:literal, $f:ident, $doc:literal) => {
+        $crate::method::options::flag($key, $doc, |m| m.$f, |m, v| m.$f = v)
+    };
+    (int $key:literal, $f:ident: $t:ty, $r:expr, $doc:literal) => {
+        $crate::method::options::int($key, $doc, $r, |m| m.$f as u64, |m, v| m.$f = v as $t)
+    };
+    (real $key:literal, $f:ident, $r:expr, $doc:literal) => {
+        $crate::method::options::real($key, $doc, $r, |m| m.$f, |m, v| m.$f = v)
+    };
+}
+pub(crate) use field;
+
+/// Builder methods `with_x(value)` for fields of a method's options, each
+/// documented: `builders!(Pcss { /// With a … map. with_resolution =>
+/// resolution: u32, … })`.
+macro_rules! builders {
+    ($T:ident { $($(#[$doc:meta])* $name:ident => $f:ident: $t:ty),* $(,)? }) => {
+        impl $T {
+            $(
+                $(#[$doc])*
+                #[must_use]
+                pub fn $name(mut self, value: $t) -> $T {
+                    self.$f = value;
+                    self
+                }
+            )*
+        }
+    };
+}
+pub(crate) use builders;

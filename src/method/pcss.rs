@@ -1,7 +1,7 @@
 //! Percentage-closer soft shadows (Fernando, "Percentage-Closer Soft
 //! Shadows", SIGGRAPH 2005 sketch): the baseline engines ship today.
 
-use super::options::{flag, int, real, Configurable, Field};
+use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::MAX_RESOLUTION;
@@ -104,34 +104,6 @@ impl Pcss {
     /// Default [`Pcss::bias_texels`]: one texel (ours).
     pub const DEFAULT_BIAS_TEXELS: f64 = 1.0;
 
-    /// With a depth map of `side × side` texels.
-    #[must_use]
-    pub fn with_resolution(mut self, side: u32) -> Pcss {
-        self.resolution = side;
-        self
-    }
-
-    /// With `n` blocker-search samples.
-    #[must_use]
-    pub fn with_blocker_samples(mut self, n: u32) -> Pcss {
-        self.blocker_samples = n;
-        self
-    }
-
-    /// With `n` filter samples.
-    #[must_use]
-    pub fn with_filter_samples(mut self, n: u32) -> Pcss {
-        self.filter_samples = n;
-        self
-    }
-
-    /// With the depth comparison `bias`.
-    #[must_use]
-    pub fn with_bias(mut self, bias: PcssBias) -> Pcss {
-        self.bias = bias;
-        self
-    }
-
     /// With the bias margins, relative and in texels.
     #[must_use]
     pub fn with_bias_margins(mut self, relative: f64, texels: f64) -> Pcss {
@@ -139,14 +111,20 @@ impl Pcss {
         self.bias_texels = texels;
         self
     }
-
-    /// With or without the horizon bound.
-    #[must_use]
-    pub fn with_horizon(mut self, on: bool) -> Pcss {
-        self.horizon = on;
-        self
-    }
 }
+
+builders!(Pcss {
+    /// With a depth map of `value × value` texels.
+    with_resolution => resolution: u32,
+    /// With `value` blocker-search samples.
+    with_blocker_samples => blocker_samples: u32,
+    /// With `value` filter samples.
+    with_filter_samples => filter_samples: u32,
+    /// With the depth comparison `value`.
+    with_bias => bias: PcssBias,
+    /// With or without the horizon bound.
+    with_horizon => horizon: bool,
+});
 
 impl Default for Pcss {
     fn default() -> Pcss {
@@ -169,60 +147,16 @@ impl Configurable for Pcss {
     const DEFAULT_RUN: &'static [&'static str] = &["pcss"];
     const COMPARE: &'static [&'static str] =
         &["pcss", "pcss:map=256", "pcss:map=4096", "pcss:horizon"];
+    #[rustfmt::skip]
     const FIELDS: &'static [Field<Pcss>] = &[
-        int(
-            "map",
-            "side of the depth map in texels (ours)",
-            (1, MAX_RESOLUTION as u64),
-            |m| u64::from(m.resolution),
-            |m, v| m.resolution = v as u32,
-        ),
-        int(
-            "search",
-            "points read in the blocker search (ours)",
-            (1, 4096),
-            |m| u64::from(m.blocker_samples),
-            |m, v| m.blocker_samples = v as u32,
-        ),
-        int(
-            "filter",
-            "points read by the filter (ours)",
-            (1, 4096),
-            |m| u64::from(m.filter_samples),
-            |m, v| m.filter_samples = v as u32,
-        ),
-        flag(
-            "constant",
-            "compare texels with the receiver's own depth, not its tangent plane's",
-            |m| m.bias == PcssBias::Constant,
-            |m, v| {
-                m.bias = if v {
-                    PcssBias::Constant
-                } else {
-                    PcssBias::ReceiverPlane
-                }
-            },
-        ),
-        real(
-            "relative",
-            "depth margin relative to the receiver's depth (ours)",
-            (0.0, 1.0),
-            |m| m.bias_relative,
-            |m, v| m.bias_relative = v,
-        ),
-        real(
-            "texels",
-            "depth margin in texels at the receiver (ours)",
-            (0.0, 1000.0),
-            |m| m.bias_texels,
-            |m, v| m.bias_texels = v,
-        ),
-        flag(
-            "horizon",
-            "V ≤ the light's share above the receiver's tangent plane (ours)",
-            |m| m.horizon,
-            |m, v| m.horizon = v,
-        ),
+        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the depth map in texels (ours)"),
+        field!(int "search", blocker_samples: u32, (1, 4096), "points read in the blocker search (ours)"),
+        field!(int "filter", filter_samples: u32, (1, 4096), "points read by the filter (ours)"),
+        field!(flag "constant", bias == PcssBias::Constant, else PcssBias::ReceiverPlane,
+            "compare texels with the receiver's own depth, not its tangent plane's"),
+        field!(real "relative", bias_relative, (0.0, 1.0), "depth margin relative to the receiver's depth (ours)"),
+        field!(real "texels", bias_texels, (0.0, 1000.0), "depth margin in texels at the receiver (ours)"),
+        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
     ];
 }
 

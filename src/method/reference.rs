@@ -94,13 +94,13 @@ impl Configurable for MonteCarlo {
     const DEFAULT_RUN: &'static [&'static str] = &["mc:16", "mc:256"];
     const COMPARE: &'static [&'static str] = &[];
     const FIELDS: &'static [Field<MonteCarlo>] = &[
-        positional(
+        positional(int(
             "N",
             "samples per receiver",
             (monte_carlo::MIN_SAMPLES as u64, u32::MAX as u64),
             |m| u64::from(m.samples),
             |m, v| m.samples = v as u32,
-        ),
+        )),
         int(
             "seed",
             "the seed of the sample sequences",

@@ -148,7 +148,7 @@ mod umbra;
 pub use crate::method::centre::EdgeSource;
 
 use super::centre;
-use super::options::{flag, int, real, Configurable, Field};
+use super::options::{builders, field, Configurable, Field};
 use super::{Horizon, Input, Method, MethodError, Output};
 use crate::kernel::footprint::f64::project;
 use crate::render::Needs;
@@ -242,27 +242,6 @@ impl Sism {
     /// Default [`Sism::depth_slices`].
     pub const DEFAULT_DEPTH_SLICES: u32 = 8;
 
-    /// With the edges of `source`.
-    #[must_use]
-    pub fn with_edges(mut self, source: EdgeSource) -> Sism {
-        self.edges = source;
-        self
-    }
-
-    /// With the composition `composition`.
-    #[must_use]
-    pub fn with_composition(mut self, composition: Composition) -> Sism {
-        self.composition = composition;
-        self
-    }
-
-    /// With the receiver bound `bound`.
-    #[must_use]
-    pub fn with_bound(mut self, bound: Bound) -> Sism {
-        self.bound = bound;
-        self
-    }
-
     /// With or without §2.5's two overdraw optimisations.
     #[must_use]
     pub fn with_optimisations(mut self, bin_depth: bool, wedge_column: bool) -> Sism {
@@ -279,14 +258,18 @@ impl Sism {
         self.depth_slices = depth_slices;
         self
     }
-
-    /// With or without the horizon bound.
-    #[must_use]
-    pub fn with_horizon(mut self, on: bool) -> Sism {
-        self.horizon = on;
-        self
-    }
 }
+
+builders!(Sism {
+    /// With the edges of `value`.
+    with_edges => edges: EdgeSource,
+    /// With the composition `value`.
+    with_composition => composition: Composition,
+    /// With the receiver bound `value`.
+    with_bound => bound: Bound,
+    /// With or without the horizon bound.
+    with_horizon => horizon: bool,
+});
 
 impl Default for Sism {
     fn default() -> Sism {
@@ -315,76 +298,20 @@ impl Configurable for Sism {
         "sism:horizon",
         "sism:exact-union,horizon",
     ];
+    #[rustfmt::skip]
     const FIELDS: &'static [Field<Sism>] = &[
-        flag(
-            "all-edges",
-            "every triangle edge instead of the silhouettes (§2.1's fallback)",
-            |m| m.edges == EdgeSource::AllEdges,
-            |m, v| {
-                m.edges = if v {
-                    EdgeSource::AllEdges
-                } else {
-                    EdgeSource::Silhouettes
-                }
-            },
-        ),
-        flag(
-            "exact-union",
-            "the union of the occluders in the footprint instead of C = 0 (§5.2, computed)",
-            |m| m.composition == Composition::ExactUnion,
-            |m, v| {
-                m.composition = if v {
-                    Composition::ExactUnion
-                } else {
-                    Composition::Independent
-                }
-            },
-        ),
-        flag(
-            "conservative",
-            "the kernel's rigorous quad and wedge (changes the work, not the values)",
-            |m| m.bound == Bound::Conservative,
-            |m, v| m.bound = if v { Bound::Conservative } else { Bound::Paper },
-        ),
-        flag(
-            "no-bin-depth",
-            "without §2.5's per-bin depth optimisation",
-            |m| !m.bin_depth,
-            |m, v| m.bin_depth = !v,
-        ),
-        flag(
-            "no-wedge-column",
-            "without §2.5's wedge/column optimisation",
-            |m| !m.wedge_column,
-            |m, v| m.wedge_column = !v,
-        ),
-        real(
-            "cells",
-            "grid cells per receiver (ours)",
-            (1e-6, 64.0),
-            |m| m.cells_per_receiver,
-            |m, v| m.cells_per_receiver = v,
-        ),
-        int(
-            "bin",
-            "cells per side of a bin (ours)",
-            (1, 1024),
-            |m| u64::from(m.bin_cells),
-            |m, v| m.bin_cells = v as u32,
-        ),
-        int(
-            "slices",
-            "depth slices of the grid (ours)",
-            (1, 256),
-            |m| u64::from(m.depth_slices),
-            |m, v| m.depth_slices = v as u32,
-        ),
-        flag(
-            "horizon",
-            "V ≤ the light's share above the receiver's tangent plane (ours)",
-            |m| m.horizon,
-            |m, v| m.horizon = v,
-        ),
+        field!(flag "all-edges", edges == EdgeSource::AllEdges, else EdgeSource::Silhouettes,
+            "every triangle edge instead of the silhouettes (§2.1's fallback)"),
+        field!(flag "exact-union", composition == Composition::ExactUnion, else Composition::Independent,
+            "the union of the occluders in the footprint instead of C = 0 (§5.2, computed)"),
+        field!(flag "conservative", bound == Bound::Conservative, else Bound::Paper,
+            "the kernel's rigorous quad and wedge (changes the work, not the values)"),
+        field!(flag "no-bin-depth", !bin_depth, "without §2.5's per-bin depth optimisation"),
+        field!(flag "no-wedge-column", !wedge_column, "without §2.5's wedge/column optimisation"),
+        field!(real "cells", cells_per_receiver, (1e-6, 64.0), "grid cells per receiver (ours)"),
+        field!(int "bin", bin_cells: u32, (1, 1024), "cells per side of a bin (ours)"),
+        field!(int "slices", depth_slices: u32, (1, 256), "depth slices of the grid (ours)"),
+        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
     ];
 }
 
