@@ -37,6 +37,7 @@ pub mod options;
 mod pcss;
 mod reference;
 pub mod registry;
+pub mod single_sample;
 pub mod sism;
 
 pub use hard::HardShadow;
@@ -44,6 +45,7 @@ pub use options::Configurable;
 pub use pcss::{Pcss, PcssBias};
 pub use reference::{Exact, MonteCarlo};
 pub use registry::{default_set, parse, REGISTRY};
+pub use single_sample::SingleSample;
 pub use sism::Sism;
 
 use crate::render::raster::RasterError;

@@ -3,6 +3,7 @@
 
 use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
+use super::centre::depth::DepthTest;
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::MAX_RESOLUTION;
 use crate::render::{FittedMaps, Needs};
@@ -176,20 +177,13 @@ fn vogel(n: u32) -> Vec<DVec2> {
 /// One receiver's view of the depth map.
 struct Lookup<'a> {
     maps: &'a FittedMaps,
-    /// The receiver in light-frame coordinates.
-    p: DVec3,
-    /// Its light-frame normal, when the receiver-plane bias is used.
-    normal: Option<DVec3>,
-    /// The margin `m` of [`PcssBias`].
-    margin: f64,
-    /// The receiver faces away from the light's centre: its own surface
-    /// blocks it ([`PcssBias::ReceiverPlane`]).
-    own_surface_blocks: bool,
+    test: DepthTest,
 }
 
 impl Lookup<'_> {
     /// The depth of the texel under image-plane point `u` when it blocks
-    /// the receiver, `None` when it does not (or `u` is off the map).
+    /// the receiver ([`DepthTest`]), `None` when it does not (or `u` is off
+    /// the map).
     fn blocker(&self, u: DVec2) -> Option<f64> {
         let view = &self.maps.view;
         let t = view.to_pixel(u).floor();
@@ -202,25 +196,7 @@ impl Lookup<'_> {
         }
         let (col, row) = (t.x as u32, t.y as u32);
         let d = self.maps.maps.depth_at(col, row);
-        let z = match self.normal {
-            Some(n) => {
-                // The tangent plane n·X = n·p along the ray (c, 1).
-                let c = view.pixel_center(col, row);
-                let z = n.dot(self.p) / n.dot(DVec3::new(c.x, c.y, 1.0));
-                if z.is_finite() && z > 0.0 {
-                    z
-                } else {
-                    self.p.z
-                }
-            }
-            None => self.p.z,
-        };
-        let blocks = if self.own_surface_blocks {
-            d < z + self.margin
-        } else {
-            d < z - self.margin
-        };
-        blocks.then_some(d)
+        self.test.blocks(view, col, row, d).then_some(d)
     }
 }
 
@@ -288,13 +264,10 @@ impl Method for Pcss {
                     .normal
                     .filter(|_| plane)
                     .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
-                let facing = n.filter(|n| n.dot(p) < 0.0);
+                let margin = p.z * (self.bias_relative + self.bias_texels * texel);
                 let lookup = Lookup {
                     maps,
-                    p,
-                    normal: facing,
-                    margin: p.z * (self.bias_relative + self.bias_texels * texel),
-                    own_surface_blocks: n.is_some() && facing.is_none(),
+                    test: DepthTest::new(p, n, margin),
                 };
                 let s = project(p);
                 // 1. Blocker search.

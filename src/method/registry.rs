@@ -9,14 +9,14 @@
 //! | `hard` | every light | [`HardShadow`]: the point light at the light's centre |
 //! | `pcss` | every light | [`Pcss`]: percentage-closer soft shadows (Fernando 2005) |
 //! | `sism` | sphere, disk | [`Sism`]: soft irregular shadow mapping (Johnson et al. 2009) |
-//! | `single-sample` | sphere, disk, rect | not built yet |
+//! | `single-sample` | sphere, disk, rect | [`SingleSample`]: single-sample soft shadows (Brabec & Seidel 2002) |
 //! | `ssoc`, `backprojected-ssoc` | sphere, disk | not built yet |
 //! | `oess` | segment | not built yet |
 //! | `mc:N` | every light | [`MonteCarlo`]: Monte Carlo light sampling, `N` samples |
 //! | `exact` | every light | [`Exact`]: the exact reference |
 
 use super::options::{self, Configurable};
-use super::{Exact, HardShadow, Method, MonteCarlo, Pcss, Sism};
+use super::{Exact, HardShadow, Method, MonteCarlo, Pcss, SingleSample, Sism};
 use crate::scene::LightKind;
 
 /// Builds a method from the items of its name.
@@ -147,11 +147,7 @@ pub static REGISTRY: &[Entry] = &[
     Entry::of::<HardShadow>(),
     Entry::of::<Pcss>(),
     Entry::of::<Sism>(),
-    Entry::later(
-        "single-sample",
-        "single-sample soft shadows (Brabec & Seidel 2002)",
-        &[LightKind::Sphere, LightKind::Disk, LightKind::Rect],
-    ),
+    Entry::of::<SingleSample>(),
     Entry::later(
         "ssoc",
         "the soft shadow occlusion camera (Mo, Popescu & Wyman 2007)",

@@ -21,6 +21,9 @@ pub struct Frame {
     height: u32,
     pixels: Vec<u32>,
     receivers: Vec<Receiver>,
+    /// Whether the pixels are a camera image (neighbouring pixels are
+    /// neighbours on screen), not a list of points.
+    image: bool,
 }
 
 /// Frames are told apart by a process-wide counter, so that stages fitted to
@@ -94,6 +97,7 @@ impl Frame {
             height,
             pixels,
             receivers,
+            image: true,
         }
     }
 
@@ -111,7 +115,17 @@ impl Frame {
             height: u32::from(n > 0),
             pixels: (0..n).collect(),
             receivers,
+            image: false,
         }
+    }
+
+    /// Whether the frame is a camera image ([`Frame::from_camera`]), whose
+    /// neighbouring pixels are neighbours on screen — methods may then
+    /// interpolate between them — rather than a list of points
+    /// ([`Frame::from_receivers`]).
+    #[must_use]
+    pub fn is_image(&self) -> bool {
+        self.image
     }
 
     /// A number unique to this frame within the process.

@@ -12,6 +12,7 @@
 //! light-frame `(x, y, z)` projects to `(x/z, y/z)` on the image plane
 //! `z = 1`.
 
+pub(crate) mod depth;
 pub(crate) mod union;
 
 use crate::kernel::footprint::f64::{clip_near, project};

@@ -1,0 +1,230 @@
+//! The neighbourhood search of the single-sample method: the nearest texel
+//! of the light map that blocks a receiver (outer penumbra) or that is lit
+//! and on the receiver's own object (inner penumbra), within a radius.
+//!
+//! The paper searches an axis-aligned box texel by texel (§4.2). Here the
+//! map is summarised in tiles of [`TILE`]² texels — per tile the least depth
+//! of its two nearest objects, the greatest depth, which object ids it
+//! holds — so that a tile that cannot hold a qualifying texel is skipped
+//! without reading it; tiles are visited nearest first and the search stops
+//! once no tile can hold a nearer texel. The texels found are exactly the
+//! texel-by-texel search's: a tile is skipped only when no texel in it can
+//! qualify (the bounds below are conservative), and among texels at equal
+//! distance the one visited first wins, tiles in order of their nearest
+//! point then index, texels row by row.
+
+use crate::method::centre::depth::DepthTest;
+use crate::render::raster::{LightMaps, LightView};
+use glam::DVec2;
+
+/// Side of a summary tile, in texels.
+pub(super) const TILE: u32 = 8;
+
+/// What a tile holds, for skipping it.
+#[derive(Clone, Copy, Debug)]
+struct Tile {
+    /// The least depth of any texel, and that texel's object id.
+    d1: f64,
+    id1: u32,
+    /// The least depth of the texels whose id is not `id1`.
+    d2: f64,
+    /// The greatest depth of a covered texel (`−∞` when none is).
+    dmax: f64,
+    /// Whether a texel sees no triangle (infinite depth).
+    uncovered: bool,
+    /// Bit `id mod 64` set for every object id of a covered texel.
+    ids: u64,
+}
+
+/// The light map's tile summaries.
+#[derive(Clone, Debug)]
+pub(super) struct Tiles {
+    /// Tiles along x (rows of tiles follow each other).
+    nx: u32,
+    tiles: Vec<Tile>,
+}
+
+impl Tiles {
+    /// The summaries of `maps`.
+    pub(super) fn new(maps: &LightMaps) -> Tiles {
+        let (w, h) = (maps.width(), maps.height());
+        let (nx, ny) = (w.div_ceil(TILE), h.div_ceil(TILE));
+        let mut tiles = Vec::with_capacity((nx * ny) as usize);
+        for ty in 0..ny {
+            for tx in 0..nx {
+                let mut t = Tile {
+                    d1: f64::INFINITY,
+                    id1: u32::MAX,
+                    d2: f64::INFINITY,
+                    dmax: f64::NEG_INFINITY,
+                    uncovered: false,
+                    ids: 0,
+                };
+                for row in ty * TILE..((ty + 1) * TILE).min(h) {
+                    for col in tx * TILE..((tx + 1) * TILE).min(w) {
+                        let (d, id) = (maps.depth_at(col, row), maps.object_at(col, row));
+                        if !maps.is_covered(col, row) {
+                            t.uncovered = true;
+                            continue;
+                        }
+                        t.ids |= 1 << (id % 64);
+                        t.dmax = t.dmax.max(d);
+                        if d < t.d1 {
+                            if id != t.id1 {
+                                t.d2 = t.d1;
+                            }
+                            t.d1 = d;
+                            t.id1 = id;
+                        } else if id != t.id1 {
+                            t.d2 = t.d2.min(d);
+                        }
+                    }
+                }
+                tiles.push(t);
+            }
+        }
+        Tiles { nx, tiles }
+    }
+}
+
+/// What the search looks for.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum Want {
+    /// A texel that blocks the receiver and is on another object (`other`:
+    /// `None` switches the id test off).
+    Blocker { other: Option<u32> },
+    /// A texel that does not block the receiver and is on its own object
+    /// (`own`: `None` switches the id test off).
+    LitOwn { own: Option<u32> },
+}
+
+/// The nearest qualifying texel: its distance and depth.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(super) struct Found {
+    pub distance: f64,
+    pub depth: f64,
+}
+
+/// One search: the light view and maps, their tiles, the receiver's depth
+/// test, and the metric (`scale`: the length of one texel step along x and
+/// y — `(1, 1)` to measure in texels, the texel size to measure on the
+/// image plane).
+pub(super) struct Search<'a> {
+    pub view: &'a LightView,
+    pub maps: &'a LightMaps,
+    pub tiles: &'a Tiles,
+    pub test: &'a DepthTest,
+    pub scale: DVec2,
+}
+
+impl Search<'_> {
+    /// Whether texel `(col, row)` qualifies.
+    fn qualifies(&self, want: Want, col: u32, row: u32) -> bool {
+        let d = self.maps.depth_at(col, row);
+        let id = self.maps.object_at(col, row);
+        match want {
+            Want::Blocker { other } => {
+                other.is_none_or(|own| id != own) && self.test.blocks(self.view, col, row, d)
+            }
+            Want::LitOwn { own } => {
+                own.is_none_or(|own| id == own) && !self.test.blocks(self.view, col, row, d)
+            }
+        }
+    }
+
+    /// Whether the tile's part `c0..=c1` × `r0..=r1` may hold a qualifying
+    /// texel: `false` only when none can. A texel blocks when its depth is
+    /// below the test's threshold at that texel ([`DepthTest::threshold`]),
+    /// which over the part lies between the thresholds of the bounds of
+    /// the reference depth.
+    fn may_hold(&self, want: Want, tile: &Tile, (c0, r0, c1, r1): (u32, u32, u32, u32)) -> bool {
+        let (lo, hi) = self.test.reference_range(self.view, (c0, r0), (c1, r1));
+        match want {
+            Want::Blocker { other } => {
+                // The least depth among the texels of other objects.
+                let least = match other {
+                    Some(own) if tile.id1 == own => tile.d2,
+                    _ => tile.d1,
+                };
+                least < self.test.threshold(hi)
+            }
+            Want::LitOwn { own: Some(own) } => {
+                tile.ids & (1 << (own % 64)) != 0 && tile.dmax >= self.test.threshold(lo)
+            }
+            Want::LitOwn { own: None } => {
+                tile.uncovered || tile.dmax >= self.test.threshold(lo)
+            }
+        }
+    }
+
+    /// The distance from `q` (continuous texel coordinates) to the centre
+    /// of texel `(col, row)`.
+    fn distance(&self, q: DVec2, col: u32, row: u32) -> f64 {
+        let o = (DVec2::new(f64::from(col), f64::from(row)) + 0.5 - q) * self.scale;
+        o.length()
+    }
+
+    /// The nearest texel within `radius` of `q` (continuous texel
+    /// coordinates; distances in the search's metric) that qualifies for
+    /// `want`, and its depth; `None` when none does.
+    pub(super) fn nearest(&self, q: DVec2, radius: f64, want: Want, order: &mut Vec<(f64, u32)>) -> Option<Found> {
+        let (w, h) = (self.maps.width(), self.maps.height());
+        if !(radius >= 0.0 && q.is_finite()) || w == 0 || h == 0 {
+            return None;
+        }
+        // The texel box the disk of `radius` around `q` can reach.
+        let reach = DVec2::new(radius / self.scale.x, radius / self.scale.y);
+        let lo = (q - reach - 0.5).floor().max(DVec2::ZERO);
+        let hi = (q + reach - 0.5).ceil().min(DVec2::new(f64::from(w - 1), f64::from(h - 1)));
+        if !(lo.x <= hi.x && lo.y <= hi.y) {
+            return None;
+        }
+        let (c_lo, r_lo, c_hi, r_hi) = (lo.x as u32, lo.y as u32, hi.x as u32, hi.y as u32);
+        order.clear();
+        for ty in r_lo / TILE..=r_hi / TILE {
+            for tx in c_lo / TILE..=c_hi / TILE {
+                // The nearest texel centre of the tile's part of the box.
+                let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
+                let (c1, r1) = (((tx + 1) * TILE - 1).min(c_hi), ((ty + 1) * TILE - 1).min(r_hi));
+                let nearest = DVec2::new(
+                    (q.x - 0.5).clamp(f64::from(c0), f64::from(c1)),
+                    (q.y - 0.5).clamp(f64::from(r0), f64::from(r1)),
+                );
+                let d = ((nearest + 0.5 - q) * self.scale).length();
+                if d <= radius {
+                    order.push((d, ty * self.tiles.nx + tx));
+                }
+            }
+        }
+        order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        let mut best: Option<Found> = None;
+        for &(d_tile, t) in order.iter() {
+            if best.is_some_and(|b| d_tile > b.distance) {
+                break;
+            }
+            let (tx, ty) = (t % self.tiles.nx, t / self.tiles.nx);
+            let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
+            let (c1, r1) = (((tx + 1) * TILE - 1).min(c_hi), ((ty + 1) * TILE - 1).min(r_hi));
+            if !self.may_hold(want, &self.tiles.tiles[t as usize], (c0, r0, c1, r1)) {
+                continue;
+            }
+            for row in r0..=r1 {
+                for col in c0..=c1 {
+                    let d = self.distance(q, col, row);
+                    let limit = best.map_or(radius, |b| b.distance);
+                    // Strictly nearer than the best so far (ties: first
+                    // found), within the radius.
+                    let nearer = if best.is_some() { d < limit } else { d <= limit };
+                    if nearer && self.qualifies(want, col, row) {
+                        best = Some(Found {
+                            distance: d,
+                            depth: self.maps.depth_at(col, row),
+                        });
+                    }
+                }
+            }
+        }
+        best
+    }
+}
+
