@@ -20,6 +20,8 @@ use crate::kernel::predicate::{orient2d, Sign};
 use glam::{DVec2, DVec3};
 use std::fmt;
 
+pub use super::emitter::Emitter;
+
 /// Why a light could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
@@ -530,158 +532,6 @@ fn off_plane(p: DVec3, c: DVec3, n: DVec3) -> Result<(), ReceiverError> {
     }
 }
 
-/// A light's emitting measure as one receiver sees it: the kinds' own
-/// validated structs, so an emitter is as valid as the light it came from.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub enum Emitter {
-    /// A uniform disk (a disk light, or a sphere light's facing disk).
-    Disk(Disk),
-    /// A uniform parallelogram.
-    Rect(Rect),
-    /// A uniform segment.
-    Segment(Segment),
-    /// A point.
-    Point(Point),
-}
-
-impl Emitter {
-    /// The point of the measure at the sample `s ∈ [0, 1)²`, uniform by
-    /// area (length for a segment) when `s` is uniform: the disk by
-    /// Shirley and Chiu's concentric map (low distortion, so stratified
-    /// samples stay stratified), the rect and segment affinely. A point
-    /// light ignores `s`.
-    #[must_use]
-    pub fn point_at(&self, s: DVec2) -> DVec3 {
-        match *self {
-            Emitter::Disk(d) => {
-                let (t, b) = d.normal.any_orthonormal_pair();
-                let q = concentric_disk(s) * d.radius;
-                d.center + t * q.x + b * q.y
-            }
-            Emitter::Rect(r) => r.center + r.u * (2.0 * s.x - 1.0) + r.v * (2.0 * s.y - 1.0),
-            Emitter::Segment(g) => g.a.lerp(g.b, s.x),
-            Emitter::Point(p) => p.position,
-        }
-    }
-}
-
-impl Emitter {
-    /// The share `V_h ∈ [0, 1]` of the measure strictly on the side of the
-    /// plane through `p` with normal `n` that `n` points to — for a
-    /// receiver's tangent plane, the part of the light its own surface does
-    /// not hide, so `V(p) ≤ V_h` (the methods' `horizon` option).
-    ///
-    /// - **Disk**: with `h = n·(c − p)` the height of the centre above the
-    ///   plane and `s = ‖n − (n·m)m‖` the slope between the two planes
-    ///   (`m` the disk's normal), the plane cuts the disk along a chord at
-    ///   `−h/s` from its centre; the share beyond it is the straight-edge
-    ///   disk falloff ([`disk_edge_falloff`]) at `(1 + h/(r s))/2`, exact
-    ///   to its ulp. A plane parallel to the disk gives 1 above it, 0 below,
-    ///   1 in it.
-    /// - **Rect**: the area of the unit square `[−1, 1]²` of the rect's own
-    ///   coordinates where `h + s (n·u) + t (n·v) > 0` (the square clipped
-    ///   by a half-plane, shoelace area), over 4.
-    /// - **Segment**: the length fraction above the plane, where the
-    ///   heights of the ends change sign.
-    /// - **Point**: 1 when strictly above, else 0.
-    ///
-    /// `n` need not be unit length; a zero or non-finite `n` (or `p`) puts
-    /// no bound: 1.
-    ///
-    /// [`disk_edge_falloff`]: crate::kernel::falloff::f64::disk_edge_falloff
-    #[must_use]
-    pub fn share_above(&self, p: DVec3, n: DVec3) -> f64 {
-        if !(n.is_finite() && p.is_finite()) || n == DVec3::ZERO {
-            return 1.0;
-        }
-        let share = match *self {
-            Emitter::Disk(d) => {
-                let h = n.dot(d.center - p);
-                let slope = (n - d.normal * n.dot(d.normal)).length() * d.radius;
-                let k = h / slope;
-                if k.is_nan() || k >= 1.0 {
-                    1.0
-                } else if k <= -1.0 {
-                    0.0
-                } else {
-                    crate::kernel::falloff::f64::disk_edge_falloff(0.5 + 0.5 * k)
-                }
-            }
-            Emitter::Rect(r) => square_share_above(n.dot(r.center - p), n.dot(r.u), n.dot(r.v)),
-            Emitter::Segment(g) => {
-                let (ha, hb) = (n.dot(g.a - p), n.dot(g.b - p));
-                match (ha > 0.0, hb > 0.0) {
-                    (true, true) => 1.0,
-                    (false, false) => 0.0,
-                    // The crossing at t = ha / (ha − hb), a difference of
-                    // opposite signs: no cancellation.
-                    (true, false) => ha / (ha - hb),
-                    (false, true) => hb / (hb - ha),
-                }
-            }
-            Emitter::Point(x) => {
-                if n.dot(x.position - p) > 0.0 {
-                    1.0
-                } else {
-                    0.0
-                }
-            }
-        };
-        if share.is_nan() {
-            1.0
-        } else {
-            share.clamp(0.0, 1.0)
-        }
-    }
-}
-
-/// The share of the square `[−1, 1]²` where `h + a x + b y > 0`:
-/// Sutherland–Hodgman against the half-plane, shoelace area over 4.
-fn square_share_above(h: f64, a: f64, b: f64) -> f64 {
-    let f = |q: DVec2| h + a * q.x + b * q.y;
-    let corners = [
-        DVec2::new(-1.0, -1.0),
-        DVec2::new(1.0, -1.0),
-        DVec2::new(1.0, 1.0),
-        DVec2::new(-1.0, 1.0),
-    ];
-    let mut poly: Vec<DVec2> = Vec::with_capacity(5);
-    for k in 0..4 {
-        let (p, q) = (corners[k], corners[(k + 1) % 4]);
-        let (fp, fq) = (f(p), f(q));
-        if fp > 0.0 {
-            poly.push(p);
-        }
-        if (fp > 0.0) != (fq > 0.0) {
-            let t = fp / (fp - fq);
-            poly.push(p + (q - p) * t);
-        }
-    }
-    let twice: f64 = (0..poly.len())
-        .map(|k| poly[k].perp_dot(poly[(k + 1) % poly.len()]))
-        .sum();
-    0.125 * twice
-}
-
-/// Shirley and Chiu's concentric map from `[0, 1)²` to the unit disk
-/// ("A Low Distortion Map Between Disk and Square", 1997): area-preserving
-/// up to the constant `π/4`.
-fn concentric_disk(s: DVec2) -> DVec2 {
-    let o = s * 2.0 - DVec2::ONE;
-    if o == DVec2::ZERO {
-        return DVec2::ZERO;
-    }
-    let (r, theta) = if o.x.abs() > o.y.abs() {
-        (o.x, std::f64::consts::FRAC_PI_4 * (o.y / o.x))
-    } else {
-        (
-            o.y,
-            std::f64::consts::FRAC_PI_2 - std::f64::consts::FRAC_PI_4 * (o.x / o.y),
-        )
-    };
-    DVec2::new(theta.cos(), theta.sin()) * r
-}
-
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -745,42 +595,6 @@ mod tests {
             Light::point(DVec3::ONE).unwrap().emitter(DVec3::ONE),
             Err(ReceiverError::OnLight)
         );
-    }
-
-    /// Uniform by area: with N uniform samples, the share landing inside
-    /// half the radius is binomial with p = ¼; it must lie within 5σ,
-    /// σ = √(p(1 − p)/N) (fixed seed). Every sample lies on the disk.
-    #[test]
-    fn disk_samples_are_uniform_by_area() {
-        let emitter = Emitter::Disk(
-            Disk::new(DVec3::new(1.0, 2.0, 3.0), DVec3::new(1.0, 1.0, 0.0), 2.0).unwrap(),
-        );
-        let mut rng = crate::arbitrary::Rng::new(3);
-        const N: usize = 200_000;
-        let mut inner = 0;
-        for _ in 0..N {
-            let q =
-                emitter.point_at(DVec2::new(rng.unit(), rng.unit())) - DVec3::new(1.0, 2.0, 3.0);
-            assert!(q.length() <= 2.0 * (1.0 + 1e-15));
-            assert!(q.dot(DVec3::new(1.0, 1.0, 0.0).normalize()).abs() < 1e-15);
-            inner += (q.length() < 1.0) as usize;
-        }
-        let (p, n) = (0.25, N as f64);
-        let sigma = (p * (1.0 - p) / n).sqrt();
-        assert!((inner as f64 / n - p).abs() < 5.0 * sigma, "{inner}");
-    }
-
-    #[test]
-    fn rect_and_segment_samples_cover_the_measure() {
-        let rect =
-            Emitter::Rect(Rect::new(DVec3::ZERO, DVec3::X, DVec3::new(0.5, 2.0, 0.0)).unwrap());
-        assert_eq!(
-            rect.point_at(DVec2::ZERO),
-            -DVec3::X - DVec3::new(0.5, 2.0, 0.0)
-        );
-        assert_eq!(rect.point_at(DVec2::splat(0.5)), DVec3::ZERO);
-        let seg = Emitter::Segment(Segment::new(DVec3::ZERO, DVec3::new(4.0, 0.0, 0.0)).unwrap());
-        assert_eq!(seg.point_at(DVec2::new(0.25, 0.9)), DVec3::X);
     }
 
     #[test]

@@ -4,6 +4,8 @@
 //!
 //! - [`light`]: the five light kinds of DESIGN.md §1, validated, and the
 //!   emitting measure each presents to a receiver.
+//! - [`emitter`]: that measure as one receiver sees it: uniform-by-area
+//!   sample points and the share above a plane (the horizon bound).
 //! - [`frame`]: the light frame and the light image plane of §2.
 //! - [`mesh`]: occluder meshes, validated.
 //! - [`receiver`]: a receiver point with its surface normal and object id,
@@ -19,6 +21,7 @@
 
 #[cfg(feature = "scene-file")]
 pub mod builtin;
+pub mod emitter;
 #[cfg(feature = "scene-file")]
 pub mod file;
 pub mod frame;
@@ -31,10 +34,11 @@ pub mod scene;
 
 #[cfg(feature = "scene-file")]
 pub use builtin::{builtin, BUILTIN_NAMES};
+pub use emitter::Emitter;
 #[cfg(feature = "scene-file")]
 pub use file::{FileError, Place};
 pub use frame::{FrameError, LightFrame, Projected};
-pub use light::{Emitter, Light, LightError, LightKind, ReceiverError};
+pub use light::{Light, LightError, LightKind, ReceiverError};
 pub use mesh::{Mesh, MeshError};
 pub use primitive::{PrimitiveError, Transform};
 pub use receiver::Receiver;

@@ -1,0 +1,357 @@
+//! The area of the union of the projected triangles within the light's
+//! measure ([`union_area`]), by Green's theorem over the union's boundary
+//! with exact predicates (the construction and its degenerate cases are in
+//! the [parent module's documentation](super)).
+
+use crate::kernel::disk::f64::segment_disk_area;
+use crate::kernel::predicate::{orient2d, orient2d_value, Sign};
+use glam::DVec2;
+
+/// A projected triangle, counter-clockwise, with its bounds.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Tri {
+    v: [DVec2; 3],
+    lo: DVec2,
+    hi: DVec2,
+}
+
+impl Tri {
+    /// The triangle oriented counter-clockwise; `None` when it is
+    /// degenerate (decided exactly).
+    pub(super) fn new(a: DVec2, b: DVec2, c: DVec2) -> Option<Tri> {
+        let v = match orient2d(a, b, c) {
+            Sign::Positive => [a, b, c],
+            Sign::Negative => [a, c, b],
+            Sign::Zero => return None,
+        };
+        Some(Tri {
+            v,
+            lo: a.min(b).min(c),
+            hi: a.max(b).max(c),
+        })
+    }
+
+    fn edge(&self, k: usize) -> (DVec2, DVec2) {
+        (self.v[k], self.v[(k + 1) % 3])
+    }
+}
+
+/// What area the union is measured with.
+#[derive(Clone, Copy, Debug)]
+pub(super) enum Measure {
+    /// The disk of this radius about the origin.
+    Disk(f64),
+    /// The square `[−1, 1]²`, inside which every projected triangle lies.
+    Square,
+}
+
+impl Measure {
+    /// The signed area the directed boundary piece `a → b` contributes.
+    fn piece(self, a: DVec2, b: DVec2) -> f64 {
+        match self {
+            Measure::Disk(r) => segment_disk_area(r, a, b),
+            Measure::Square => 0.5 * a.perp_dot(b),
+        }
+    }
+
+    /// Whether the triangle certainly misses the measure (bounds apart).
+    /// Whether the triangle misses the measure's interior (the disk: the
+    /// centre outside it and every edge at least `r` away; so a lit
+    /// receiver gets `V = 1` exactly, with no boundary pieces to sum).
+    pub(super) fn misses(self, t: &Tri) -> bool {
+        let r = match self {
+            Measure::Disk(r) => r,
+            Measure::Square => 1.0,
+        };
+        if t.lo.x >= r || t.lo.y >= r || t.hi.x <= -r || t.hi.y <= -r {
+            return true;
+        }
+        let Measure::Disk(r) = self else {
+            return false;
+        };
+        let centre_outside = (0..3).any(|k| {
+            let (a, b) = t.edge(k);
+            orient2d(a, b, DVec2::ZERO) == Sign::Negative
+        });
+        centre_outside
+            && (0..3).all(|k| {
+                let (a, b) = t.edge(k);
+                let d = b - a;
+                let s = (-a.dot(d) / d.length_squared()).clamp(0.0, 1.0);
+                (a + d * s).length_squared() >= r * r
+            })
+    }
+
+    /// Whether the triangle alone covers the whole measure.
+    pub(super) fn covered_by(self, t: &Tri) -> bool {
+        match self {
+            Measure::Disk(r) => (0..3).all(|k| {
+                let (a, b) = t.edge(k);
+                let d = b - a;
+                // Signed distance of the centre from the edge's line.
+                d.perp_dot(-a) >= r * d.length()
+            }),
+            Measure::Square => [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .iter()
+                .all(|&(x, y)| {
+                    let c = DVec2::new(x, y);
+                    (0..3).all(|k| {
+                        let (a, b) = t.edge(k);
+                        orient2d(a, b, c) != Sign::Negative
+                    })
+                }),
+        }
+    }
+}
+
+/// The area of `∪ triangles ∩ measure`, by Green's theorem over the
+/// union's boundary (see the [module documentation](super)). `half` bounds
+/// every coordinate (the clip square's half-width): the triangles are
+/// binned in a uniform grid over it so that an edge is tested only against
+/// triangles sharing a cell with its bounds.
+pub(super) fn union_area(
+    tris: &[Tri],
+    measure: Measure,
+    half: f64,
+    scratch: &mut UnionScratch,
+) -> f64 {
+    let grid = &mut scratch.grid;
+    grid.build(tris, half);
+    scratch.stamp.clear();
+    scratch.stamp.resize(tris.len(), u32::MAX);
+    let mut sum = Sum::default();
+    let mut edge_id = 0_u32;
+    for (i, ti) in tris.iter().enumerate() {
+        for k in 0..3 {
+            let (a, b) = ti.edge(k);
+            let (lo, hi) = (a.min(b), a.max(b));
+            scratch.intervals.clear();
+            let mut whole = false;
+            grid.for_each_near(lo, hi, |j| {
+                let j = j as usize;
+                if j == i || scratch.stamp[j] == edge_id {
+                    return true;
+                }
+                scratch.stamp[j] = edge_id;
+                let tj = &tris[j];
+                if tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
+                    return true;
+                }
+                if let Some(span) = covered_span(a, b, tj, j < i) {
+                    // A span of the whole edge settles it (a shared edge,
+                    // a copy): nothing of the edge is on the boundary. So
+                    // do spans that together cover it, checked at every
+                    // power of two to keep the check's cost linear.
+                    scratch.intervals.push(span);
+                    let n = scratch.intervals.len();
+                    whole = span == (0.0, 1.0)
+                        || (n >= 4 && n.is_power_of_two() && covers_unit(&mut scratch.intervals));
+                }
+                !whole
+            });
+            edge_id = edge_id.wrapping_add(1);
+            if !whole {
+                add_uncovered(a, b, &mut scratch.intervals, measure, &mut sum);
+            }
+        }
+    }
+    sum.value()
+}
+
+/// Buffers of [`union_area`].
+#[derive(Debug, Default)]
+pub(super) struct UnionScratch {
+    grid: Grid,
+    /// The last edge each triangle was tested against.
+    stamp: Vec<u32>,
+    intervals: Vec<(f64, f64)>,
+}
+
+/// A uniform grid of triangle indices over the square `[−half, half]²`, in
+/// compressed rows: cell `c` holds `items[start[c]..start[c + 1]]`.
+#[derive(Debug, Default)]
+struct Grid {
+    n: usize,
+    half: f64,
+    inv_cell: f64,
+    start: Vec<u32>,
+    items: Vec<u32>,
+}
+
+impl Grid {
+    /// The most cells along a side: beyond it, building costs more than the
+    /// tests it saves (large triangles are inserted into many cells).
+    const MAX_SIDE: usize = 64;
+
+    fn build(&mut self, tris: &[Tri], half: f64) {
+        let n = ((tris.len() as f64).sqrt().ceil() as usize).clamp(1, Grid::MAX_SIDE);
+        self.n = n;
+        self.half = half;
+        self.inv_cell = n as f64 / (2.0 * half);
+        self.start.clear();
+        self.start.resize(n * n + 1, 0);
+        for t in tris {
+            let (x0, y0, x1, y1) = self.range(t.lo, t.hi);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    self.start[y * n + x + 1] += 1;
+                }
+            }
+        }
+        for c in 0..n * n {
+            self.start[c + 1] += self.start[c];
+        }
+        self.items.clear();
+        self.items.resize(self.start[n * n] as usize, 0);
+        let mut fill: Vec<u32> = self.start[..n * n].to_vec();
+        for (i, t) in tris.iter().enumerate() {
+            let (x0, y0, x1, y1) = self.range(t.lo, t.hi);
+            for y in y0..=y1 {
+                for x in x0..=x1 {
+                    let c = y * n + x;
+                    self.items[fill[c] as usize] = i as u32;
+                    fill[c] += 1;
+                }
+            }
+        }
+    }
+
+    /// The cells `x0..=x1`, `y0..=y1` the box `lo..hi` overlaps (clamped:
+    /// rounding may put a clipped vertex a hair outside the square).
+    fn range(&self, lo: DVec2, hi: DVec2) -> (usize, usize, usize, usize) {
+        let cell = |v: f64| {
+            let c = ((v + self.half) * self.inv_cell).floor();
+            if c >= 0.0 {
+                (c as usize).min(self.n - 1)
+            } else {
+                0
+            }
+        };
+        (cell(lo.x), cell(lo.y), cell(hi.x), cell(hi.y))
+    }
+
+    /// Calls `f` with every triangle in a cell the box `lo..hi` overlaps
+    /// (a triangle in several cells more than once) until it returns
+    /// `false`.
+    fn for_each_near(&self, lo: DVec2, hi: DVec2, mut f: impl FnMut(u32) -> bool) {
+        let (x0, y0, x1, y1) = self.range(lo, hi);
+        for y in y0..=y1 {
+            for x in x0..=x1 {
+                let c = y * self.n + x;
+                for &j in &self.items[self.start[c] as usize..self.start[c + 1] as usize] {
+                    if !f(j) {
+                        return;
+                    }
+                }
+            }
+        }
+    }
+}
+
+/// Whether the intervals cover all of `[0, 1]` (sorts them).
+fn covers_unit(intervals: &mut [(f64, f64)]) -> bool {
+    intervals.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    let mut reach = 0.0_f64;
+    for &(s, e) in intervals.iter() {
+        if s > reach {
+            return false;
+        }
+        reach = reach.max(e);
+    }
+    reach >= 1.0
+}
+
+/// Adds the pieces of `a → b` outside every interval of `intervals`.
+fn add_uncovered(
+    a: DVec2,
+    b: DVec2,
+    intervals: &mut [(f64, f64)],
+    measure: Measure,
+    sum: &mut Sum,
+) {
+    if intervals.is_empty() {
+        sum.add(measure.piece(a, b));
+        return;
+    }
+    intervals.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+    let at = |t: f64| if t >= 1.0 { b } else { a + (b - a) * t };
+    let mut t = 0.0;
+    let mut from = a;
+    for &(s, e) in intervals.iter() {
+        if s > t {
+            let to = at(s);
+            sum.add(measure.piece(from, to));
+        }
+        if e > t {
+            t = e;
+            from = at(t);
+        }
+        if t >= 1.0 {
+            return;
+        }
+    }
+    sum.add(measure.piece(from, b));
+}
+
+/// The parameter interval of the edge `a → b` that the triangle covers,
+/// `None` when it covers none of positive length. Closed triangle; where
+/// the edge runs along an edge of `t` the rule of the
+/// [module documentation](super) applies: covered when `t` lies on the
+/// other side, or on the same side and `t_first` (it comes first in index
+/// order).
+fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
+    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
+    for k in 0..3 {
+        let (f0, f1) = t.edge(k);
+        // Signed areas with exact signs and accurate values: the cut of
+        // this edge by `f` and the cut of `f` by this edge land on the same
+        // point even for nearly parallel edges.
+        let (va, vb) = (orient2d_value(f0, f1, a), orient2d_value(f0, f1, b));
+        match (Sign::of(va), Sign::of(vb)) {
+            (Sign::Zero, Sign::Zero) => {
+                let same_side = (b - a).dot(f1 - f0) > 0.0;
+                if same_side && !t_first {
+                    return None;
+                }
+            }
+            (Sign::Negative, Sign::Negative | Sign::Zero) | (Sign::Zero, Sign::Negative) => {
+                return None;
+            }
+            (Sign::Positive | Sign::Zero, Sign::Positive | Sign::Zero) => {}
+            (sa, _) => {
+                // A strict crossing: va and vb have opposite signs, so
+                // va − vb does not cancel.
+                let s = (va / (va - vb)).clamp(0.0, 1.0);
+                if sa == Sign::Negative {
+                    t0 = t0.max(s);
+                } else {
+                    t1 = t1.min(s);
+                }
+            }
+        }
+    }
+    (t0 < t1).then_some((t0, t1))
+}
+
+/// Neumaier's compensated sum.
+#[derive(Default)]
+struct Sum {
+    sum: f64,
+    c: f64,
+}
+
+impl Sum {
+    fn add(&mut self, x: f64) {
+        let t = self.sum + x;
+        if self.sum.abs() >= x.abs() {
+            self.c += (self.sum - t) + x;
+        } else {
+            self.c += (x - t) + self.sum;
+        }
+        self.sum = t;
+    }
+
+    fn value(&self) -> f64 {
+        self.sum + self.c
+    }
+}
