@@ -1,9 +1,9 @@
 //! Percentage-closer soft shadows (Fernando, "Percentage-Closer Soft
 //! Shadows", SIGGRAPH 2005 sketch): the baseline engines ship today.
 
+use super::centre::depth::DepthTest;
 use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
-use super::centre::depth::DepthTest;
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::MAX_RESOLUTION;
 use crate::render::{FittedMaps, Needs};

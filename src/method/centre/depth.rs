@@ -65,6 +65,12 @@ impl DepthTest {
         }
     }
 
+    /// `z_p − m`: texels nearer than this are in front of the receiver
+    /// (the single-sample method's "virtual layers" in front of `P′_z`).
+    pub(crate) fn in_front(&self) -> f64 {
+        self.p.z - self.margin
+    }
+
     /// The depth below which a texel whose reference depth is `z` blocks
     /// the receiver: `z − m`, or `z + m` for a receiver facing away (whose
     /// reference depth is its own).

@@ -28,19 +28,23 @@ pub(super) enum Source {
     Between(u32, u32),
 }
 
+/// The search of one receiver, with a scratch buffer it may reuse.
+pub(super) type SearchFn<'a> = dyn Fn(usize, &mut Vec<(f64, u32)>) -> f64 + Sync + 'a;
+
 /// One line of pixels (a column or a row): per position the receiver index
 /// or `None` for background, the values known so far (`NaN`: not yet).
-struct Line<'a> {
-    pixels: &'a [Option<usize>],
+struct Line {
+    pixels: Vec<Option<usize>>,
     values: Vec<f64>,
     sources: Vec<Option<Source>>,
+    scratch: Vec<(f64, u32)>,
 }
 
-impl Line<'_> {
-    fn value(&mut self, k: usize, search: &(dyn Fn(usize) -> f64 + Sync)) -> f64 {
+impl Line {
+    fn value(&mut self, k: usize, search: &SearchFn<'_>) -> f64 {
         if self.values[k].is_nan() {
             if let Some(i) = self.pixels[k] {
-                self.values[k] = search(i);
+                self.values[k] = search(i, &mut self.scratch);
                 self.sources[k] = Some(Source::Searched);
             }
         }
@@ -71,7 +75,7 @@ impl Line<'_> {
     }
 
     /// Every pixel of the line valued, group by group.
-    fn fill(&mut self, hard: &[Hard], search: &(dyn Fn(usize) -> f64 + Sync)) {
+    fn fill(&mut self, hard: &[Hard], search: &SearchFn<'_>) {
         let n = self.pixels.len();
         let mut start = 0;
         while start < n {
@@ -107,39 +111,48 @@ impl Line<'_> {
     }
 }
 
+/// The receiver of pixel entry `p` (`None` for background).
+fn receiver(p: u32) -> Option<usize> {
+    (p != crate::render::BACKGROUND).then_some(p as usize)
+}
+
 /// The values of every receiver of a `width × height` image whose pixels
-/// map to receivers as `pixels` does (`u32::MAX`-like `None` for
-/// background), searching (`search(i)`) only where the group test asks;
-/// with how each was found. Columns and rows in parallel; the result does
-/// not depend on the thread count.
+/// map to receivers as `pixels` does (a receiver index, or
+/// [`BACKGROUND`](crate::render::BACKGROUND)), searching (`search(i, _)`)
+/// only where the group test asks; with how each was found. Columns and
+/// rows in parallel; the result does not depend on the thread count.
 pub(super) fn fill(
     width: usize,
     height: usize,
-    pixels: &[Option<usize>],
-    receivers: usize,
+    pixels: &[u32],
     hard: &[Hard],
-    search: &(dyn Fn(usize) -> f64 + Sync),
+    search: &SearchFn<'_>,
 ) -> (Vec<f64>, Vec<Option<Source>>) {
+    let receivers = hard.len();
     let mut values = vec![f64::NAN; receivers];
     let mut sources = vec![None; receivers];
+    let line = |pixels: Vec<Option<usize>>, values: Vec<f64>, sources: Vec<Option<Source>>| Line {
+        pixels,
+        values,
+        sources,
+        scratch: Vec::new(),
+    };
     // Every 4th column, top to bottom.
     let columns: Vec<(usize, Vec<f64>, Vec<Option<Source>>)> = (0..width)
         .into_par_iter()
         .step_by(4)
         .map(|x| {
-            let column: Vec<Option<usize>> = (0..height).map(|y| pixels[y * width + x]).collect();
-            let mut line = Line {
-                pixels: &column,
-                values: vec![f64::NAN; height],
-                sources: vec![None; height],
-            };
-            line.fill(hard, search);
-            (x, line.values, line.sources)
+            let column = (0..height)
+                .map(|y| receiver(pixels[y * width + x]))
+                .collect();
+            let mut l = line(column, vec![f64::NAN; height], vec![None; height]);
+            l.fill(hard, search);
+            (x, l.values, l.sources)
         })
         .collect();
     for (x, v, s) in columns {
         for y in 0..height {
-            if let Some(i) = pixels[y * width + x] {
+            if let Some(i) = receiver(pixels[y * width + x]) {
                 values[i] = v[y];
                 sources[i] = s[y];
             }
@@ -149,19 +162,23 @@ pub(super) fn fill(
     let rows: Vec<(usize, Vec<f64>, Vec<Option<Source>>)> = (0..height)
         .into_par_iter()
         .map(|y| {
-            let row = &pixels[y * width..(y + 1) * width];
-            let mut line = Line {
-                pixels: row,
-                values: row.iter().map(|p| p.map_or(f64::NAN, |i| values[i])).collect(),
-                sources: row.iter().map(|p| p.and_then(|i| sources[i])).collect(),
-            };
-            line.fill(hard, search);
-            (y, line.values, line.sources)
+            let row: Vec<Option<usize>> = pixels[y * width..(y + 1) * width]
+                .iter()
+                .map(|&p| receiver(p))
+                .collect();
+            let v = row
+                .iter()
+                .map(|p| p.map_or(f64::NAN, |i| values[i]))
+                .collect();
+            let s = row.iter().map(|p| p.and_then(|i| sources[i])).collect();
+            let mut l = line(row, v, s);
+            l.fill(hard, search);
+            (y, l.values, l.sources)
         })
         .collect();
     for (y, v, s) in rows {
         for x in 0..width {
-            if let Some(i) = pixels[y * width + x] {
+            if let Some(i) = receiver(pixels[y * width + x]) {
                 values[i] = v[x];
                 sources[i] = s[x];
             }

@@ -164,6 +164,12 @@ builders!(SingleSample {
     with_falloff => falloff: Falloff,
     /// Where the penumbrae meet.
     with_meet => meet: f64,
+    /// With `r_scale` (`0`: derived).
+    with_r_scale => r_scale: f64,
+    /// With `r_bias`.
+    with_r_bias => r_bias: f64,
+    /// With `r_shrink` (`0`: derived).
+    with_r_shrink => r_shrink: f64,
     /// With or without the horizon bound.
     with_horizon => horizon: bool,
 });
@@ -291,7 +297,9 @@ impl Context<'_> {
         let lf = self.view.frame();
         let p = lf.to_light(r.position);
         let [ax, ay, az] = self.axes;
-        let normal = r.normal.map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
+        let normal = r
+            .normal
+            .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
         let margin = p.z * (self.method.bias_relative + self.method.bias_texels * self.texel);
         let test = DepthTest::new(p, normal, margin);
         let own = r.object.unwrap_or(u32::MAX);
@@ -468,34 +476,32 @@ impl SingleSample {
             std::time::Duration::ZERO,
         );
         let receivers = input.receivers();
-        let warped: Vec<Warped> = receivers.par_iter().map(|r| ctx.warp(r)).collect();
-        let search = |i: usize| ctx.soft(&receivers[i], &warped[i], &mut Vec::new());
+        // The hard test of every receiver; the rest of the warp is redone
+        // where a search needs it (cheaper than keeping it).
+        let hard: Vec<Hard> = receivers.par_iter().map(|r| ctx.warp(r).hard).collect();
+        let search = |i: usize, order: &mut Vec<(f64, u32)>| {
+            let r = &receivers[i];
+            ctx.soft(r, &ctx.warp(r), order)
+        };
         let (visibility, sources) = if self.interpolate && frame.is_image() {
             let (w, h) = frame.size();
-            let pixels: Vec<Option<usize>> = frame
-                .pixels()
-                .iter()
-                .map(|&i| (i != crate::render::BACKGROUND).then_some(i as usize))
-                .collect();
-            let hard: Vec<Hard> = warped.iter().map(|w| w.hard).collect();
-            let (v, s) = interpolate::fill(w as usize, h as usize, &pixels, n, &hard, &search);
+            let (v, s) = interpolate::fill(w as usize, h as usize, frame.pixels(), &hard, &search);
             stages.advance(n);
             (v, s)
         } else {
-            let v = per_receiver(
-                input,
-                Vec::new,
-                |order, i, r| Ok(ctx.soft(r, &warped[i], order)),
-            )?;
+            let v = per_receiver(input, Vec::new, |order, i, _| Ok(search(i, order)))?;
             (v, vec![Some(Source::Searched); n])
         };
-        let searched = sources.iter().filter(|s| **s == Some(Source::Searched)).count() as u64;
+        let searched = sources
+            .iter()
+            .filter(|s| **s == Some(Source::Searched))
+            .count() as u64;
         stages.count("single-sample searches", searched);
         stages.count("single-sample searches saved", n as u64 - searched);
         Ok(SingleSamplePasses {
             visibility,
-            shadowed: warped.iter().map(|w| w.hard.shadowed).collect(),
-            id: warped.iter().map(|w| w.hard.id).collect(),
+            shadowed: hard.iter().map(|h| h.shadowed).collect(),
+            id: hard.iter().map(|h| h.id).collect(),
             interpolated_from: sources
                 .iter()
                 .map(|s| match s {

@@ -90,8 +90,9 @@ impl Tiles {
 /// What the search looks for.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(super) enum Want {
-    /// A texel that blocks the receiver and is on another object (`other`:
-    /// `None` switches the id test off).
+    /// A texel that blocks the receiver, lies in front of it (the paper's
+    /// layers in front of `P′_z`) and is on another object (`other`: `None`
+    /// switches the id test off).
     Blocker { other: Option<u32> },
     /// A texel that does not block the receiver and is on its own object
     /// (`own`: `None` switches the id test off).
@@ -124,7 +125,9 @@ impl Search<'_> {
         let id = self.maps.object_at(col, row);
         match want {
             Want::Blocker { other } => {
-                other.is_none_or(|own| id != own) && self.test.blocks(self.view, col, row, d)
+                other.is_none_or(|own| id != own)
+                    && d < self.test.in_front()
+                    && self.test.blocks(self.view, col, row, d)
             }
             Want::LitOwn { own } => {
                 own.is_none_or(|own| id == own) && !self.test.blocks(self.view, col, row, d)
@@ -138,7 +141,9 @@ impl Search<'_> {
     /// which over the part lies between the thresholds of the bounds of
     /// the reference depth.
     fn may_hold(&self, want: Want, tile: &Tile, (c0, r0, c1, r1): (u32, u32, u32, u32)) -> bool {
-        let (lo, hi) = self.test.reference_range(self.view, (c0, r0), (c1, r1));
+        // The cheap tests first; the reference depth's bounds (four
+        // divisions) only when they pass.
+        let range = || self.test.reference_range(self.view, (c0, r0), (c1, r1));
         match want {
             Want::Blocker { other } => {
                 // The least depth among the texels of other objects.
@@ -146,13 +151,13 @@ impl Search<'_> {
                     Some(own) if tile.id1 == own => tile.d2,
                     _ => tile.d1,
                 };
-                least < self.test.threshold(hi)
+                least < self.test.in_front() && least < self.test.threshold(range().1)
             }
             Want::LitOwn { own: Some(own) } => {
-                tile.ids & (1 << (own % 64)) != 0 && tile.dmax >= self.test.threshold(lo)
+                tile.ids & (1 << (own % 64)) != 0 && tile.dmax >= self.test.threshold(range().0)
             }
             Want::LitOwn { own: None } => {
-                tile.uncovered || tile.dmax >= self.test.threshold(lo)
+                tile.uncovered || tile.dmax >= self.test.threshold(range().0)
             }
         }
     }
@@ -167,7 +172,13 @@ impl Search<'_> {
     /// The nearest texel within `radius` of `q` (continuous texel
     /// coordinates; distances in the search's metric) that qualifies for
     /// `want`, and its depth; `None` when none does.
-    pub(super) fn nearest(&self, q: DVec2, radius: f64, want: Want, order: &mut Vec<(f64, u32)>) -> Option<Found> {
+    pub(super) fn nearest(
+        &self,
+        q: DVec2,
+        radius: f64,
+        want: Want,
+        order: &mut Vec<(f64, u32)>,
+    ) -> Option<Found> {
         let (w, h) = (self.maps.width(), self.maps.height());
         if !(radius >= 0.0 && q.is_finite()) || w == 0 || h == 0 {
             return None;
@@ -175,7 +186,9 @@ impl Search<'_> {
         // The texel box the disk of `radius` around `q` can reach.
         let reach = DVec2::new(radius / self.scale.x, radius / self.scale.y);
         let lo = (q - reach - 0.5).floor().max(DVec2::ZERO);
-        let hi = (q + reach - 0.5).ceil().min(DVec2::new(f64::from(w - 1), f64::from(h - 1)));
+        let hi = (q + reach - 0.5)
+            .ceil()
+            .min(DVec2::new(f64::from(w - 1), f64::from(h - 1)));
         if !(lo.x <= hi.x && lo.y <= hi.y) {
             return None;
         }
@@ -185,7 +198,10 @@ impl Search<'_> {
             for tx in c_lo / TILE..=c_hi / TILE {
                 // The nearest texel centre of the tile's part of the box.
                 let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
-                let (c1, r1) = (((tx + 1) * TILE - 1).min(c_hi), ((ty + 1) * TILE - 1).min(r_hi));
+                let (c1, r1) = (
+                    ((tx + 1) * TILE - 1).min(c_hi),
+                    ((ty + 1) * TILE - 1).min(r_hi),
+                );
                 let nearest = DVec2::new(
                     (q.x - 0.5).clamp(f64::from(c0), f64::from(c1)),
                     (q.y - 0.5).clamp(f64::from(r0), f64::from(r1)),
@@ -196,7 +212,8 @@ impl Search<'_> {
                 }
             }
         }
-        order.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
+        // Keys are unique (the tile index breaks ties): the order is fixed.
+        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
         let mut best: Option<Found> = None;
         for &(d_tile, t) in order.iter() {
             if best.is_some_and(|b| d_tile > b.distance) {
@@ -204,7 +221,10 @@ impl Search<'_> {
             }
             let (tx, ty) = (t % self.tiles.nx, t / self.tiles.nx);
             let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
-            let (c1, r1) = (((tx + 1) * TILE - 1).min(c_hi), ((ty + 1) * TILE - 1).min(r_hi));
+            let (c1, r1) = (
+                ((tx + 1) * TILE - 1).min(c_hi),
+                ((ty + 1) * TILE - 1).min(r_hi),
+            );
             if !self.may_hold(want, &self.tiles.tiles[t as usize], (c0, r0, c1, r1)) {
                 continue;
             }
@@ -214,7 +234,11 @@ impl Search<'_> {
                     let limit = best.map_or(radius, |b| b.distance);
                     // Strictly nearer than the best so far (ties: first
                     // found), within the radius.
-                    let nearer = if best.is_some() { d < limit } else { d <= limit };
+                    let nearer = if best.is_some() {
+                        d < limit
+                    } else {
+                        d <= limit
+                    };
                     if nearer && self.qualifies(want, col, row) {
                         best = Some(Found {
                             distance: d,
@@ -227,4 +251,3 @@ impl Search<'_> {
         best
     }
 }
-
