@@ -10,12 +10,10 @@
 //! per-stage times and evaluation counts from
 //! `cargo run --release --all-features --example sism_speed -- 512`).
 
-use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use softshadow::method::{self, Method};
-use softshadow::render::{Frame, Needs, Stages};
-use softshadow::scene::builtin;
-use std::hint::black_box;
-use std::time::Duration;
+#[path = "support/frame.rs"]
+mod support;
+
+use criterion::{criterion_group, criterion_main, Criterion};
 
 const VARIANTS: &[&str] = &[
     "sism",
@@ -28,37 +26,9 @@ const VARIANTS: &[&str] = &[
 ];
 
 fn default_frame(c: &mut Criterion) {
-    let side: u32 = std::env::var("SISM_BENCH_SIDE")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(256);
-    let scene = builtin("default").expect("the default scene");
-    let camera = scene
-        .camera()
-        .expect("a camera")
-        .with_resolution(side, side)
-        .expect("a valid resolution");
-    let frame = Frame::from_camera(&camera, Stages::new(&scene).bvh());
-    let mut g = c.benchmark_group(format!("default_{side}"));
-    g.sample_size(10).measurement_time(Duration::from_secs(5));
-    g.throughput(Throughput::Elements(frame.receivers().len() as u64));
-    for &name in VARIANTS {
-        let m: Box<dyn Method> = method::parse(name).expect("a method name");
-        g.bench_function(BenchmarkId::new("frame", name), |b| {
-            b.iter_batched(
-                || {
-                    let stages = Stages::new(&scene);
-                    if m.needs().contains(Needs::BVH) {
-                        stages.bvh();
-                    }
-                    stages
-                },
-                |stages| black_box(method::run(m.as_ref(), &stages, &frame).ok()),
-                criterion::BatchSize::PerIteration,
-            )
-        });
-    }
-    g.finish();
+    let side = support::side("SISM_BENCH_SIDE", 256);
+    let methods: Vec<String> = VARIANTS.iter().map(|s| (*s).to_owned()).collect();
+    support::methods_on_frame(c, &format!("default_{side}"), "default", side, &methods);
 }
 
 criterion_group!(benches, default_frame);

@@ -40,6 +40,11 @@ const METHODS: &[&str] = &[
     "sism",
     "sism:exact-union",
     "sism:all-edges,conservative",
+    "sism:exact-union,horizon",
+    "hard:horizon",
+    "single-sample:map=32",
+    "single-sample:map=16,no-interpolate,no-id",
+    "single-sample:map=24,light-aware,falloff=exact",
 ];
 
 fn check(scene: &Scene, frame: &Frame) {

@@ -28,42 +28,47 @@ pub(super) enum Source {
     Between(u32, u32),
 }
 
-/// The search of one receiver, with a scratch buffer it may reuse.
-pub(super) type SearchFn<'a> = dyn Fn(usize, &mut Vec<(f64, u32)>) -> f64 + Sync + 'a;
+/// The search of one receiver.
+pub(super) type SearchFn<'a> = dyn Fn(usize) -> f64 + Sync + 'a;
 
-/// One line of pixels (a column or a row): per position the receiver index
-/// or `None` for background, the values known so far (`NaN`: not yet).
-struct Line {
-    pixels: Vec<Option<usize>>,
-    values: Vec<f64>,
-    sources: Vec<Option<Source>>,
-    scratch: Vec<(f64, u32)>,
+/// The receiver of pixel entry `p` (`None` for background).
+fn receiver(p: u32) -> Option<usize> {
+    (p != crate::render::BACKGROUND).then_some(p as usize)
 }
 
-impl Line {
+/// One line of pixels (a column or a row): per position the receiver index
+/// or [`BACKGROUND`](crate::render::BACKGROUND), the values known so far
+/// (`NaN`: not yet) and how each was found.
+struct Line<'a> {
+    pixels: &'a [u32],
+    values: &'a mut [f64],
+    sources: &'a mut [Option<Source>],
+}
+
+impl Line<'_> {
     fn value(&mut self, k: usize, search: &SearchFn<'_>) -> f64 {
         if self.values[k].is_nan() {
-            if let Some(i) = self.pixels[k] {
-                self.values[k] = search(i, &mut self.scratch);
+            if let Some(i) = receiver(self.pixels[k]) {
+                self.values[k] = search(i);
                 self.sources[k] = Some(Source::Searched);
             }
         }
         self.values[k]
     }
 
-    /// Whether the pixels `ks` all have a receiver with one hard result and
-    /// one id.
-    fn alike(&self, ks: &[usize], hard: &[Hard]) -> bool {
-        let first = self.pixels[ks[0]].map(|i| hard[i]);
-        first.is_some() && ks.iter().all(|&k| self.pixels[k].map(|i| hard[i]) == first)
+    /// Whether the pixels `from..=to` all have a receiver with one hard
+    /// result and one id.
+    fn alike(&self, from: usize, to: usize, hard: &[Hard]) -> bool {
+        let first = receiver(self.pixels[from]).map(|i| hard[i]);
+        first.is_some()
+            && self.pixels[from + 1..=to]
+                .iter()
+                .all(|&p| receiver(p).map(|i| hard[i]) == first)
     }
 
     fn interpolate(&mut self, from: usize, to: usize) {
         let (a, b) = (self.values[from], self.values[to]);
-        let (ia, ib) = match (self.pixels[from], self.pixels[to]) {
-            (Some(ia), Some(ib)) => (ia as u32, ib as u32),
-            _ => return,
-        };
+        let (ia, ib) = (self.pixels[from], self.pixels[to]);
         let n = (to - from) as f64;
         for k in from + 1..to {
             if self.values[k].is_nan() {
@@ -80,7 +85,10 @@ impl Line {
         let mut start = 0;
         while start < n {
             let end = (start + 4).min(n - 1);
-            if end - start < 4 || !(start..=end).all(|k| self.pixels[k].is_some()) {
+            let whole = self.pixels[start..=end]
+                .iter()
+                .all(|&p| receiver(p).is_some());
+            if end - start < 4 || !whole {
                 // A short tail or a background pixel: search every pixel.
                 for k in start..=end {
                     self.value(k, search);
@@ -88,14 +96,13 @@ impl Line {
             } else {
                 self.value(start, search);
                 self.value(end, search);
-                let all: Vec<usize> = (start..=end).collect();
-                if self.alike(&all, hard) {
+                if self.alike(start, end, hard) {
                     self.interpolate(start, end);
                 } else {
                     let mid = start + 2;
                     self.value(mid, search);
                     for (a, b) in [(start, mid), (mid, end)] {
-                        if self.alike(&[a, a + 1, b], hard) {
+                        if self.alike(a, b, hard) {
                             self.interpolate(a, b);
                         } else {
                             self.value(a + 1, search);
@@ -111,14 +118,9 @@ impl Line {
     }
 }
 
-/// The receiver of pixel entry `p` (`None` for background).
-fn receiver(p: u32) -> Option<usize> {
-    (p != crate::render::BACKGROUND).then_some(p as usize)
-}
-
 /// The values of every receiver of a `width × height` image whose pixels
 /// map to receivers as `pixels` does (a receiver index, or
-/// [`BACKGROUND`](crate::render::BACKGROUND)), searching (`search(i, _)`)
+/// [`BACKGROUND`](crate::render::BACKGROUND)), searching (`search(i)`)
 /// only where the group test asks; with how each was found. Columns and
 /// rows in parallel; the result does not depend on the thread count.
 pub(super) fn fill(
@@ -128,61 +130,52 @@ pub(super) fn fill(
     hard: &[Hard],
     search: &SearchFn<'_>,
 ) -> (Vec<f64>, Vec<Option<Source>>) {
-    let receivers = hard.len();
-    let mut values = vec![f64::NAN; receivers];
-    let mut sources = vec![None; receivers];
-    let line = |pixels: Vec<Option<usize>>, values: Vec<f64>, sources: Vec<Option<Source>>| Line {
-        pixels,
-        values,
-        sources,
-        scratch: Vec::new(),
-    };
+    // In image order first.
+    let mut values = vec![f64::NAN; width * height];
+    let mut sources = vec![None; width * height];
     // Every 4th column, top to bottom.
     let columns: Vec<(usize, Vec<f64>, Vec<Option<Source>>)> = (0..width)
         .into_par_iter()
         .step_by(4)
         .map(|x| {
-            let column = (0..height)
-                .map(|y| receiver(pixels[y * width + x]))
-                .collect();
-            let mut l = line(column, vec![f64::NAN; height], vec![None; height]);
-            l.fill(hard, search);
-            (x, l.values, l.sources)
+            let column: Vec<u32> = (0..height).map(|y| pixels[y * width + x]).collect();
+            let (mut v, mut s) = (vec![f64::NAN; height], vec![None; height]);
+            Line {
+                pixels: &column,
+                values: &mut v,
+                sources: &mut s,
+            }
+            .fill(hard, search);
+            (x, v, s)
         })
         .collect();
     for (x, v, s) in columns {
         for y in 0..height {
-            if let Some(i) = receiver(pixels[y * width + x]) {
-                values[i] = v[y];
-                sources[i] = s[y];
-            }
+            values[y * width + x] = v[y];
+            sources[y * width + x] = s[y];
         }
     }
-    // Every row, between those columns.
-    let rows: Vec<(usize, Vec<f64>, Vec<Option<Source>>)> = (0..height)
-        .into_par_iter()
-        .map(|y| {
-            let row: Vec<Option<usize>> = pixels[y * width..(y + 1) * width]
-                .iter()
-                .map(|&p| receiver(p))
-                .collect();
-            let v = row
-                .iter()
-                .map(|p| p.map_or(f64::NAN, |i| values[i]))
-                .collect();
-            let s = row.iter().map(|p| p.and_then(|i| sources[i])).collect();
-            let mut l = line(row, v, s);
-            l.fill(hard, search);
-            (y, l.values, l.sources)
-        })
-        .collect();
-    for (y, v, s) in rows {
-        for x in 0..width {
-            if let Some(i) = receiver(pixels[y * width + x]) {
-                values[i] = v[x];
-                sources[i] = s[x];
+    // Every row, between those columns, in place.
+    values
+        .par_chunks_mut(width.max(1))
+        .zip(sources.par_chunks_mut(width.max(1)))
+        .zip(pixels.par_chunks(width.max(1)))
+        .for_each(|((values, sources), pixels)| {
+            Line {
+                pixels,
+                values,
+                sources,
             }
+            .fill(hard, search);
+        });
+    // In receiver order.
+    let mut by_receiver = vec![f64::NAN; hard.len()];
+    let mut how = vec![None; hard.len()];
+    for ((&p, v), s) in pixels.iter().zip(values).zip(sources) {
+        if let Some(i) = receiver(p) {
+            by_receiver[i] = v;
+            how[i] = s;
         }
     }
-    (values, sources)
+    (by_receiver, how)
 }

@@ -305,12 +305,12 @@ impl Context<'_> {
         let own = r.object.unwrap_or(u32::MAX);
         let in_view = p.z >= self.view.near() && p.z.is_finite();
         let q = self.view.to_pixel(project(p));
-        let here = q.floor();
+        // Truncation is the floor on the map (q ≥ 0).
         let on_map = in_view
-            && here.x >= 0.0
-            && here.y >= 0.0
-            && here.x < f64::from(self.view.width())
-            && here.y < f64::from(self.view.height());
+            && q.x >= 0.0
+            && q.y >= 0.0
+            && q.x < f64::from(self.view.width())
+            && q.y < f64::from(self.view.height());
         let (mut hard, mut depth_here) = (
             Hard {
                 shadowed: false,
@@ -319,7 +319,7 @@ impl Context<'_> {
             f64::INFINITY,
         );
         if on_map {
-            let (col, row) = (here.x as u32, here.y as u32);
+            let (col, row) = (q.x as u32, q.y as u32);
             let d = self.maps.depth_at(col, row);
             depth_here = d;
             if test.blocks(self.view, col, row, d) {
@@ -340,7 +340,7 @@ impl Context<'_> {
     }
 
     /// The soft value of a warped receiver: the search of §3.2–3.3.
-    fn soft(&self, r: &Receiver, w: &Warped, order: &mut Vec<(f64, u32)>) -> f64 {
+    fn soft(&self, r: &Receiver, w: &Warped) -> f64 {
         if !w.in_view {
             return 1.0;
         }
@@ -365,7 +365,7 @@ impl Context<'_> {
             self.r_scale * z.abs() + m.r_bias
         };
         let lin = if w.hard.shadowed {
-            let Some(found) = search.nearest(w.q, initial, Want::LitOwn { own }, order) else {
+            let Some(found) = search.nearest(w.q, initial, Want::LitOwn { own }) else {
                 return 0.0;
             };
             let r_max = if m.light_aware {
@@ -375,8 +375,7 @@ impl Context<'_> {
             };
             m.meet * (1.0 - ramp(found.distance, r_max))
         } else {
-            let Some(found) = search.nearest(w.q, initial, Want::Blocker { other: own }, order)
-            else {
+            let Some(found) = search.nearest(w.q, initial, Want::Blocker { other: own }) else {
                 return 1.0;
             };
             let r_max = if m.light_aware {
@@ -439,12 +438,14 @@ impl SingleSample {
             (tiles, format!("{}-texel tiles", search::TILE))
         });
         let lf = view.frame();
+        // The farthest receiver in the light view (a maximum: the same for
+        // any thread count).
         let z_far = frame
             .receivers()
-            .iter()
+            .par_iter()
             .map(|r| lf.to_light(r.position).z)
             .filter(|z| z.is_finite() && *z >= view.near())
-            .fold(0.0, f64::max);
+            .reduce(|| 0.0, f64::max);
         let resolve = |given: f64, derived: f64| if given > 0.0 { given } else { derived };
         let ctx = Context {
             method: self,
@@ -478,24 +479,37 @@ impl SingleSample {
         let receivers = input.receivers();
         // The hard test of every receiver; the rest of the warp is redone
         // where a search needs it (cheaper than keeping it).
-        let hard: Vec<Hard> = receivers.par_iter().map(|r| ctx.warp(r).hard).collect();
-        let search = |i: usize, order: &mut Vec<(f64, u32)>| {
+        let hard: Vec<Hard> = stages.timed("single-sample hard test", || {
+            let hard: Vec<Hard> = receivers.par_iter().map(|r| ctx.warp(r).hard).collect();
+            let shadowed = hard.iter().filter(|h| h.shadowed).count();
+            (
+                hard,
+                format!("{shadowed} of {n} receivers in the map's hard shadow"),
+            )
+        });
+        let search = |i: usize| {
             let r = &receivers[i];
-            ctx.soft(r, &ctx.warp(r), order)
+            ctx.soft(r, &ctx.warp(r))
         };
+        let start = std::time::Instant::now();
         let (visibility, sources) = if self.interpolate && frame.is_image() {
             let (w, h) = frame.size();
             let (v, s) = interpolate::fill(w as usize, h as usize, frame.pixels(), &hard, &search);
             stages.advance(n);
             (v, s)
         } else {
-            let v = per_receiver(input, Vec::new, |order, i, _| Ok(search(i, order)))?;
+            let v = per_receiver(input, || (), |(), i, _| Ok(search(i)))?;
             (v, vec![Some(Source::Searched); n])
         };
         let searched = sources
             .iter()
             .filter(|s| **s == Some(Source::Searched))
             .count() as u64;
+        stages.record(
+            "single-sample search",
+            format!("{searched} searches, {} interpolated", n as u64 - searched),
+            start.elapsed(),
+        );
         stages.count("single-sample searches", searched);
         stages.count("single-sample searches saved", n as u64 - searched);
         Ok(SingleSamplePasses {

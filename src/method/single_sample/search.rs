@@ -162,92 +162,127 @@ impl Search<'_> {
         }
     }
 
-    /// The distance from `q` (continuous texel coordinates) to the centre
-    /// of texel `(col, row)`.
-    fn distance(&self, q: DVec2, col: u32, row: u32) -> f64 {
-        let o = (DVec2::new(f64::from(col), f64::from(row)) + 0.5 - q) * self.scale;
-        o.length()
-    }
-
     /// The nearest texel within `radius` of `q` (continuous texel
     /// coordinates; distances in the search's metric) that qualifies for
     /// `want`, and its depth; `None` when none does.
-    pub(super) fn nearest(
-        &self,
-        q: DVec2,
-        radius: f64,
-        want: Want,
-        order: &mut Vec<(f64, u32)>,
-    ) -> Option<Found> {
+    pub(super) fn nearest(&self, q: DVec2, radius: f64, want: Want) -> Option<Found> {
         let (w, h) = (self.maps.width(), self.maps.height());
         if !(radius >= 0.0 && q.is_finite()) || w == 0 || h == 0 {
             return None;
         }
         // The texel box the disk of `radius` around `q` can reach.
         let reach = DVec2::new(radius / self.scale.x, radius / self.scale.y);
-        let lo = (q - reach - 0.5).floor().max(DVec2::ZERO);
+        let lo = (q - reach - 0.5).ceil().max(DVec2::ZERO);
         let hi = (q + reach - 0.5)
-            .ceil()
+            .floor()
             .min(DVec2::new(f64::from(w - 1), f64::from(h - 1)));
         if !(lo.x <= hi.x && lo.y <= hi.y) {
             return None;
         }
         let (c_lo, r_lo, c_hi, r_hi) = (lo.x as u32, lo.y as u32, hi.x as u32, hi.y as u32);
-        order.clear();
-        for ty in r_lo / TILE..=r_hi / TILE {
-            for tx in c_lo / TILE..=c_hi / TILE {
-                // The nearest texel centre of the tile's part of the box.
-                let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
-                let (c1, r1) = (
-                    ((tx + 1) * TILE - 1).min(c_hi),
-                    ((ty + 1) * TILE - 1).min(r_hi),
-                );
-                let nearest = DVec2::new(
-                    (q.x - 0.5).clamp(f64::from(c0), f64::from(c1)),
-                    (q.y - 0.5).clamp(f64::from(r0), f64::from(r1)),
-                );
-                let d = ((nearest + 0.5 - q) * self.scale).length();
-                if d <= radius {
-                    order.push((d, ty * self.tiles.nx + tx));
+        // Tiles ring by ring (Chebyshev distance in tiles) around the one
+        // nearest `q`: a texel of ring k is at least (k − 1)·TILE + ½
+        // texels away along one axis, which ends the search once the best
+        // found is nearer.
+        let (tx_lo, ty_lo, tx_hi, ty_hi) = (c_lo / TILE, r_lo / TILE, c_hi / TILE, r_hi / TILE);
+        let centre = (
+            ((q.x.max(0.0) as u32) / TILE).clamp(tx_lo, tx_hi),
+            ((q.y.max(0.0) as u32) / TILE).clamp(ty_lo, ty_hi),
+        );
+        let rings = (centre.0 - tx_lo)
+            .max(tx_hi - centre.0)
+            .max(centre.1 - ty_lo)
+            .max(ty_hi - centre.1);
+        let step = self.scale.min_element();
+        let mut best: Option<Found> = None;
+        let mut limit2 = radius * radius;
+        for k in 0..=rings {
+            if k >= 1 && best.is_some() {
+                let ring = (f64::from((k - 1) * TILE) + 0.5) * step;
+                if ring * ring > limit2 {
+                    break;
                 }
             }
-        }
-        // Keys are unique (the tile index breaks ties): the order is fixed.
-        order.sort_unstable_by(|a, b| a.0.total_cmp(&b.0).then(a.1.cmp(&b.1)));
-        let mut best: Option<Found> = None;
-        for &(d_tile, t) in order.iter() {
-            if best.is_some_and(|b| d_tile > b.distance) {
-                break;
-            }
-            let (tx, ty) = (t % self.tiles.nx, t / self.tiles.nx);
-            let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
-            let (c1, r1) = (
-                ((tx + 1) * TILE - 1).min(c_hi),
-                ((ty + 1) * TILE - 1).min(r_hi),
+            let (kx0, kx1) = (
+                centre.0.saturating_sub(k).max(tx_lo),
+                (centre.0 + k).min(tx_hi),
             );
-            if !self.may_hold(want, &self.tiles.tiles[t as usize], (c0, r0, c1, r1)) {
-                continue;
-            }
-            for row in r0..=r1 {
-                for col in c0..=c1 {
-                    let d = self.distance(q, col, row);
-                    let limit = best.map_or(radius, |b| b.distance);
-                    // Strictly nearer than the best so far (ties: first
-                    // found), within the radius.
-                    let nearer = if best.is_some() {
-                        d < limit
-                    } else {
-                        d <= limit
-                    };
-                    if nearer && self.qualifies(want, col, row) {
-                        best = Some(Found {
-                            distance: d,
-                            depth: self.maps.depth_at(col, row),
-                        });
+            let (ky0, ky1) = (
+                centre.1.saturating_sub(k).max(ty_lo),
+                (centre.1 + k).min(ty_hi),
+            );
+            for ty in ky0..=ky1 {
+                for tx in kx0..=kx1 {
+                    let on_ring = tx.abs_diff(centre.0).max(ty.abs_diff(centre.1)) == k;
+                    if on_ring {
+                        self.scan_tile(
+                            q,
+                            (tx, ty),
+                            (c_lo, r_lo, c_hi, r_hi),
+                            want,
+                            &mut best,
+                            &mut limit2,
+                        );
                     }
                 }
             }
         }
         best
+    }
+
+    /// The texels of tile `(tx, ty)` within the box, nearer than the best
+    /// so far (squared limit `limit2`), that qualify.
+    fn scan_tile(
+        &self,
+        q: DVec2,
+        (tx, ty): (u32, u32),
+        (c_lo, r_lo, c_hi, r_hi): (u32, u32, u32, u32),
+        want: Want,
+        best: &mut Option<Found>,
+        limit2: &mut f64,
+    ) {
+        let (c0, r0) = ((tx * TILE).max(c_lo), (ty * TILE).max(r_lo));
+        let (c1, r1) = (
+            ((tx + 1) * TILE - 1).min(c_hi),
+            ((ty + 1) * TILE - 1).min(r_hi),
+        );
+        // The tile's nearest texel centre to `q`.
+        let nearest = DVec2::new(
+            (q.x - 0.5).clamp(f64::from(c0), f64::from(c1)),
+            (q.y - 0.5).clamp(f64::from(r0), f64::from(r1)),
+        );
+        let lb = ((nearest + 0.5 - q) * self.scale).length_squared();
+        if lb > *limit2 || (best.is_some() && lb >= *limit2) {
+            return;
+        }
+        let tile = &self.tiles.tiles[(ty * self.tiles.nx + tx) as usize];
+        if !self.may_hold(want, tile, (c0, r0, c1, r1)) {
+            return;
+        }
+        for row in r0..=r1 {
+            let dy = (f64::from(row) + 0.5 - q.y) * self.scale.y;
+            let dy2 = dy * dy;
+            if dy2 > *limit2 {
+                continue;
+            }
+            for col in c0..=c1 {
+                let dx = (f64::from(col) + 0.5 - q.x) * self.scale.x;
+                let d2 = dx * dx + dy2;
+                // Strictly nearer than the best so far (ties: first
+                // found), within the radius.
+                let nearer = if best.is_some() {
+                    d2 < *limit2
+                } else {
+                    d2 <= *limit2
+                };
+                if nearer && self.qualifies(want, col, row) {
+                    *limit2 = d2;
+                    *best = Some(Found {
+                        distance: d2.sqrt(),
+                        depth: self.maps.depth_at(col, row),
+                    });
+                }
+            }
+        }
     }
 }
