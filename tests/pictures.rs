@@ -172,11 +172,12 @@ impl Picture {
     }
 }
 
-/// Runs `softshadow render` on [`SCENE`] with `method` into a fresh folder;
-/// the folder and the file stem.
-fn render(method: &str) -> (PathBuf, String) {
+/// Runs `softshadow render` on [`SCENE`] with `method` into a fresh folder
+/// of its own (`test` names the caller: tests run in parallel); the folder
+/// and the file stem.
+fn render(test: &str, method: &str) -> (PathBuf, String) {
     let dir = std::env::temp_dir().join(format!(
-        "softshadow-pictures-{}-{method}",
+        "softshadow-pictures-{}-{test}-{method}",
         std::process::id()
     ));
     let _ = std::fs::remove_dir_all(&dir);
@@ -219,7 +220,7 @@ fn the_visibility_and_shaded_pictures_show_the_exact_answer_at_each_pixel() {
     let v = exact_per_pixel(&scene, scene.light(), &expected);
     assert!(v.iter().flatten().any(|&v| v > 0.0 && v < 1.0));
     assert!(v.iter().flatten().any(|&v| v == 0.0));
-    let (dir, stem) = render("exact");
+    let (dir, stem) = render("pictures", "exact");
     let visibility = Picture::read(&dir.join(format!("{stem}-visibility.png")));
     let shaded = Picture::read(&dir.join(format!("{stem}-shaded.png")));
     assert_eq!((visibility.width, visibility.height), (WIDTH, HEIGHT));
@@ -271,7 +272,7 @@ fn the_heat_maps_show_no_error_for_exact_and_the_sign_of_the_hard_shadows_error(
     let point = Light::point(scene.light().center()).unwrap();
     let hard = exact_per_pixel(&scene, &point, &expected);
 
-    let (dir, stem) = render("exact");
+    let (dir, stem) = render("heat", "exact");
     let heat = Picture::read(&dir.join(format!("{stem}-error.png")));
     for (k, v) in v.iter().enumerate() {
         let (col, row) = (k as u32 % WIDTH, k as u32 / WIDTH);
@@ -287,7 +288,7 @@ fn the_heat_maps_show_no_error_for_exact_and_the_sign_of_the_hard_shadows_error(
         );
     }
 
-    let (dir, stem) = render("hard");
+    let (dir, stem) = render("heat", "hard");
     let heat = Picture::read(&dir.join(format!("{stem}-error.png")));
     let (mut too_bright, mut too_dark) = (0, 0);
     for (k, (v, h)) in v.iter().zip(&hard).enumerate() {

@@ -39,6 +39,7 @@ mod reference;
 pub mod registry;
 pub mod single_sample;
 pub mod sism;
+pub mod ssoc;
 
 pub use hard::HardShadow;
 pub use options::Configurable;
@@ -47,6 +48,7 @@ pub use reference::{Exact, MonteCarlo};
 pub use registry::{default_set, parse, REGISTRY};
 pub use single_sample::SingleSample;
 pub use sism::Sism;
+pub use ssoc::{BackprojectedSsoc, Ssoc};
 
 use crate::render::raster::RasterError;
 use crate::render::{Frame, Needs, Receiver, Stages, Stats};

@@ -10,13 +10,15 @@
 //! | `pcss` | every light | [`Pcss`]: percentage-closer soft shadows (Fernando 2005) |
 //! | `sism` | sphere, disk | [`Sism`]: soft irregular shadow mapping (Johnson et al. 2009) |
 //! | `single-sample` | sphere, disk, rect | [`SingleSample`]: single-sample soft shadows (Brabec & Seidel 2002) |
-//! | `ssoc`, `backprojected-ssoc` | sphere, disk | not built yet |
+//! | `ssoc`, `backprojected-ssoc` | sphere, disk | [`Ssoc`], [`BackprojectedSsoc`]: the soft shadow occlusion camera (Mo, Popescu & Wyman 2007) and its backprojected variant (Mo & Wyman 2007) |
 //! | `oess` | segment | not built yet |
 //! | `mc:N` | every light | [`MonteCarlo`]: Monte Carlo light sampling, `N` samples |
 //! | `exact` | every light | [`Exact`]: the exact reference |
 
 use super::options::{self, Configurable};
-use super::{Exact, HardShadow, Method, MonteCarlo, Pcss, SingleSample, Sism};
+use super::{
+    BackprojectedSsoc, Exact, HardShadow, Method, MonteCarlo, Pcss, SingleSample, Sism, Ssoc,
+};
 use crate::scene::LightKind;
 
 /// Builds a method from the items of its name.
@@ -148,16 +150,8 @@ pub static REGISTRY: &[Entry] = &[
     Entry::of::<Pcss>(),
     Entry::of::<Sism>(),
     Entry::of::<SingleSample>(),
-    Entry::later(
-        "ssoc",
-        "the soft shadow occlusion camera (Mo, Popescu & Wyman 2007)",
-        &[LightKind::Sphere, LightKind::Disk],
-    ),
-    Entry::later(
-        "backprojected-ssoc",
-        "the backprojected soft shadow occlusion camera",
-        &[LightKind::Sphere, LightKind::Disk],
-    ),
+    Entry::of::<Ssoc>(),
+    Entry::of::<BackprojectedSsoc>(),
     Entry::later(
         "oess",
         "occluding edges soft shadows (Reimann & Dreier)",

@@ -366,19 +366,52 @@ pub fn rasterize_into(
     Ok(())
 }
 
+/// Rows per band of the parallel rasterisation.
+const BAND_ROWS: usize = 32;
+
+/// The triangles' nearest fragments into `maps`, in bands of rows in
+/// parallel: each band takes every triangle in index order and keeps only
+/// its own rows, so every texel sees the same fragments in the same order
+/// as a single pass would — the same bits for any thread count.
 fn fill_maps(view: &LightView, triangles: &[[DVec3; 3]], objects: &[u32], maps: &mut LightMaps) {
+    use rayon::prelude::*;
     let w = view.width as usize;
-    for (i, (tri, &object)) in triangles.iter().zip(objects).enumerate() {
-        rasterize_triangle(view, tri, |f| {
-            let k = f.row as usize * w + f.col as usize;
-            // Strict: at equal depth the earlier (lower) index stays.
-            if f.depth < maps.depth[k] {
-                maps.depth[k] = f.depth;
-                maps.object[k] = object;
-                maps.triangle[k] = i as u32;
+    if w == 0 {
+        return;
+    }
+    let projected: Vec<Option<Projected>> = triangles
+        .par_iter()
+        .map(|t| project_triangle(view, t))
+        .collect();
+    let band = BAND_ROWS * w;
+    maps.depth
+        .par_chunks_mut(band)
+        .zip(maps.object.par_chunks_mut(band))
+        .zip(maps.triangle.par_chunks_mut(band))
+        .enumerate()
+        .for_each(|(b, ((depth, object_map), triangle_map))| {
+            let first = (b * BAND_ROWS) as u32;
+            let rows = (first, first + (depth.len() / w) as u32 - 1);
+            // The band's image-plane rows, widened by a pixel each way as
+            // `fill`'s own candidate rows are (the exact test decides).
+            let y0 = view.lo.y + (f64::from(rows.0) - 1.0) * view.texel.y;
+            let y1 = view.lo.y + (f64::from(rows.1) + 2.0) * view.texel.y;
+            for (i, (t, &object)) in projected.iter().zip(objects).enumerate() {
+                let Some(t) = t else { continue };
+                if t.ymax < y0 || t.ymin > y1 {
+                    continue;
+                }
+                t.fill_rows(view, rows, &mut |f: Fragment| {
+                    let k = (f.row - first) as usize * w + f.col as usize;
+                    // Strict: at equal depth the earlier (lower) index stays.
+                    if f.depth < depth[k] {
+                        depth[k] = f.depth;
+                        object_map[k] = object;
+                        triangle_map[k] = i as u32;
+                    }
+                });
             }
         });
-    }
 }
 
 /// [`rasterize`] for a scene's [`Occluders`] (which always have one object
@@ -398,12 +431,32 @@ pub fn rasterize_occluders(view: &LightView, occluders: &Occluders) -> LightMaps
 /// the domain (module docs), one entirely nearer than `near`, or one whose
 /// projection has zero area.
 pub fn rasterize_triangle(view: &LightView, tri: &[DVec3; 3], mut emit: impl FnMut(Fragment)) {
+    if let Some(t) = project_triangle(view, tri) {
+        t.fill_rows(view, (0, u32::MAX), &mut emit);
+    }
+}
+
+/// A triangle clipped at the near plane and projected: up to four
+/// image-plane corners (a fan) and its depth plane.
+struct Projected {
+    uv: [DVec2; 4],
+    count: usize,
+    plane: Plane,
+    /// The rows its corners span (for skipping bands it cannot touch).
+    ymin: f64,
+    ymax: f64,
+}
+
+/// [`rasterize_triangle`]'s projection of `tri`: `None` when nothing is
+/// emitted (a non-finite vertex, outside the domain, wholly nearer than
+/// `near`).
+fn project_triangle(view: &LightView, tri: &[DVec3; 3]) -> Option<Projected> {
     let q = tri.map(|p| view.frame.to_light(p));
     if !q
         .iter()
         .all(|p| p.is_finite() && p.abs().max_element() <= MAX_COORD)
     {
-        return;
+        return None;
     }
     let near = view.near;
     // Clip against z ≥ near (Sutherland–Hodgman on one plane): at most 4.
@@ -422,23 +475,39 @@ pub fn rasterize_triangle(view: &LightView, tri: &[DVec3; 3], mut emit: impl FnM
         }
     }
     if count < 3 {
-        return;
+        return None;
     }
     let mut uv = [DVec2::ZERO; 4];
     let (mut zmin, mut zmax) = (f64::INFINITY, 0.0f64);
+    let (mut ymin, mut ymax) = (f64::INFINITY, f64::NEG_INFINITY);
     for k in 0..count {
         let p = poly[k];
         let u = DVec2::new(flush(p.x / p.z), flush(p.y / p.z));
         if !(u.is_finite() && u.abs().max_element() <= MAX_COORD) {
-            return;
+            return None;
         }
         uv[k] = u;
         zmin = zmin.min(p.z);
         zmax = zmax.max(p.z);
+        ymin = ymin.min(u.y);
+        ymax = ymax.max(u.y);
     }
-    let plane = Plane::new(&q, zmin, zmax);
-    for k in 1..count - 1 {
-        fill(view, [uv[0], uv[k], uv[k + 1]], &plane, &mut emit);
+    Some(Projected {
+        uv,
+        count,
+        plane: Plane::new(&q, zmin, zmax),
+        ymin,
+        ymax,
+    })
+}
+
+impl Projected {
+    /// Its fragments in the pixel rows `rows.0..=rows.1`.
+    fn fill_rows(&self, view: &LightView, rows: (u32, u32), emit: &mut impl FnMut(Fragment)) {
+        let uv = &self.uv;
+        for k in 1..self.count - 1 {
+            fill(view, [uv[0], uv[k], uv[k + 1]], &self.plane, rows, emit);
+        }
     }
 }
 
@@ -550,7 +619,13 @@ impl Edge {
 /// from the left of the bounding box as if there were no guess. Either way
 /// every decision is the exact test's, and the run ends at the first
 /// rejected column.
-fn fill(view: &LightView, t: [DVec2; 3], plane: &Plane, emit: &mut impl FnMut(Fragment)) {
+fn fill(
+    view: &LightView,
+    t: [DVec2; 3],
+    plane: &Plane,
+    rows: (u32, u32),
+    emit: &mut impl FnMut(Fragment),
+) {
     let [a, mut b, mut c] = t;
     match orient2d(a, b, c) {
         Sign::Zero => return,
@@ -568,6 +643,10 @@ fn fill(view: &LightView, t: [DVec2; 3], plane: &Plane, emit: &mut impl FnMut(Fr
     let Some((r0, r1)) = span(min.y, max.y, view.lo.y, view.texel.y, view.height) else {
         return;
     };
+    let (r0, r1) = (r0.max(rows.0), r1.min(rows.1));
+    if r0 > r1 {
+        return;
+    }
     let inside = |x: f64, y: f64| {
         let p = DVec2::new(x, y);
         x >= min.x && x <= max.x && edges.iter().all(|e| e.admits(p))

@@ -46,7 +46,7 @@ fn cross(a: DVec2, b: DVec2) -> f64 {
 }
 
 /// Whether segment `[a, b]` comes within the unit circle.
-fn meets_disk(a: DVec2, b: DVec2) -> bool {
+pub(crate) fn meets_disk(a: DVec2, b: DVec2) -> bool {
     if a.length_squared() < 1.0 || b.length_squared() < 1.0 {
         return true;
     }

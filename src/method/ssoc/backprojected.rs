@@ -1,0 +1,257 @@
+//! Backprojected SSOC: the occlusion camera's maps as a search structure
+//! for the silhouette edges a receiver backprojects (see the
+//! [module docs](super)).
+
+use super::maps::NONE;
+use super::{margin, prepare, warp, Prepared};
+use crate::kernel::footprint::f64 as footprint;
+use crate::method::centre::union::{self, MappedEdge};
+use crate::method::centre::{horizon_edge, ProjectedEdge};
+use crate::method::options::{builders, field, Configurable, Field};
+use crate::method::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
+use crate::render::raster::MAX_RESOLUTION;
+use crate::render::{FittedMaps, Needs, Receiver};
+use crate::scene::LightKind;
+use glam::DVec3;
+use std::collections::HashMap;
+
+/// Backprojected soft shadows with an occlusion camera shadow map: see the
+/// [module docs](super). Sphere and disk lights; needs receiver normals.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct BackprojectedSsoc {
+    /// Side of the shadow and distortion maps, `1..=16384`; default 1024
+    /// (ours, as [`Ssoc`](super::Ssoc)).
+    pub resolution: u32,
+    /// The neighbourhood searched for more edges, in texels around the
+    /// receiver's: `(2·search + 1)²` texels, `0..=16`; default 1 (ours; the
+    /// sketch gives no radius).
+    pub search: u32,
+    /// Completes the edges found by walking the silhouette from them: each
+    /// edge that meets the receiver's footprint adds the edges it shares an
+    /// end with (ours: the sketch finds edges by the neighbourhood alone,
+    /// which on a silhouette of many short edges misses most of those in a
+    /// wide footprint); default off.
+    pub walk: bool,
+    /// The [horizon bound](Horizon): the receiver's tangent plane as one
+    /// more edge of the union; default off (ours).
+    pub horizon: bool,
+}
+
+impl Default for BackprojectedSsoc {
+    fn default() -> BackprojectedSsoc {
+        BackprojectedSsoc {
+            resolution: super::Ssoc::DEFAULT_RESOLUTION,
+            search: 1,
+            walk: false,
+            horizon: false,
+        }
+    }
+}
+
+builders!(BackprojectedSsoc {
+    /// With maps of `value × value` texels.
+    with_resolution => resolution: u32,
+    /// With a neighbourhood of `(2·value + 1)²` texels.
+    with_search => search: u32,
+    /// With or without the walk along the silhouette.
+    with_walk => walk: bool,
+    /// With or without the horizon bound.
+    with_horizon => horizon: bool,
+});
+
+impl Configurable for BackprojectedSsoc {
+    const NAME: &'static str = "backprojected-ssoc";
+    const SUMMARY: &'static str =
+        "backprojected soft shadows with an occlusion camera shadow map (Mo & Wyman 2007)";
+    const LIGHTS: &'static [LightKind] = &[LightKind::Sphere, LightKind::Disk];
+    const DEFAULT_RUN: &'static [&'static str] = &["backprojected-ssoc"];
+    const COMPARE: &'static [&'static str] = &[
+        "backprojected-ssoc",
+        "backprojected-ssoc:search=0",
+        "backprojected-ssoc:search=2",
+        "backprojected-ssoc:walk",
+        "backprojected-ssoc:walk,horizon",
+    ];
+    #[rustfmt::skip]
+    const FIELDS: &'static [Field<BackprojectedSsoc>] = &[
+        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"),
+        field!(int "search", search: u32, (0, 16), "texels around the receiver's searched for edges (ours: 1, 3×3)"),
+        field!(flag "walk", walk, "complete the edges found along the silhouette, within the footprint (ours)"),
+        field!(flag "horizon", horizon, "the tangent plane as one more edge of the union (ours)"),
+    ];
+}
+
+impl BackprojectedSsoc {
+    /// `V` of one receiver: the union of the edges found around it.
+    #[allow(clippy::too_many_arguments)]
+    fn shade(
+        &self,
+        prep: &Prepared,
+        fitted: &FittedMaps,
+        chains: Option<&Chains>,
+        r: &Receiver,
+        found: &mut Vec<u32>,
+        mapped: &mut Vec<MappedEdge>,
+        scratch: &mut union::Scratch,
+    ) -> f64 {
+        let w = warp(fitted, r, margin(&fitted.view));
+        if !w.in_view {
+            return 1.0;
+        }
+        let t = fitted.view.to_pixel(w.u).floor();
+        let (c, row) = (t.x as i64, t.y as i64);
+        let k = i64::from(self.search);
+        found.clear();
+        for dr in -k..=k {
+            for dc in -k..=k {
+                for inside in [true, false] {
+                    let e = prep.distortion.at(inside, c + dc, row + dr).edge;
+                    if e != NONE && !found.contains(&e) {
+                        found.push(e);
+                    }
+                }
+            }
+        }
+        let map = |e: u32| -> Option<MappedEdge> {
+            let e: &ProjectedEdge = prep.edges.get(e as usize)?;
+            let (a, b) = footprint::map_edge(e.a, e.b, e.la, e.lb, w.u, w.p.z, prep.r)?;
+            Some(MappedEdge {
+                a,
+                b,
+                weight: e.weight,
+            })
+        };
+        if let (true, Some(chains)) = (self.walk, chains) {
+            // Breadth first from the edges found, through every edge that
+            // meets the footprint.
+            let mut k = 0;
+            while k < found.len() {
+                let e = found[k];
+                k += 1;
+                if map(e).is_some_and(|m| union::meets_disk(m.a, m.b)) {
+                    for &n in chains.neighbours(e) {
+                        if !found.contains(&n) {
+                            found.push(n);
+                        }
+                    }
+                }
+            }
+        }
+        // In index order, so that the union sees the same list whatever
+        // the order the texels were read in.
+        found.sort_unstable();
+        mapped.clear();
+        mapped.extend(found.iter().filter_map(|&e| map(e)));
+        let mut centre = if w.shadowed { 1.0 } else { 0.0 };
+        if self.horizon {
+            if let Some(n) = r.normal {
+                let [ax, ay, az] = fitted.view.frame().axes();
+                let n = DVec3::new(n.dot(ax), n.dot(ay), n.dot(az));
+                let h = horizon_edge(n, w.p, prep.r);
+                centre += h.centre;
+                mapped.extend(h.edge);
+            }
+        }
+        if mapped.is_empty() {
+            return if centre > 0.5 { 0.0 } else { 1.0 };
+        }
+        (1.0 - union::union_occlusion(centre, mapped, scratch)).clamp(0.0, 1.0)
+    }
+}
+
+impl Method for BackprojectedSsoc {
+    fn name(&self) -> String {
+        crate::method::options::print(self)
+    }
+
+    fn lights(&self) -> &'static [LightKind] {
+        Self::LIGHTS
+    }
+
+    fn needs(&self) -> Needs {
+        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS | Needs::TOPOLOGY
+    }
+
+    fn requires(&self) -> Requires {
+        Requires {
+            normals: true,
+            objects: false,
+            normals_hint: "the shadow-map test compares texels with the receiver's tangent plane",
+        }
+    }
+
+    fn horizon(&self) -> Horizon {
+        if self.horizon {
+            Horizon::Within
+        } else {
+            Horizon::Off
+        }
+    }
+
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        crate::method::check_options(self)?;
+        if input.receivers().is_empty() {
+            return Ok(Output::default());
+        }
+        let prep = prepare(input, self.resolution)?;
+        let fitted = prep.fitted()?;
+        let chains = self.walk.then(|| {
+            // The edges are the silhouettes clipped at the view's near depth.
+            let key = format!("near {:x}", fitted.view.near().to_bits());
+            input.stages().cached("ssoc silhouette chains", key, || {
+                let c = Chains::new(&prep.edges);
+                (c, format!("{} edges", prep.edges.len()))
+            })
+        });
+        let v = per_receiver(
+            input,
+            || (Vec::new(), Vec::new(), union::Scratch::default()),
+            |(found, mapped, scratch), _, r| {
+                Ok(self.shade(&prep, fitted, chains.as_deref(), r, found, mapped, scratch))
+            },
+        )?;
+        Ok(Output::values(v))
+    }
+}
+
+/// Which silhouette edges share an end: the edges of `edges` whose world
+/// ends coincide bit for bit.
+pub(crate) struct Chains {
+    /// Per edge, the range of its neighbours in `list`.
+    start: Vec<u32>,
+    list: Vec<u32>,
+}
+
+impl Chains {
+    fn new(edges: &[ProjectedEdge]) -> Chains {
+        let key = |v: DVec3| (v + DVec3::ZERO).to_array().map(f64::to_bits);
+        let mut at: HashMap<[u64; 3], Vec<u32>> = HashMap::new();
+        for (i, e) in edges.iter().enumerate() {
+            at.entry(key(e.wa)).or_default().push(i as u32);
+            at.entry(key(e.wb)).or_default().push(i as u32);
+        }
+        let mut start = Vec::with_capacity(edges.len() + 1);
+        let mut list = Vec::new();
+        for (i, e) in edges.iter().enumerate() {
+            start.push(list.len() as u32);
+            for end in [e.wa, e.wb] {
+                for &n in &at[&key(end)] {
+                    if n != i as u32 && !list[start[i] as usize..].contains(&n) {
+                        list.push(n);
+                    }
+                }
+            }
+        }
+        start.push(list.len() as u32);
+        Chains { start, list }
+    }
+
+    fn neighbours(&self, e: u32) -> &[u32] {
+        let e = e as usize;
+        match (self.start.get(e), self.start.get(e + 1)) {
+            (Some(&a), Some(&b)) => &self.list[a as usize..b as usize],
+            _ => &[],
+        }
+    }
+}

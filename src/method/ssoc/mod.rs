@@ -1,0 +1,501 @@
+//! The soft shadow occlusion camera (Mo, Popescu & Wyman, "The Soft
+//! Shadow Occlusion Camera", Pacific Graphics 2007): [`Ssoc`], and its
+//! backprojected variant (Mo & Wyman, "Interactive Backprojected Soft
+//! Shadows with an Occlusion Camera Shadow Map", 2007 sketch):
+//! [`BackprojectedSsoc`].
+//!
+//! # SSOC (the paper's §3.2, §4)
+//!
+//! A shadow map from the light's centre (1024² by default), the silhouette
+//! edges from the centre, and two distortion maps built from them (see
+//! `maps`): each texel near a silhouette names the nearest edge on the
+//! image plane, in the map of its side of the hard shadow. For a receiver
+//! `p` at depth `z_p` projecting to `π(p)`:
+//!
+//! 1. the shadow-map test (PCSS's receiver-plane bias) says which side of
+//!    the hard shadow it is on; the map of that side at `π(p)` names an
+//!    edge, or none — then `V` is the shadow map's 0 or 1;
+//! 2. **the distortion** (the paper's formula for `dmax` is lost from the
+//!    text; our reading of §3.2, documented as ours): `s` the edge's point
+//!    nearest `π(p)`, `n̂` its outward unit normal (away from the occluder),
+//!    `δ = (π(p) − s)·n̂` (negative inside the hard shadow), `z_near` the
+//!    edge's depth at `s` (`1/z` interpolated), `R = r(1/z_near − 1/z_p)`,
+//!    `dmax = 2R`, `d = clamp(R − δ, 0, dmax)`; the distorted point is
+//!    `π(p) + d·n̂`. A receiver in front of the edge (`z_p ≤ z_near`) has
+//!    no penumbra from it;
+//! 3. Fig. 5: if the distorted point is still in the hard shadow (the
+//!    shadow-map test there, with `p`'s own depth less a relative
+//!    [bias](Ssoc::bias)), `V = 0`; if it lies in no distortion region,
+//!    `V = 1`; else eq. 1, `V = falloff(1 − d/dmax)` — the Bernstein
+//!    smoothstep as in the paper (§3.2.2), or the exact disk falloff;
+//! 4. **overlapping penumbrae** (§3.2.3, §4): the map is read again at the
+//!    distorted point; if it names another edge, the paper's three cases
+//!    are told apart — outward normals within 45° of each other, or the
+//!    two edges' points nearest the receiver within a texel (a shared
+//!    corner; ours): the same region, one penumbra; disjoint `[z_near, z_far]` ranges: only the
+//!    first penumbra counts; otherwise `d` is recomputed for the original
+//!    receiver against the new edge and the intensities multiply — up to
+//!    [`lookups`](Ssoc::lookups) edges in all.
+//!
+//! `z_far`, "the shadow-map depth just outside the edge", is read from the
+//! shadow map 1.5 texels outside `s`. With [`bilinear`](Ssoc::bilinear) the
+//! four texels around `π(p)` each give a value and they are blended
+//! bilinearly (§5's four lookups against nearest-texel aliasing).
+//!
+//! # Backprojected SSOC
+//!
+//! The same maps, read for their edge index only: the edges named in the
+//! receiver's texel and its `(2·search + 1)²` neighbourhood, in both maps,
+//! deduplicated, are mapped into the receiver's footprint and their
+//! occlusion composed exactly — the union of `method::centre`, with SISM's
+//! layer weights. The union needs the layer count at the footprint's
+//! centre, which a shadow map does not give: it takes `1` where the map's
+//! hard test says shadowed, `0` where lit (ours), so a receiver under two
+//! stacked layers whose neighbourhood shows the edge of only one of them
+//! reads that edge's far side as lit (measured on `depth-complexity` in
+//! `docs/accuracy/ssoc.md`). With `horizon` the receiver's tangent plane
+//! is one more edge of the union.
+
+pub(crate) mod maps;
+
+mod backprojected;
+
+pub use backprojected::BackprojectedSsoc;
+
+use super::centre::depth::DepthTest;
+use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge};
+use super::options::{builders, field, Configurable, Field};
+use super::{per_receiver, Horizon, Input, MethodError, Output, Requires};
+use crate::kernel::falloff::{f64 as falloff, Falloff};
+use crate::kernel::footprint::f64::{self as footprint, project};
+use crate::render::raster::{LightMaps, LightView, MAX_RESOLUTION};
+use crate::render::{FittedMaps, Needs, Receiver};
+use crate::scene::LightKind;
+use glam::{DVec2, DVec3};
+use maps::{nearest_on, DistortionMaps, NONE};
+use std::sync::Arc;
+
+/// The soft shadow occlusion camera: see the [module docs](self). Sphere
+/// and disk lights; needs receiver normals (the shadow-map test's receiver
+/// plane).
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub struct Ssoc {
+    /// Side of the shadow and distortion maps, `1..=16384`; default
+    /// [`Ssoc::DEFAULT_RESOLUTION`] (ours).
+    pub resolution: u32,
+    /// How many edges a receiver's distortion may visit (§3.2.3: "two or
+    /// three such steps are generally sufficient"), `1..=8`; default 3.
+    pub lookups: u32,
+    /// The relative depth bias of the test at the distorted point (§4: "a
+    /// rather large bias"), `[0, 1]`; default [`Ssoc::DEFAULT_BIAS`] (ours).
+    pub bias: f64,
+    /// Four lookups blended bilinearly (§5); default off.
+    pub bilinear: bool,
+    /// The falloff of eq. 1; default [`Falloff::Bernstein`] (§3.2.2).
+    pub falloff: Falloff,
+    /// The [horizon bound](Horizon); default off (ours).
+    pub horizon: bool,
+}
+
+impl Ssoc {
+    /// Default [`Ssoc::resolution`]: 1024 (ours; the paper's map size is
+    /// not stated).
+    pub const DEFAULT_RESOLUTION: u32 = 1024;
+    /// Default [`Ssoc::bias`]: 2 % of the receiver's depth (ours).
+    pub const DEFAULT_BIAS: f64 = 0.02;
+}
+
+impl Default for Ssoc {
+    fn default() -> Ssoc {
+        Ssoc {
+            resolution: Ssoc::DEFAULT_RESOLUTION,
+            lookups: 3,
+            bias: Ssoc::DEFAULT_BIAS,
+            bilinear: false,
+            falloff: Falloff::Bernstein,
+            horizon: false,
+        }
+    }
+}
+
+builders!(Ssoc {
+    /// With maps of `value × value` texels.
+    with_resolution => resolution: u32,
+    /// With at most `value` edges per receiver.
+    with_lookups => lookups: u32,
+    /// With the relative bias `value`.
+    with_bias => bias: f64,
+    /// With or without the bilinear lookups.
+    with_bilinear => bilinear: bool,
+    /// With the falloff `value`.
+    with_falloff => falloff: Falloff,
+    /// With or without the horizon bound.
+    with_horizon => horizon: bool,
+});
+
+/// The falloff choices' names, in the order of [`falloff_index`].
+const FALLOFFS: &[&str] = &["bernstein", "exact", "linear"];
+
+fn falloff_index(f: Falloff) -> usize {
+    match f {
+        Falloff::Bernstein => 0,
+        Falloff::Exact => 1,
+        Falloff::Linear => 2,
+    }
+}
+
+const FALLOFF_OF: [Falloff; 3] = [Falloff::Bernstein, Falloff::Exact, Falloff::Linear];
+
+impl Configurable for Ssoc {
+    const NAME: &'static str = "ssoc";
+    const SUMMARY: &'static str = "the soft shadow occlusion camera (Mo, Popescu & Wyman 2007)";
+    const LIGHTS: &'static [LightKind] = &[LightKind::Sphere, LightKind::Disk];
+    const DEFAULT_RUN: &'static [&'static str] = &["ssoc"];
+    const COMPARE: &'static [&'static str] = &[
+        "ssoc",
+        "ssoc:lookups=1",
+        "ssoc:falloff=exact",
+        "ssoc:bilinear",
+        "ssoc:horizon",
+    ];
+    #[rustfmt::skip]
+    const FIELDS: &'static [Field<Ssoc>] = &[
+        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"),
+        field!(int "lookups", lookups: u32, (1, 8), "edges a distortion may visit (§3.2.3: 2 or 3)"),
+        field!(real "bias", bias, (0.0, 1.0), "relative depth bias at the distorted point (§4; ours: 0.02)"),
+        field!(flag "bilinear", bilinear, "four lookups blended bilinearly (§5)"),
+        super::options::choice("falloff", "eq. 1's falloff (§3.2.2: bernstein)", FALLOFFS,
+            |m| falloff_index(m.falloff), |m, i| m.falloff = FALLOFF_OF[i]),
+        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
+    ];
+}
+
+/// What both variants build for a frame: the shadow map, the silhouette
+/// edges, the distortion maps.
+pub(crate) struct Prepared {
+    pub maps: Arc<Result<FittedMaps, crate::render::raster::RasterError>>,
+    pub edges: Arc<Vec<ProjectedEdge>>,
+    pub distortion: Arc<DistortionMaps>,
+    /// The light's radius.
+    pub r: f64,
+}
+
+impl Prepared {
+    /// The shadow map and its view.
+    pub(crate) fn fitted(&self) -> Result<&FittedMaps, MethodError> {
+        self.maps
+            .as_ref()
+            .as_ref()
+            .map_err(|e| MethodError::LightView(*e))
+    }
+}
+
+/// Builds (or fetches) the stages both variants read, at `resolution`.
+pub(crate) fn prepare(input: &Input<'_, '_>, resolution: u32) -> Result<Prepared, MethodError> {
+    let (stages, frame) = (input.stages(), input.frame());
+    let r = input.light().equivalent_radius();
+    let maps = stages.light_maps(frame, resolution, resolution);
+    let fitted = maps
+        .as_ref()
+        .as_ref()
+        .map_err(|e| MethodError::LightView(*e))?;
+    let view = &fitted.view;
+    let edges = projected_edges(stages, EdgeSource::Silhouettes, view.near());
+    let lf = view.frame();
+    let z_max = frame
+        .receivers()
+        .iter()
+        .map(|rec| lf.to_light(rec.position).z)
+        .filter(|z| z.is_finite())
+        .fold(0.0, f64::max);
+    let key = format!("frame {} {resolution}", frame.id());
+    let distortion = stages.cached("ssoc distortion maps", key, || {
+        let m = DistortionMaps::new(view, &edges, r, z_max);
+        let (i, o) = m.coverage();
+        (
+            m,
+            format!("{} edges, {i} inside and {o} outside texels", edges.len()),
+        )
+    });
+    Ok(Prepared {
+        maps,
+        edges,
+        distortion,
+        r,
+    })
+}
+
+/// One receiver in the light view.
+pub(crate) struct Warped {
+    /// Light-frame position.
+    pub p: DVec3,
+    /// Its projection on the image plane.
+    pub u: DVec2,
+    /// In front of the map's near plane.
+    pub in_view: bool,
+    /// The shadow map's hard test at `u`.
+    pub shadowed: bool,
+}
+
+/// The shadow-map test of `p` (light frame) at image point `u` with depth
+/// test `test`; off the map: lit.
+fn blocked_at(view: &LightView, maps: &LightMaps, test: &DepthTest, u: DVec2) -> bool {
+    let t = view.to_pixel(u);
+    if !(t.x >= 0.0
+        && t.y >= 0.0
+        && t.x < f64::from(view.width())
+        && t.y < f64::from(view.height()))
+    {
+        return false;
+    }
+    let (col, row) = (t.x as u32, t.y as u32);
+    test.blocks(view, col, row, maps.depth_at(col, row))
+}
+
+/// Warps `r` into the light view of `fitted` and runs the hard test.
+pub(crate) fn warp(fitted: &FittedMaps, r: &Receiver, margin: f64) -> Warped {
+    let view = &fitted.view;
+    let lf = view.frame();
+    let p = lf.to_light(r.position);
+    let [ax, ay, az] = lf.axes();
+    let normal = r
+        .normal
+        .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
+    let in_view = p.z >= view.near() && p.z.is_finite();
+    let u = project(p);
+    let test = DepthTest::new(p, normal, p.z * margin);
+    let shadowed = in_view && blocked_at(view, &fitted.maps, &test, u);
+    Warped {
+        p,
+        u,
+        in_view,
+        shadowed,
+    }
+}
+
+/// The depth-test margin of both variants, relative to the receiver's
+/// depth: PCSS's `1e-3` plus one texel.
+pub(crate) fn margin(view: &LightView) -> f64 {
+    1e-3 + view.texel_size().max_element()
+}
+
+/// An edge as a receiver reads it.
+struct Reading {
+    /// `d`, `dmax`.
+    d: f64,
+    dmax: f64,
+    /// The outward normal.
+    n: DVec2,
+    /// The edge's point nearest the receiver's projection.
+    s: DVec2,
+    /// `[z_near, z_far]`.
+    z: (f64, f64),
+}
+
+impl Ssoc {
+    /// The distortion of the receiver at `u`, depth `z_p`, against edge
+    /// `e`: `None` when the receiver is in front of the edge.
+    fn read(
+        &self,
+        e: &ProjectedEdge,
+        u: DVec2,
+        z_p: f64,
+        r: f64,
+        fitted: &FittedMaps,
+    ) -> Option<Reading> {
+        let (s, t) = nearest_on(e.a, e.b, u);
+        let z_near = 1.0 / ((1.0 - t) / e.la.z + t / e.lb.z);
+        if z_p <= z_near {
+            return None;
+        }
+        // The signed distance to the silhouette (negative on the
+        // occluder's side) and the outward direction at `s`: along `u − s`,
+        // which is the edge's right normal where `s` is inside the edge and
+        // radial at its ends, so that `δ` is continuous along a chain.
+        let inside = left(e.a, e.b, u);
+        let sign = if inside { -1.0 } else { 1.0 };
+        let v = u - s;
+        let dist = v.length();
+        let n = if dist > 0.0 {
+            v / dist * sign
+        } else {
+            -(e.b - e.a).try_normalize()?.perp()
+        };
+        let delta = sign * dist;
+        let radius = footprint::radius(r, z_near, z_p);
+        let dmax = 2.0 * radius;
+        let d = (radius - delta).clamp(0.0, dmax);
+        let view = &fitted.view;
+        let outside = view.to_pixel(s + n * (1.5 * view.texel_size().max_element()));
+        let z_far = if outside.x >= 0.0
+            && outside.y >= 0.0
+            && outside.x < f64::from(view.width())
+            && outside.y < f64::from(view.height())
+        {
+            fitted.maps.depth_at(outside.x as u32, outside.y as u32)
+        } else {
+            f64::INFINITY
+        };
+        Some(Reading {
+            d,
+            dmax,
+            n,
+            s,
+            z: (z_near, z_far),
+        })
+    }
+
+    /// `V` of one receiver from the distortion-map texel `(col, row)`.
+    fn shade_at(&self, prep: &Prepared, fitted: &FittedMaps, w: &Warped, texel: (i64, i64)) -> f64 {
+        let hard = if w.shadowed { 0.0 } else { 1.0 };
+        let cell = prep.distortion.at(w.shadowed, texel.0, texel.1);
+        if cell.edge == NONE {
+            return hard;
+        }
+        let Some(first) = prep
+            .edges
+            .get(cell.edge as usize)
+            .and_then(|e| self.read(e, w.u, w.p.z, prep.r, fitted))
+        else {
+            return hard;
+        };
+        let view = &fitted.view;
+        let test = DepthTest::new(w.p, None, w.p.z * self.bias);
+        let mut v = 1.0;
+        let mut seen = [cell.edge; 8];
+        let mut reading = first;
+        let mut count = 1;
+        loop {
+            let moved = w.u + reading.n * reading.d;
+            // Fig. 5, for the receiver's own edge: still in the hard
+            // shadow after distortion, fully shadowed. (Against the later
+            // edges the receiver is distorted only to find the next one:
+            // another occluder's hard shadow there is that occluder's
+            // part, already counted.)
+            let blocked = blocked_at(view, &fitted.maps, &test, moved);
+            if blocked && count == 1 {
+                return 0.0;
+            }
+            // By construction the distorted point lies `R` outside the
+            // edge, on its distortion region's outer boundary: Fig. 5's
+            // "no longer near a discontinuity: lit", which the paper says
+            // only its own rounding triggers, cannot arise here.
+            let t = view.to_pixel(moved).floor();
+            let (c, r) = (t.x as i64, t.y as i64);
+            // The map of the distorted point's side names its edge.
+            let next = [prep.distortion.at(blocked, c, r)];
+            v *= falloff::eval(self.falloff, 1.0 - ratio(reading.d, reading.dmax));
+            if count >= self.lookups as usize {
+                return v;
+            }
+            // The first edge the distorted point names that is not seen.
+            let Some(other) = next
+                .iter()
+                .map(|c| c.edge)
+                .find(|&e| e != NONE && !seen[..count].contains(&e))
+            else {
+                return v;
+            };
+            let Some(second) = prep
+                .edges
+                .get(other as usize)
+                .and_then(|e| self.read(e, w.u, w.p.z, prep.r, fitted))
+            else {
+                return v;
+            };
+            // The paper's three cases (§4): the same region, one relevant
+            // penumbra (disjoint depth ranges), or several, whose
+            // intensities multiply.
+            let same_region = reading.n.dot(second.n) > SAME_REGION_COS
+                || (reading.s - second.s).length() <= view.texel_size().max_element();
+            let disjoint = second.z.0 > reading.z.1 || reading.z.0 > second.z.1;
+            if same_region || disjoint {
+                return v;
+            }
+            seen[count] = other;
+            count += 1;
+            reading = second;
+        }
+    }
+
+    /// `V` of one receiver.
+    fn shade(&self, prep: &Prepared, fitted: &FittedMaps, w: &Warped) -> f64 {
+        if !w.in_view {
+            return 1.0;
+        }
+        let t = fitted.view.to_pixel(w.u);
+        if !self.bilinear {
+            return self.shade_at(prep, fitted, w, (t.x.floor() as i64, t.y.floor() as i64));
+        }
+        // The four texels whose centres surround the point, bilinearly.
+        let b = t - 0.5;
+        let (c, r) = (b.x.floor(), b.y.floor());
+        let (fx, fy) = (b.x - c, b.y - r);
+        let (c, r) = (c as i64, r as i64);
+        let at = |dc: i64, dr: i64| self.shade_at(prep, fitted, w, (c + dc, r + dr));
+        let top = at(0, 0) * (1.0 - fx) + at(1, 0) * fx;
+        let bottom = at(0, 1) * (1.0 - fx) + at(1, 1) * fx;
+        top * (1.0 - fy) + bottom * fy
+    }
+}
+
+/// Two edges whose outward normals are closer than this (the cosine of
+/// 45°, ours) bound the same distortion region (§4's "dot product near
+/// unity"); so do two edges whose points nearest the receiver are within a
+/// texel (a shared corner of the silhouette, where the outward directions
+/// are radial and may differ by up to 180°).
+const SAME_REGION_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
+
+/// `d / dmax` in `[0, 1]`; `dmax = 0` is a hard step.
+fn ratio(d: f64, dmax: f64) -> f64 {
+    if dmax > 0.0 {
+        (d / dmax).clamp(0.0, 1.0)
+    } else if d > 0.0 {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+impl super::Method for Ssoc {
+    fn name(&self) -> String {
+        super::options::print(self)
+    }
+
+    fn lights(&self) -> &'static [LightKind] {
+        Self::LIGHTS
+    }
+
+    fn needs(&self) -> Needs {
+        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS | Needs::TOPOLOGY
+    }
+
+    fn requires(&self) -> Requires {
+        Requires {
+            normals: true,
+            objects: false,
+            normals_hint: "the shadow-map test compares texels with the receiver's tangent plane",
+        }
+    }
+
+    fn horizon(&self) -> Horizon {
+        Horizon::clamp_if(self.horizon)
+    }
+
+    fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        super::check_options(self)?;
+        if input.receivers().is_empty() {
+            return Ok(Output::default());
+        }
+        let prep = prepare(input, self.resolution)?;
+        let fitted = prep.fitted()?;
+        let m = margin(&fitted.view);
+        let v = per_receiver(
+            input,
+            || (),
+            |(), _, r| Ok(self.shade(&prep, fitted, &warp(fitted, r, m))),
+        )?;
+        Ok(Output::values(v))
+    }
+}
