@@ -10,10 +10,11 @@
 //! image size for its 256² light map); receivers are the camera's
 //! eye-visible points.
 
-use softshadow::method::{self, Exact, Method, SingleSample};
+#[path = "support/accuracy.rs"]
+mod support;
+
+use softshadow::method::{self, Method, SingleSample};
 use softshadow::render::image::ErrorSummary;
-use softshadow::render::{Frame, Stages};
-use softshadow::scene::{builtin, BUILTIN_NAMES};
 
 const VARIANTS: &[&str] = &[
     "single-sample",
@@ -23,13 +24,6 @@ const VARIANTS: &[&str] = &[
     "single-sample:light-aware,horizon",
     "hard",
 ];
-
-fn row(variant: &str, label: &str, s: &ErrorSummary) {
-    println!(
-        "| `{variant}` | {label} | {} | {:.5} | {:.5} | {:.4} | {:+.5} | {:.4} |",
-        s.count, s.mean_abs, s.rmse, s.max_abs, s.mean_signed, s.share_over_0_05
-    );
-}
 
 fn main() -> Result<(), Box<dyn std::error::Error>> {
     let side: u32 = match std::env::args().nth(1) {
@@ -66,86 +60,38 @@ fn main() -> Result<(), Box<dyn std::error::Error>> {
     println!(
         "    cargo run --release --all-features --example single_sample_accuracy -- {side} > docs/accuracy/single-sample.md\n"
     );
-    let mut summary = Vec::new();
-    for &name in BUILTIN_NAMES {
-        let Some(scene) = builtin(name) else { continue };
-        if !SingleSample::default()
-            .lights()
-            .contains(&scene.light().kind())
-        {
-            continue;
-        }
-        let Some(camera) = scene.camera() else {
-            continue;
-        };
-        let camera = camera.with_resolution(side, side)?;
-        let stages = Stages::new(&scene);
-        let frame = Frame::from_camera(&camera, stages.bvh());
-        let reference = method::run(&Exact, &stages, &frame)?.output.visibility;
-        let penumbra = |i: usize| reference[i] > 0.0 && reference[i] < 1.0;
-        let on_floor = |i: usize| frame.receivers()[i].object == Some(0);
-        println!(
-            "## `{name}` ({} receivers, {} in the exact penumbra)\n",
-            frame.receivers().len(),
-            (0..reference.len()).filter(|&i| penumbra(i)).count()
-        );
-        println!(
-            "| method | receivers | count | mean abs | RMSE | max | mean signed | share > 0.05 |"
-        );
-        println!("|---|---|---:|---:|---:|---:|---:|---:|");
-        for &variant in VARIANTS {
-            let m = method::parse(variant)?;
-            let v = match method::run(m.as_ref(), &stages, &frame) {
-                Ok(run) => run.output.visibility,
-                Err(e) => {
-                    println!("| `{variant}` | {e} | | | | | | |");
-                    continue;
-                }
-            };
-            let all = ErrorSummary::new(&v, &reference, |_| true);
-            let pen = ErrorSummary::new(&v, &reference, penumbra);
-            row(variant, "all", &all);
-            row(variant, "penumbra", &pen);
-            row(
-                variant,
-                "floor",
-                &ErrorSummary::new(&v, &reference, on_floor),
-            );
-            row(
-                variant,
-                "occluders",
-                &ErrorSummary::new(&v, &reference, |i| !on_floor(i)),
-            );
-            summary.push((name, variant, all.rmse, pen.rmse));
-        }
-        if name == "default" {
-            // The id test's admitted loss (§3.2, §5): an object never casts
-            // an outer penumbra on itself. Bunny receivers the light map
-            // calls lit but the exact answer shadows at least partly.
+    support::tables(
+        side,
+        SingleSample::default().lights(),
+        VARIANTS,
+        |case, stages| {
+            if case.name != "default" {
+                return;
+            }
+            // The id test's admitted loss (§3.2, §5): an object never casts an
+            // outer penumbra on itself. Bunny receivers the light map calls lit
+            // but the exact answer shadows at least partly.
             let m = SingleSample::default();
-            let p = m.passes(&method::check(&m, &stages, &frame)?)?;
+            let Ok(input) = method::check(&m, stages, &case.stages_frame) else {
+                return;
+            };
+            let Ok(p) = m.passes(&input) else { return };
+            let reference = &case.exact;
+            let receivers = case.stages_frame.receivers();
             let own: Vec<usize> = (0..reference.len())
-                .filter(|&i| !on_floor(i) && !p.shadowed[i] && reference[i] < 1.0)
+                .filter(|&i| receivers[i].object != Some(0) && !p.shadowed[i] && reference[i] < 1.0)
                 .collect();
-            let e = ErrorSummary::new(&p.visibility, &reference, |i| own.binary_search(&i).is_ok());
+            let e = ErrorSummary::new(&p.visibility, reference, |i| own.binary_search(&i).is_ok());
             let never = own.iter().filter(|&&i| p.visibility[i] == 1.0).count();
             println!(
                 "\nThe id test's loss, measured: {} bunny receivers are lit by the light map \
-                 but partly shadowed in the exact answer (the ears and the back over the body); \
-                 {never} of them read `V = 1` (the bunny never casts an outer penumbra on \
-                 itself); over them the mean signed error is {:+.4}, the RMSE {:.4}.",
+             but partly shadowed in the exact answer (the ears and the back over the body); \
+             {never} of them read `V = 1` (the bunny never casts an outer penumbra on \
+             itself); over them the mean signed error is {:+.4}, the RMSE {:.4}.",
                 own.len(),
                 e.mean_signed,
                 e.rmse
             );
-        }
-        println!();
-    }
-    println!("## Summary: RMSE, all receivers and penumbra\n");
-    println!("| scene | method | RMSE | RMSE penumbra |");
-    println!("|---|---|---:|---:|");
-    for (scene, variant, all, pen) in summary {
-        println!("| {scene} | `{variant}` | {all:.5} | {pen:.5} |");
-    }
-    Ok(())
+        },
+    )
 }

@@ -45,6 +45,10 @@ const METHODS: &[&str] = &[
     "single-sample:map=32",
     "single-sample:map=16,no-interpolate,no-id",
     "single-sample:map=24,light-aware,falloff=exact",
+    "ssoc:map=32",
+    "ssoc:map=24,lookups=1,bilinear,falloff=exact,horizon",
+    "backprojected-ssoc:map=32",
+    "backprojected-ssoc:map=16,search=2,walk,horizon",
 ];
 
 fn check(scene: &Scene, frame: &Frame) {
