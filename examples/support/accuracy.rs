@@ -19,9 +19,12 @@ pub struct Case {
     pub exact: Vec<f64>,
 }
 
+/// Which receivers a row keeps.
+type Keep<'a> = Box<dyn Fn(usize) -> bool + 'a>;
+
 /// The rows' groups: every receiver, the exact penumbra, the floor
 /// (object 0), the other objects.
-fn groups(case: &Case) -> [(&'static str, Box<dyn Fn(usize) -> bool + '_>); 4] {
+fn groups(case: &Case) -> [(&'static str, Keep<'_>); 4] {
     let exact = &case.exact;
     let frame = &case.stages_frame;
     [
