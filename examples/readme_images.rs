@@ -1,19 +1,21 @@
-//! The pictures in the README: the default scene shaded by every method of
-//! the default set, and each method's signed error heat-map against the
-//! exact answer, at 256 × 256.
+//! The pictures in the README: the default scene (sphere light) and the
+//! `linear-light` scene (segment light), each shaded by every method of
+//! its light's default set, and each method's signed error heat-map
+//! against the exact answer, at 256 × 256.
 //!
 //! `cargo run --release --example readme_images -- docs/images`
 //!
-//! Writes `default-METHOD-shaded.png` and `default-METHOD-error.png` into
-//! the folder given (default `docs/images`), and prints each method's
-//! errors, so a reader can hold the pictures against the numbers.
+//! Writes `SCENE-METHOD-shaded.png` and `SCENE-METHOD-error.png` into the
+//! folder given (default `docs/images`), and prints each method's errors,
+//! so a reader can hold the pictures against the numbers. Methods that
+//! report end weights (OESS) are shaded by them.
 
 use softshadow::method::{self, Exact};
-use softshadow::render::image::{error_heat_map, shaded, ErrorSummary};
+use softshadow::render::image::{error_heat_map, shaded, shaded_by_ends, ErrorSummary};
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin;
 use std::error::Error;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 /// The pictures' side in pixels.
 const SIDE: u32 = 256;
@@ -25,15 +27,25 @@ fn main() -> Result<(), Box<dyn Error>> {
             .unwrap_or_else(|| "docs/images".to_owned()),
     );
     std::fs::create_dir_all(&out)?;
-    let scene = builtin("default").ok_or("the default scene is built in")?;
+    for name in ["default", "linear-light"] {
+        pictures(name, &out)?;
+    }
+    println!("wrote {}", out.display());
+    Ok(())
+}
+
+/// The pictures and the error table of built-in scene `name`.
+fn pictures(name: &str, out: &Path) -> Result<(), Box<dyn Error>> {
+    let scene = builtin(name).ok_or("the scene is built in")?;
     let camera = scene
         .camera()
-        .ok_or("the default scene has a camera")?
+        .ok_or("the built-in scene has a camera")?
         .with_resolution(SIDE, SIDE)?;
     let stages = Stages::new(&scene);
     let frame = Frame::from_camera(&camera, stages.bvh());
     let exact = method::run(&Exact, &stages, &frame)?.output.visibility;
     let penumbra = |i: usize| exact[i] > 0.0 && exact[i] < 1.0;
+    println!("\n`{name}`\n");
     println!("| method | RMSE | RMSE penumbra | mean signed |");
     println!("|---|---:|---:|---:|");
     for m in method::default_set(scene.light().kind()) {
@@ -44,9 +56,13 @@ fn main() -> Result<(), Box<dyn Error>> {
             .chars()
             .filter(|c| c.is_ascii_alphanumeric() || *c == '-')
             .collect();
-        shaded(&scene, &frame, v).write_png(&out.join(format!("default-{part}-shaded.png")))?;
+        let picture = match &run.output.end_weights {
+            Some(w) => shaded_by_ends(&scene, &frame, w),
+            None => shaded(&scene, &frame, v),
+        };
+        picture.write_png(&out.join(format!("{name}-{part}-shaded.png")))?;
         error_heat_map(&frame, v, &exact)
-            .write_png(&out.join(format!("default-{part}-error.png")))?;
+            .write_png(&out.join(format!("{name}-{part}-error.png")))?;
         let all = ErrorSummary::new(v, &exact, |_| true);
         let pen = ErrorSummary::new(v, &exact, penumbra);
         println!(
@@ -54,6 +70,5 @@ fn main() -> Result<(), Box<dyn Error>> {
             run.method, all.rmse, pen.rmse, all.mean_signed
         );
     }
-    println!("wrote {}", out.display());
     Ok(())
 }

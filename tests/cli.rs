@@ -454,7 +454,7 @@ fn bad_points_and_arguments_are_one_line_errors() {
             "--method",
             "oess",
         ],
-        &["oess", "not built yet"],
+        &["oess", "does not handle a sphere light"],
     );
     // The points file gives no normals, which PCSS's default bias needs.
     rejects(

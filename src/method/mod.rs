@@ -33,6 +33,7 @@
 
 mod centre;
 mod hard;
+pub mod oess;
 pub mod options;
 mod pcss;
 mod reference;
@@ -42,6 +43,7 @@ pub mod sism;
 pub mod ssoc;
 
 pub use hard::HardShadow;
+pub use oess::Oess;
 pub use options::Configurable;
 pub use pcss::{Pcss, PcssBias};
 pub use reference::{Exact, MonteCarlo};
@@ -278,6 +280,10 @@ pub struct Output {
     /// The standard error of each value, for the estimators that have one
     /// (Monte Carlo).
     pub stderr: Option<Vec<f64>>,
+    /// For a segment light, the weights of its two end samples `[w_L, w_R]`
+    /// (`w_L + w_R = V`) under linear emission, for the methods that shade
+    /// with them (OESS); the shaded picture uses them.
+    pub end_weights: Option<Vec<[f64; 2]>>,
 }
 
 impl Output {
@@ -287,6 +293,7 @@ impl Output {
         Output {
             visibility,
             stderr: None,
+            end_weights: None,
         }
     }
 }

@@ -140,6 +140,7 @@ impl Method for MonteCarlo {
         Ok(Output {
             visibility: estimates.iter().map(|e| e.visibility).collect(),
             stderr: Some(estimates.iter().map(|e| e.stderr).collect()),
+            end_weights: None,
         })
     }
 }

@@ -11,13 +11,13 @@
 //! | `sism` | sphere, disk | [`Sism`]: soft irregular shadow mapping (Johnson et al. 2009) |
 //! | `single-sample` | sphere, disk, rect | [`SingleSample`]: single-sample soft shadows (Brabec & Seidel 2002) |
 //! | `ssoc`, `backprojected-ssoc` | sphere, disk | [`Ssoc`], [`BackprojectedSsoc`]: the soft shadow occlusion camera (Mo, Popescu & Wyman 2007) and its backprojected variant (Mo & Wyman 2007) |
-//! | `oess` | segment | not built yet |
+//! | `oess` | segment | [`Oess`]: occluding edges soft shadows (Reimann & Dreier 2016) |
 //! | `mc:N` | every light | [`MonteCarlo`]: Monte Carlo light sampling, `N` samples |
 //! | `exact` | every light | [`Exact`]: the exact reference |
 
 use super::options::{self, Configurable};
 use super::{
-    BackprojectedSsoc, Exact, HardShadow, Method, MonteCarlo, Pcss, SingleSample, Sism, Ssoc,
+    BackprojectedSsoc, Exact, HardShadow, Method, MonteCarlo, Oess, Pcss, SingleSample, Sism, Ssoc,
 };
 use crate::scene::LightKind;
 
@@ -152,11 +152,7 @@ pub static REGISTRY: &[Entry] = &[
     Entry::of::<SingleSample>(),
     Entry::of::<Ssoc>(),
     Entry::of::<BackprojectedSsoc>(),
-    Entry::later(
-        "oess",
-        "occluding edges soft shadows (Reimann & Dreier)",
-        &[LightKind::Segment],
-    ),
+    Entry::of::<Oess>(),
     Entry::of::<MonteCarlo>(),
     Entry::of::<Exact>(),
 ];

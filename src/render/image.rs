@@ -6,6 +6,7 @@
 //! pixel ([`Rgb`]).
 
 use super::frame::{Frame, BACKGROUND};
+use super::Receiver;
 use crate::scene::{Light, Scene};
 use glam::DVec3;
 use std::io;
@@ -140,17 +141,60 @@ pub fn shaded(scene: &Scene, frame: &Frame, visibility: &[f64]) -> Rgb {
     let unshadowed: Vec<f64> = frame
         .receivers()
         .iter()
-        .map(|r| {
-            let n = r
-                .normal
-                .unwrap_or_else(|| (light.center() - r.position).normalize_or_zero());
-            irradiance_factor(light, r.position, n)
-        })
+        .map(|r| irradiance_factor(light, r.position, facing(light.center(), r)))
         .collect();
+    let shadowed: Vec<f64> = unshadowed
+        .iter()
+        .enumerate()
+        .map(|(i, e)| e * visibility.get(i).copied().unwrap_or(0.0))
+        .collect();
+    expose_values(frame, &unshadowed, &shadowed)
+}
+
+/// The frame shaded by a segment light's two end samples, as OESS does
+/// (linear emission, its substep 4.3): `E = w_L·g(L) + w_R·g(R)` with the
+/// weights `[w_L, w_R]` of each receiver ([`Output::end_weights`]) and
+/// `g(X) = max(0, n·x̂) / |x|²`, `x` from the receiver to the end `X`; the
+/// unshadowed value (`w_L = w_R = ½`) of the brightest receiver is white.
+/// For a light that is not a segment the weights' sum is the visibility
+/// and the picture is [`shaded`]'s.
+///
+/// [`Output::end_weights`]: crate::method::Output::end_weights
+#[must_use]
+pub fn shaded_by_ends(scene: &Scene, frame: &Frame, weights: &[[f64; 2]]) -> Rgb {
+    let Light::Segment(segment) = scene.light() else {
+        let v: Vec<f64> = weights.iter().map(|[l, r]| l + r).collect();
+        return shaded(scene, frame, &v);
+    };
+    let g = |end: DVec3, r: &Receiver| {
+        let x = end - r.position;
+        let e = facing(end, r).dot(x.normalize_or_zero()).max(0.0) / x.length_squared();
+        if e.is_finite() {
+            e
+        } else {
+            0.0
+        }
+    };
+    let ends = frame.receivers().iter().zip(weights).map(|(r, [wl, wr])| {
+        let (gl, gr) = (g(segment.a(), r), g(segment.b(), r));
+        (0.5 * (gl + gr), wl * gl + wr * gr)
+    });
+    let (unshadowed, shadowed): (Vec<f64>, Vec<f64>) = ends.unzip();
+    expose_values(frame, &unshadowed, &shadowed)
+}
+
+/// The receiver's normal, or the direction to `toward` where it has none.
+fn facing(toward: DVec3, r: &Receiver) -> DVec3 {
+    r.normal
+        .unwrap_or_else(|| (toward - r.position).normalize_or_zero())
+}
+
+/// Paints `shadowed` scaled so that the largest of `unshadowed` is white.
+fn expose_values(frame: &Frame, unshadowed: &[f64], shadowed: &[f64]) -> Rgb {
     let top = unshadowed.iter().copied().fold(0.0, f64::max);
     let scale = if top > 0.0 { 1.0 / top } else { 0.0 };
     paint(frame, |i| {
-        let v = srgb8(unshadowed[i] * scale * visibility.get(i).copied().unwrap_or(0.0));
+        let v = srgb8(shadowed.get(i).copied().unwrap_or(0.0) * scale);
         [v, v, v]
     })
 }

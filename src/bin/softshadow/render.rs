@@ -4,7 +4,9 @@
 
 use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_method};
 use softshadow::method::{self, Exact, Method};
-use softshadow::render::image::{error_heat_map, shaded, visibility_image, ErrorSummary};
+use softshadow::render::image::{
+    error_heat_map, shaded, shaded_by_ends, visibility_image, ErrorSummary,
+};
 use softshadow::render::{Frame, Stages, Stats};
 use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -95,7 +97,13 @@ pub fn run(args: &Args) -> Result<(), String> {
     let v = &run.output.visibility;
     let images = [
         ("visibility", visibility_image(&frame, v)),
-        ("shaded", shaded(&scene, &frame, v)),
+        (
+            "shaded",
+            match &run.output.end_weights {
+                Some(w) => shaded_by_ends(&scene, &frame, w),
+                None => shaded(&scene, &frame, v),
+            },
+        ),
         ("error", error_heat_map(&frame, v, &exact.output.visibility)),
     ];
     for (kind, image) in &images {

@@ -1,0 +1,336 @@
+//! OESS's endpoint maps (Reimann & Dreier, steps 1–3): the shadow maps of
+//! the segment light's two ends, their metadata, the occluding edges found
+//! in them, and the outreach that hands each edge to the penumbra texels
+//! beside it.
+//!
+//! Both maps look along the same axes — `x` along the segment, `z` toward
+//! the scene — over the same window and resolution, from `L` and from `R =
+//! L + ℓx`. A point at `L`-frame `(x, y, z)` is at `(x − ℓ, y, z)` from `R`:
+//! its depth is the same in both, `v = y/z` too, so a map row is a plane
+//! through the light's line and the corresponding texel of `(col, row)` in
+//! the other map is on the same row, `ℓ/(z·s_x)` columns over (`s_x` the
+//! texel width). The metadata of a texel — its corresponding column and
+//! its tilt (whether the other end sees the same side of its triangle,
+//! from the signs of `orient3d` of the triangle with `L` and with `R`, so
+//! two-sided occluders work) — is computed where it is read.
+//!
+//! In `L`'s map the penumbra of an occluder lies on its `L` side (toward
+//! smaller columns): those texels are seen by `L` and hidden from `R`. An
+//! *occluding edge* is a texel that the other end sees (its terminator
+//! from there), found by either strategy of §3.2, combined by OR (ours):
+//! - **tilt**: the texel's surface faces the other end, its neighbour on
+//!   the penumbra side does not;
+//! - **corresponding pixels**: the corresponding column runs backward
+//!   between the neighbour on the penumbra side and the texel (a depth
+//!   step: the texel is nearer), and forward again after it.
+//!
+//! **Outreach** (§3.3): from each edge, along the row toward the penumbra,
+//! every texel hidden from the other end takes the edge, until one is seen
+//! again; a texel reached by several edges keeps the nearest. `R`'s map is
+//! the mirror image.
+
+use crate::bvh::Occluders;
+use crate::kernel::predicate::{orient3d, Sign};
+use crate::render::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
+use crate::render::Frame;
+use crate::scene::light::Segment;
+use crate::scene::LightFrame;
+use glam::{DVec2, DVec3};
+use rayon::prelude::*;
+
+/// No occluding edge reaches the texel.
+pub(crate) const NONE: u32 = u32::MAX;
+
+/// One end's map and what was found in it.
+#[derive(Clone, Debug)]
+pub(crate) struct EndMap {
+    pub view: LightView,
+    pub maps: LightMaps,
+    /// Per texel, the column of the occluding edge its outreach came from
+    /// (same row), or [`NONE`].
+    pub edge: Vec<u32>,
+    /// Texels found as occluding edges, by strategy (tilt, corresponding).
+    pub found: (usize, usize),
+}
+
+/// Both ends' maps.
+#[derive(Clone, Debug)]
+pub(crate) struct EndpointMaps {
+    pub l: EndMap,
+    pub r: EndMap,
+}
+
+/// Which strategies find the edges.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Strategies {
+    pub tilt: bool,
+    pub corresponding: bool,
+    /// Relative depth margin of the "hidden from the other end" test.
+    pub bias: f64,
+}
+
+/// The light frames at both ends: `x` along the segment, `z` toward
+/// `target` (made orthogonal to the segment).
+pub(crate) fn frames(light: &Segment, target: DVec3) -> Option<(LightFrame, LightFrame)> {
+    let (a, b) = (light.a(), light.b());
+    let x = (b - a).try_normalize()?;
+    let mid = a.midpoint(b);
+    let toward = target - mid;
+    let z = (toward - x * toward.dot(x)).try_normalize().or_else(|| {
+        // The target on the light's line: any direction across it.
+        let (u, _) = x.any_orthonormal_pair();
+        Some(u)
+    })?;
+    let l = LightFrame::with_x_axis(a, z, x).ok()?;
+    let r = LightFrame::with_x_axis(b, z, x).ok()?;
+    Some((l, r))
+}
+
+impl EndpointMaps {
+    /// The maps of `occluders` from the ends of `light`, `side × side`,
+    /// over the window that holds every receiver of `frame` and every
+    /// occluder vertex seen from either end.
+    pub(crate) fn new(
+        light: &Segment,
+        frames: (LightFrame, LightFrame),
+        occluders: &Occluders,
+        frame: &Frame,
+        side: u32,
+        strategies: Strategies,
+    ) -> Result<EndpointMaps, RasterError> {
+        let points: Vec<DVec3> = frame
+            .receivers()
+            .iter()
+            .map(|r| r.position)
+            .chain(occluders.triangles().iter().flatten().copied())
+            .collect();
+        // The near depth, as the shared light maps choose it.
+        let depths = points
+            .iter()
+            .map(|&p| frames.0.to_light(p).z)
+            .filter(|z| z.is_finite() && *z > 0.0);
+        let (lo, hi) = depths.fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
+            (lo.min(z), hi.max(z))
+        });
+        let near = if hi == 0.0 {
+            1.0
+        } else {
+            (lo * 0.5).max(hi * (1.0 / 1_048_576.0))
+        };
+        let fit_l = LightView::fit(frames.0, points.iter().copied(), side, side, near)?;
+        let fit_r = LightView::fit(frames.1, points.iter().copied(), side, side, near)?;
+        let (lo, hi) = (fit_l.lo().min(fit_r.lo()), fit_l.hi().max(fit_r.hi()));
+        let view_l = LightView::new(frames.0, lo, hi, side, side, near)?;
+        let view_r = LightView::new(frames.1, lo, hi, side, side, near)?;
+        let (maps_l, maps_r) = rayon::join(
+            || rasterize_occluders(&view_l, occluders),
+            || rasterize_occluders(&view_r, occluders),
+        );
+        let length = (light.b() - light.a()).length();
+        let (a, b) = (light.a(), light.b());
+        let find = |this: (&LightView, &LightMaps), other: (&LightView, &LightMaps), dir: i64| {
+            Finder {
+                view: this.0,
+                maps: this.1,
+                other_view: other.0,
+                other: other.1,
+                triangles: occluders.triangles(),
+                ends: (a, b),
+                // From L the other end is at +ℓ along x; from R at −ℓ.
+                shift: if dir < 0 { length } else { -length },
+                dir,
+                strategies,
+            }
+            .edges()
+        };
+        let ((edge_l, found_l), (edge_r, found_r)) = rayon::join(
+            || find((&view_l, &maps_l), (&view_r, &maps_r), -1),
+            || find((&view_r, &maps_r), (&view_l, &maps_l), 1),
+        );
+        Ok(EndpointMaps {
+            l: EndMap {
+                view: view_l,
+                maps: maps_l,
+                edge: edge_l,
+                found: found_l,
+            },
+            r: EndMap {
+                view: view_r,
+                maps: maps_r,
+                edge: edge_r,
+                found: found_r,
+            },
+        })
+    }
+}
+
+/// The search of one end's map.
+struct Finder<'a> {
+    view: &'a LightView,
+    maps: &'a LightMaps,
+    other_view: &'a LightView,
+    other: &'a LightMaps,
+    triangles: &'a [[DVec3; 3]],
+    ends: (DVec3, DVec3),
+    /// The other end's offset along x from this one's (±ℓ).
+    shift: f64,
+    /// The penumbra's direction along a row: −1 for `L`'s map, +1 for `R`'s.
+    dir: i64,
+    strategies: Strategies,
+}
+
+impl Finder<'_> {
+    /// The continuous column, in the other map, of texel `(col, row)`'s
+    /// surface point; `None` where the texel sees nothing.
+    fn corresponding(&self, col: u32, row: u32) -> Option<f64> {
+        if !self.maps.is_covered(col, row) {
+            return None;
+        }
+        let z = self.maps.depth_at(col, row);
+        let u = self.view.pixel_center(col, row);
+        // From the other end the point is `shift` further along −x.
+        let other = DVec2::new(u.x - self.shift / z, u.y);
+        Some(self.other_view.to_pixel(other).x)
+    }
+
+    /// Whether the other end sees the side of texel `(col, row)`'s triangle
+    /// that this end sees (both ends on one side of its plane).
+    fn faces_other(&self, col: u32, row: u32) -> Option<bool> {
+        if !self.maps.is_covered(col, row) {
+            return None;
+        }
+        let t = self
+            .triangles
+            .get(self.maps.triangle_at(col, row) as usize)?;
+        let (sa, sb) = (
+            orient3d(t[0], t[1], t[2], self.ends.0),
+            orient3d(t[0], t[1], t[2], self.ends.1),
+        );
+        Some(sa == sb && sa != Sign::Zero)
+    }
+
+    /// Whether texel `(col, row)`'s surface point is hidden from the other
+    /// end: its triangle faces away from the other end, or the other map,
+    /// at its corresponding texel, sees something nearer by more than the
+    /// margin. Off the other map: not hidden.
+    ///
+    /// The facing test comes first: near an occluder's rim the surface
+    /// turned away from the other end is within the depth margin of the
+    /// rim the other map sees, and only the facing test tells it hidden.
+    fn hidden(&self, col: u32, row: u32) -> bool {
+        if self.faces_other(col, row) == Some(false) {
+            return true;
+        }
+        let Some(c) = self.corresponding(col, row) else {
+            return false;
+        };
+        if !(c >= 0.0 && c < f64::from(self.other_view.width())) {
+            return false;
+        }
+        let z = self.maps.depth_at(col, row);
+        self.other.depth_at(c as u32, row) < z * (1.0 - self.strategies.bias)
+    }
+
+    /// Whether texel `c` of `row` is an occluding edge.
+    fn is_edge(&self, c: u32, row: u32) -> (bool, bool) {
+        let w = i64::from(self.view.width());
+        let (ahead, behind) = (i64::from(c) + self.dir, i64::from(c) - self.dir);
+        if ahead < 0 || ahead >= w {
+            return (false, false);
+        }
+        let ahead = ahead as u32;
+        let tilt = self.strategies.tilt
+            && self.faces_other(c, row) == Some(true)
+            && self.faces_other(ahead, row) == Some(false);
+        let corresponding = self.strategies.corresponding
+            && behind >= 0
+            && behind < w
+            && match (
+                self.corresponding(ahead, row),
+                self.corresponding(c, row),
+                self.corresponding(behind as u32, row),
+            ) {
+                (Some(qa), Some(q), Some(qb)) => {
+                    // Backward from the penumbra side into the texel (a
+                    // depth step toward the light), forward after it.
+                    let s = -(self.dir as f64);
+                    s * (qa - q) > 0.0 && s * (qb - q) >= 0.0
+                }
+                _ => false,
+            };
+        (tilt, corresponding)
+    }
+
+    /// The outreach of every row: per texel the edge column, and how many
+    /// edges each strategy found.
+    fn edges(&self) -> (Vec<u32>, (usize, usize)) {
+        let (w, h) = (self.view.width(), self.view.height());
+        let rows: Vec<(Vec<u32>, usize, usize)> = (0..h)
+            .into_par_iter()
+            .map(|row| {
+                let mut edge = vec![NONE; w as usize];
+                let (mut by_tilt, mut by_corr) = (0, 0);
+                // Edges nearest the penumbra first, so that a texel keeps the
+                // nearest edge: for L (penumbra toward smaller columns) in
+                // increasing order, for R in decreasing order.
+                let order: Box<dyn Iterator<Item = u32>> = if self.dir < 0 {
+                    Box::new(0..w)
+                } else {
+                    Box::new((0..w).rev())
+                };
+                for c in order {
+                    let (t, k) = self.is_edge(c, row);
+                    by_tilt += usize::from(t);
+                    by_corr += usize::from(k);
+                    if !(t || k) {
+                        continue;
+                    }
+                    let mut k = i64::from(c) + self.dir;
+                    while k >= 0 && k < i64::from(w) {
+                        let kk = k as u32;
+                        if !self.maps.is_covered(kk, row) || !self.hidden(kk, row) {
+                            break;
+                        }
+                        if edge[kk as usize] == NONE {
+                            edge[kk as usize] = c;
+                        }
+                        k += self.dir;
+                    }
+                }
+                (edge, by_tilt, by_corr)
+            })
+            .collect();
+        let mut edge = Vec::with_capacity((w * h) as usize);
+        let (mut t, mut k) = (0, 0);
+        for (e, a, b) in rows {
+            edge.extend(e);
+            t += a;
+            k += b;
+        }
+        (edge, (t, k))
+    }
+}
+
+impl EndMap {
+    /// The world point of the occluding edge texel `(col, row)`: its
+    /// centre's ray at the map's depth there.
+    pub(crate) fn edge_point(&self, col: u32, row: u32) -> Option<DVec3> {
+        if !self.maps.is_covered(col, row) {
+            return None;
+        }
+        let z = self.maps.depth_at(col, row);
+        let u = self.view.pixel_center(col, row);
+        let p = self.view.frame().to_world(DVec3::new(u.x * z, u.y * z, z));
+        p.is_finite().then_some(p)
+    }
+
+    /// The edge column reaching texel `(col, row)`, if any.
+    pub(crate) fn edge_at(&self, col: i64, row: i64) -> Option<u32> {
+        let (w, h) = (i64::from(self.view.width()), i64::from(self.view.height()));
+        if col < 0 || row < 0 || col >= w || row >= h {
+            return None;
+        }
+        let e = self.edge[(row * w + col) as usize];
+        (e != NONE).then_some(e)
+    }
+}
