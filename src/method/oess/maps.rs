@@ -4,7 +4,7 @@
 //! beside it.
 //!
 //! Both maps look along the same axes — `x` along the segment, `z` toward
-//! the scene — over the same window and resolution, from `L` and from `R =
+//! the receivers — over the same window and resolution, from `L` and from `R =
 //! L + ℓx`. A point at `L`-frame `(x, y, z)` is at `(x − ℓ, y, z)` from `R`:
 //! its depth is the same in both, `v = y/z` too, so a map row is a plane
 //! through the light's line and the corresponding texel of `(col, row)` in
@@ -69,15 +69,22 @@ pub(crate) struct Strategies {
     pub bias: f64,
 }
 
-/// The light frames at both ends: `x` along the segment, `z` toward
-/// `target` (made orthogonal to the segment).
-pub(crate) fn frames(light: &Segment, target: DVec3) -> Option<(LightFrame, LightFrame)> {
+/// The light frames at both ends: `x` along the segment, `z` along the
+/// mean of the directions from the light's line to `receivers` (each made
+/// orthogonal to the segment and unit), so that as many receivers as can
+/// be are in front of both ends; `None` for a degenerate light.
+pub(crate) fn frames(light: &Segment, receivers: &[DVec3]) -> Option<(LightFrame, LightFrame)> {
     let (a, b) = (light.a(), light.b());
     let x = (b - a).try_normalize()?;
     let mid = a.midpoint(b);
-    let toward = target - mid;
-    let z = (toward - x * toward.dot(x)).try_normalize().or_else(|| {
-        // The target on the light's line: any direction across it.
+    let across = |p: DVec3| {
+        let d = p - mid;
+        (d - x * d.dot(x)).normalize_or_zero()
+    };
+    let mean: DVec3 = receivers.iter().map(|&p| across(p)).sum();
+    let z = mean.try_normalize().or_else(|| {
+        // No receiver off the light's line, or their directions cancel:
+        // any direction across it.
         let (u, _) = x.any_orthonormal_pair();
         Some(u)
     })?;

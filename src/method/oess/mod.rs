@@ -33,7 +33,9 @@
 //! the hard shadows, which agree there but for rounding). With
 //! `depth-check` (the paper's first approach) an outreach counts only
 //! where the receiver is the surface the map sees at its texel. Receivers
-//! behind the light frame's plane read 1, as in PCSS and SISM.
+//! behind the light frame's plane read 1, as in PCSS and SISM; the frames'
+//! `z` axis is the mean of the directions from the light's line to the
+//! receivers (ours), so that as many as can be are in front.
 //!
 //! `V` is the visible fraction of the segment. The weights of the two end
 //! samples under linear emission ([`VisiblePart::weight_l`],
@@ -206,15 +208,11 @@ impl Oess {
         if frame.receivers().is_empty() {
             return Ok(OessPasses::default());
         }
-        let target = stages
-            .scene()
-            .bounds()
-            .map_or(segment.a().midpoint(segment.b()) - DVec3::Y, |(lo, hi)| {
-                (lo + hi) * 0.5
-            });
-        let frames = maps::frames(&segment, target).ok_or_else(|| MethodError::InvalidOption {
-            method: self.name(),
-            message: "no light frame along the segment".to_owned(),
+        let frames = maps::frames(&segment, &frame.positions()).ok_or_else(|| {
+            MethodError::InvalidOption {
+                method: self.name(),
+                message: "no light frame along the segment".to_owned(),
+            }
         })?;
         let strategies = Strategies {
             tilt: self.tilt,
@@ -302,6 +300,8 @@ impl Oess {
         let part = match seen {
             [true, true] => VisiblePart::FULL,
             [false, false] => VisiblePart::EMPTY,
+            // Seen by one end only, with no edge: the two ends' hard
+            // shadows, half the light (ours).
             [true, false] => VisiblePart::interval(0.0, 0.5),
             [false, true] => VisiblePart::interval(0.5, 1.0),
         };
