@@ -247,3 +247,177 @@ fn the_law_of_sines_agrees_with_the_stable_construction() {
     }
     assert!(compared > 1000, "{compared} receivers reached by an edge");
 }
+
+/// A floor, and the meshes given, under the segment light.
+fn scene_with(meshes: Vec<(&str, softshadow::scene::Mesh)>) -> Scene {
+    let mut scene = Scene::new(Light::segment(L, R).unwrap()).with_mesh(
+        "floor",
+        quad(DVec3::ZERO, DVec3::X * FLOOR, -DVec3::Z * FLOOR).unwrap(),
+    );
+    for (name, mesh) in meshes {
+        scene = scene.with_mesh(name, mesh);
+    }
+    scene
+}
+
+#[test]
+fn object_alternation() {
+    // The paper's §6: a sphere and a pillar; where the sphere's cross-
+    // section in the map rows ends, the occluding edge leaps from the
+    // sphere to the pillar and the shadow changes abruptly. Here a wall
+    // across the light stands on the floor right of a floating ball; on a
+    // floor line along z through the penumbra both cast, the rows through
+    // the ball take its edge and the rows past it the wall's.
+    let scene = scene_with(vec![
+        (
+            "wall",
+            cuboid(DVec3::new(0.5, 0.0, -1.0), DVec3::new(0.7, 1.2, 1.0)).unwrap(),
+        ),
+        (
+            "ball",
+            sphere(DVec3::new(0.0, 0.7, 0.0), 0.35, 32).unwrap(),
+        ),
+    ]);
+    let stages = Stages::new(&scene);
+    let zs: Vec<f64> = (0..=200).map(|k| 0.005 * f64::from(k)).collect();
+    let frame = floor_frame(zs.iter().map(|&z| (-0.1, z)));
+    let exact = method::run(&Exact, &stages, &frame)
+        .unwrap()
+        .output
+        .visibility;
+    let (v, _) = oess(&Oess::default(), &stages, &frame);
+    // Over 0.01 along z (about 1.3 map rows here), how much more OESS
+    // changes than the exact answer: the leap of the edge from the ball to
+    // the wall.
+    let (excess, at) = (0..zs.len() - 2)
+        .map(|i| ((v[i + 2] - v[i]).abs() - (exact[i + 2] - exact[i]).abs(), i))
+        .fold((f64::NEG_INFINITY, 0), |a, b| if b.0 > a.0 { b } else { a });
+    println!(
+        "object alternation: at z = {:.3} OESS goes {:.3} → {:.3}, the exact answer {:.3} → {:.3}",
+        zs[at],
+        v[at],
+        v[at + 2],
+        exact[at],
+        exact[at + 2]
+    );
+    // Where the ball's cross-section ends: its shadow on this line ends
+    // near z = 0.35·2.5/1.8 ≈ 0.49.
+    assert!((0.4..0.55).contains(&zs[at]), "the leap is at z = {}", zs[at]);
+    assert!(excess > 0.15, "OESS changes only {excess} more than the exact answer");
+}
+
+/// The root mean square of `v` minus its running mean over `±half`
+/// neighbours: what varies faster than that window.
+fn ripple(v: &[f64], half: usize) -> f64 {
+    let n = v.len() - 2 * half;
+    let sum: f64 = (half..v.len() - half)
+        .map(|i| {
+            let mean = v[i - half..=i + half].iter().sum::<f64>() / (2 * half + 1) as f64;
+            (v[i] - mean).powi(2)
+        })
+        .sum();
+    (sum / n as f64).sqrt()
+}
+
+#[test]
+fn spare_edge_interpolation() {
+    // The paper's §6: the occluding edges are texel centres, a rasterized
+    // silhouette, and interpolating between two rows leaves stripes in the
+    // penumbra. Across the rows of a skew straight edge's penumbra the
+    // error ripples from row to row; the ripple is the texel's, so it
+    // halves when the maps' texels do.
+    let a = 45f64.to_radians();
+    let edge = HalfPlane {
+        n: DVec2::new(a.sin(), -a.cos()),
+        c: 0.1,
+    };
+    let scene = edge.scene();
+    let stages = Stages::new(&scene);
+    let zs: Vec<f64> = (0..=600).map(|k| -0.3 + 0.001 * f64::from(k)).collect();
+    // Along a line that stays in the penumbra's middle: the edge's shadow
+    // runs at 45° on the floor too.
+    let frame = floor_frame(zs.iter().map(|&z| (z + 0.15, z)));
+    let want: Vec<f64> = frame.receivers().iter().map(|r| edge.fraction(r.position)).collect();
+    assert!(want.iter().all(|&w| w > 0.05 && w < 0.95), "the line leaves the penumbra");
+    let mut ripples = Vec::new();
+    for map in [400, 800, 1600] {
+        let (v, _) = oess(&Oess::default().with_resolution(map), &stages, &frame);
+        let error: Vec<f64> = v.iter().zip(&want).map(|(a, b)| a - b).collect();
+        // A window of ±2 map rows on the floor (depth 2.5).
+        let row = texel(&stages, &frame, map, 2.5).y;
+        let half = (2.0 * row / 0.001).round() as usize;
+        ripples.push((map, ripple(&error, half), ripple(&want, half)));
+    }
+    println!("spare edge interpolation: (map, ripple of the error, of the exact answer) {ripples:?}");
+    for w in ripples.windows(2) {
+        let ratio = w[0].1 / w[1].1;
+        assert!(
+            (1.4..2.9).contains(&ratio),
+            "{} → {}: ripple ratio {ratio}",
+            w[0].0,
+            w[1].0
+        );
+    }
+    for (map, error, exact) in ripples {
+        assert!(error > 10.0 * exact, "{map}: ripple {error} vs {exact}");
+    }
+}
+
+#[test]
+fn receiver_penetration() {
+    // The paper's §6 and substep 4.1: every receiver whose texel an
+    // outreach reached is penumbra, whatever its depth, so receivers
+    // beyond the surface the map sees, in absolute umbra, are lit. Here a
+    // box stands on the floor left of the light's middle; its face toward
+    // +z is turned away from the light (umbra), and from L it lies behind
+    // the box's left face, which the outreach from the box's rim covers.
+    // With `depth-check` (the paper's first approach) it is umbra again.
+    let scene = scene_with(vec![(
+        "box",
+        cuboid(DVec3::new(-0.9, 0.0, -0.3), DVec3::new(-0.5, 0.5, 0.1)).unwrap(),
+    )]);
+    let stages = Stages::new(&scene);
+    let frame = Frame::from_receivers(
+        grid((-0.88, -0.52), (0.02, 0.48), 21)
+            .into_iter()
+            .map(|(x, y)| Receiver {
+                position: DVec3::new(x, y, 0.1),
+                normal: Some(DVec3::Z),
+                object: Some(1),
+            })
+            .collect(),
+    );
+    let exact = method::run(&Exact, &stages, &frame)
+        .unwrap()
+        .output
+        .visibility;
+    // Umbra up to the exact reference's rounding.
+    assert!(exact.iter().all(|&v| v < 1e-12), "the face is umbra: {exact:?}");
+    let (v, reached) = oess(&Oess::default(), &stages, &frame);
+    let penetrated = reached.iter().filter(|r| r[0] || r[1]).count();
+    let lit = v.iter().filter(|&&v| v > 0.0).count();
+    let mean = v.iter().sum::<f64>() / v.len() as f64;
+    println!(
+        "receiver penetration: {penetrated} of {} umbra receivers reached, {lit} lit, mean V {mean:.3}",
+        v.len()
+    );
+    assert!(lit * 4 > v.len() && mean > 0.05);
+    let (checked, reached) = oess(&Oess::default().with_depth_check(true), &stages, &frame);
+    assert!(reached.iter().all(|r| !r[0] && !r[1]), "no penumbra with the depth check");
+    let mean_checked = checked.iter().sum::<f64>() / checked.len() as f64;
+    println!("with depth-check: mean V {mean_checked:.3}");
+    assert!(mean_checked < 0.25 * mean);
+    // What stays lit is the shadow maps' own error at a silhouette: a
+    // receiver whose ray from R passes within a texel of the box's corner
+    // (those within 0.05 of the face's edge x = −0.5; a texel is about
+    // 0.01 there) can fall in a texel of R's map that sees past the box,
+    // and reads seen by R.
+    for (i, r) in frame.receivers().iter().enumerate() {
+        assert!(
+            checked[i] == 0.0 || r.position.x > -0.55,
+            "{} lit ({}) with the depth check",
+            r.position,
+            checked[i]
+        );
+    }
+}

@@ -171,6 +171,35 @@ impl EndpointMaps {
     }
 }
 
+/// [`EndMap::surface_depth`] for a view and its maps.
+fn surface_depth(
+    view: &LightView,
+    maps: &LightMaps,
+    triangles: &[[DVec3; 3]],
+    col: u32,
+    row: u32,
+    u: DVec2,
+) -> f64 {
+    if !maps.is_covered(col, row) {
+        return f64::INFINITY;
+    }
+    let texel = maps.depth_at(col, row);
+    let Some(t) = triangles.get(maps.triangle_at(col, row) as usize) else {
+        return texel;
+    };
+    let frame = view.frame();
+    let [a, b, c] = t.map(|p| frame.to_light(p));
+    let n = (b - a).cross(c - a);
+    // The ray is `z·(u, 1)`; it meets the plane `n·(p − a) = 0` at
+    // `z = n·a / n·(u, 1)`.
+    let z = n.dot(a) / n.dot(u.extend(1.0));
+    if z.is_finite() && z > 0.0 {
+        z
+    } else {
+        texel
+    }
+}
+
 /// The search of one end's map.
 struct Finder<'a> {
     view: &'a LightView,
@@ -235,7 +264,17 @@ impl Finder<'_> {
             return false;
         }
         let z = self.maps.depth_at(col, row);
-        self.other.depth_at(c as u32, row) < z * (1.0 - self.strategies.bias)
+        let u = self.view.pixel_center(col, row);
+        let other = DVec2::new(u.x - self.shift / z, u.y);
+        let d = surface_depth(
+            self.other_view,
+            self.other,
+            self.triangles,
+            c as u32,
+            row,
+            other,
+        );
+        d < z * (1.0 - self.strategies.bias)
     }
 
     /// Whether texel `c` of `row` is an occluding edge.
@@ -319,6 +358,20 @@ impl Finder<'_> {
 }
 
 impl EndMap {
+    /// The depth, along the ray through image point `u`, of the plane of
+    /// the triangle this map sees at texel `(col, row)`: the surface's
+    /// depth there, free of the texel's sampling (the texel's own depth
+    /// where the plane is edge-on); infinite where the texel sees nothing.
+    pub(crate) fn surface_depth(
+        &self,
+        triangles: &[[DVec3; 3]],
+        col: u32,
+        row: u32,
+        u: DVec2,
+    ) -> f64 {
+        surface_depth(&self.view, &self.maps, triangles, col, row, u)
+    }
+
     /// The world point of the occluding edge texel `(col, row)`: its
     /// centre's ray at the map's depth there.
     pub(crate) fn edge_point(&self, col: u32, row: u32) -> Option<DVec3> {
