@@ -49,6 +49,11 @@ pub(crate) struct EndMap {
     /// Per texel, the column of the occluding edge its outreach came from
     /// (same row), or [`NONE`].
     pub edge: Vec<u32>,
+    /// Per texel, the nearest occluding edge on the occluder's side in its
+    /// row (the texel's column or beyond, toward the other end), or
+    /// [`NONE`]: where a receiver seen by this end only was reached by no
+    /// outreach (ours).
+    pub beyond: Vec<u32>,
     /// Texels found as occluding edges, by strategy (tilt, corresponding).
     pub found: (usize, usize),
 }
@@ -150,7 +155,7 @@ impl EndpointMaps {
             }
             .edges()
         };
-        let ((edge_l, found_l), (edge_r, found_r)) = rayon::join(
+        let (found_l, found_r) = rayon::join(
             || find((&view_l, &maps_l), (&view_r, &maps_r), -1),
             || find((&view_r, &maps_r), (&view_l, &maps_l), 1),
         );
@@ -158,14 +163,16 @@ impl EndpointMaps {
             l: EndMap {
                 view: view_l,
                 maps: maps_l,
-                edge: edge_l,
-                found: found_l,
+                edge: found_l.edge,
+                beyond: found_l.beyond,
+                found: found_l.counts,
             },
             r: EndMap {
                 view: view_r,
                 maps: maps_r,
-                edge: edge_r,
-                found: found_r,
+                edge: found_r.edge,
+                beyond: found_r.beyond,
+                found: found_r.counts,
             },
         })
     }
@@ -307,14 +314,15 @@ impl Finder<'_> {
         (tilt, corresponding)
     }
 
-    /// The outreach of every row: per texel the edge column, and how many
-    /// edges each strategy found.
-    fn edges(&self) -> (Vec<u32>, (usize, usize)) {
+    /// The outreach of every row: per texel the edge column, the nearest
+    /// edge beyond, and how many edges each strategy found.
+    fn edges(&self) -> Found {
         let (w, h) = (self.view.width(), self.view.height());
-        let rows: Vec<(Vec<u32>, usize, usize)> = (0..h)
+        let rows: Vec<Found> = (0..h)
             .into_par_iter()
             .map(|row| {
                 let mut edge = vec![NONE; w as usize];
+                let mut beyond = vec![NONE; w as usize];
                 let (mut by_tilt, mut by_corr) = (0, 0);
                 // Edges nearest the penumbra first, so that a texel keeps the
                 // nearest edge: for L (penumbra toward smaller columns) in
@@ -324,6 +332,7 @@ impl Finder<'_> {
                 } else {
                     Box::new((0..w).rev())
                 };
+                let mut found = Vec::new();
                 for c in order {
                     let (t, k) = self.is_edge(c, row);
                     by_tilt += usize::from(t);
@@ -331,6 +340,7 @@ impl Finder<'_> {
                     if !(t || k) {
                         continue;
                     }
+                    found.push(c);
                     let mut k = i64::from(c) + self.dir;
                     while k >= 0 && k < i64::from(w) {
                         let kk = k as u32;
@@ -343,18 +353,50 @@ impl Finder<'_> {
                         k += self.dir;
                     }
                 }
-                (edge, by_tilt, by_corr)
+                // The nearest edge on the occluder's side: walking from
+                // the penumbra's side, each texel takes the next edge.
+                let mut next = found.iter().copied().peekable();
+                let toward: Box<dyn Iterator<Item = u32>> = if self.dir < 0 {
+                    Box::new(0..w)
+                } else {
+                    Box::new((0..w).rev())
+                };
+                for c in toward {
+                    while next
+                        .peek()
+                        .is_some_and(|&e| (i64::from(e) - i64::from(c)) * self.dir > 0)
+                    {
+                        next.next();
+                    }
+                    beyond[c as usize] = next.peek().copied().unwrap_or(NONE);
+                }
+                Found {
+                    edge,
+                    beyond,
+                    counts: (by_tilt, by_corr),
+                }
             })
             .collect();
-        let mut edge = Vec::with_capacity((w * h) as usize);
-        let (mut t, mut k) = (0, 0);
-        for (e, a, b) in rows {
-            edge.extend(e);
-            t += a;
-            k += b;
+        let mut all = Found {
+            edge: Vec::with_capacity((w * h) as usize),
+            beyond: Vec::with_capacity((w * h) as usize),
+            counts: (0, 0),
+        };
+        for r in rows {
+            all.edge.extend(r.edge);
+            all.beyond.extend(r.beyond);
+            all.counts.0 += r.counts.0;
+            all.counts.1 += r.counts.1;
         }
-        (edge, (t, k))
+        all
     }
+}
+
+/// What [`Finder::edges`] found in one map (or one row of it).
+struct Found {
+    edge: Vec<u32>,
+    beyond: Vec<u32>,
+    counts: (usize, usize),
 }
 
 impl EndMap {
@@ -386,11 +428,21 @@ impl EndMap {
 
     /// The edge column reaching texel `(col, row)`, if any.
     pub(crate) fn edge_at(&self, col: i64, row: i64) -> Option<u32> {
+        self.read(&self.edge, col, row)
+    }
+
+    /// The nearest edge column on the occluder's side of texel `(col,
+    /// row)`, if any.
+    pub(crate) fn beyond_at(&self, col: i64, row: i64) -> Option<u32> {
+        self.read(&self.beyond, col, row)
+    }
+
+    fn read(&self, columns: &[u32], col: i64, row: i64) -> Option<u32> {
         let (w, h) = (i64::from(self.view.width()), i64::from(self.view.height()));
         if col < 0 || row < 0 || col >= w || row >= h {
             return None;
         }
-        let e = self.edge[(row * w + col) as usize];
+        let e = columns[(row * w + col) as usize];
         (e != NONE).then_some(e)
     }
 }
