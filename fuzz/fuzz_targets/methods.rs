@@ -12,7 +12,8 @@
 //! an 8 × 6 camera frame looking at the receiver from above the light.
 //!
 //! Asserted: every method either returns one value in `[0, 1]` per receiver
-//! or a typed error that is not a contract breach; the same bits on a second
+//! (and, for OESS, end weights in `[0, 1]` that sum to it) or a typed error
+//! that is not a contract breach; the same bits on a second
 //! run; the images build; and the hard shadow equals the exact answer for a
 //! point light.
 #![no_main]
@@ -22,7 +23,7 @@ use libfuzzer_sys::fuzz_target;
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
 use softshadow::method::{self, Method, MethodError};
-use softshadow::render::image::{error_heat_map, shaded};
+use softshadow::render::image::{error_heat_map, shaded, shaded_by_ends};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::{Camera, Light, Mesh, Scene};
 
@@ -49,6 +50,9 @@ const METHODS: &[&str] = &[
     "ssoc:map=24,lookups=1,bilinear,falloff=exact,horizon",
     "backprojected-ssoc:map=32",
     "backprojected-ssoc:map=16,search=2,walk,horizon",
+    "oess:map=32",
+    "oess:map=24,no-tilt,depth-check,law-of-sines,bias=0",
+    "oess:map=16,no-corr,bias=1",
 ];
 
 fn check(scene: &Scene, frame: &Frame) {
@@ -64,6 +68,14 @@ fn check(scene: &Scene, frame: &Frame) {
                 assert!(v.iter().all(|x| (0.0..=1.0).contains(x)), "{name}: {v:?}");
                 assert_eq!(a.output, b.output, "{name}: not deterministic");
                 let _ = shaded(scene, frame, v);
+                if let Some(w) = &a.output.end_weights {
+                    assert_eq!(w.len(), v.len());
+                    for (&[l, r], &x) in w.iter().zip(v) {
+                        assert!((0.0..=1.0).contains(&l) && (0.0..=1.0).contains(&r));
+                        assert!((l + r - x).abs() <= 1e-12, "{name}: weights {l} + {r} vs {x}");
+                    }
+                    let _ = shaded_by_ends(scene, frame, w);
+                }
                 let _ = error_heat_map(frame, v, v);
             }
             (Err(MethodError::Contract { .. }), _) | (_, Err(MethodError::Contract { .. })) => {
