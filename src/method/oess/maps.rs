@@ -46,6 +46,8 @@ pub(crate) const NONE: u32 = u32::MAX;
 pub(crate) struct EndMap {
     pub view: LightView,
     pub maps: LightMaps,
+    /// Every occluder triangle's plane in this end's frame.
+    pub planes: Vec<Plane>,
     /// Per texel, the column of the occluding edge its outreach came from
     /// (same row), or [`NONE`].
     pub edge: Vec<u32>,
@@ -140,14 +142,24 @@ impl EndpointMaps {
         );
         let length = (light.b() - light.a()).length();
         let (a, b) = (light.a(), light.b());
-        let find = |this: (&LightView, &LightMaps), other: (&LightView, &LightMaps), dir: i64| {
+        let triangles = occluders.triangles();
+        // Whether both ends see the same side of each triangle (exact).
+        let facing: Vec<bool> = triangles
+            .par_iter()
+            .map(|t| {
+                let (sa, sb) = (orient3d(t[0], t[1], t[2], a), orient3d(t[0], t[1], t[2], b));
+                sa == sb && sa != Sign::Zero
+            })
+            .collect();
+        let (planes_l, planes_r) = rayon::join(
+            || planes(&frames.0, triangles),
+            || planes(&frames.1, triangles),
+        );
+        let find = |this: Sampled<'_>, other: Sampled<'_>, dir: i64| {
             Finder {
-                view: this.0,
-                maps: this.1,
-                other_view: other.0,
-                other: other.1,
-                triangles: occluders.triangles(),
-                ends: (a, b),
+                this,
+                other,
+                facing: &facing,
                 // From L the other end is at +ℓ along x; from R at −ℓ.
                 shift: if dir < 0 { length } else { -length },
                 dir,
@@ -155,14 +167,22 @@ impl EndpointMaps {
             }
             .edges()
         };
-        let (found_l, found_r) = rayon::join(
-            || find((&view_l, &maps_l), (&view_r, &maps_r), -1),
-            || find((&view_r, &maps_r), (&view_l, &maps_l), 1),
-        );
+        let l = Sampled {
+            view: &view_l,
+            maps: &maps_l,
+            planes: &planes_l,
+        };
+        let r = Sampled {
+            view: &view_r,
+            maps: &maps_r,
+            planes: &planes_r,
+        };
+        let (found_l, found_r) = rayon::join(|| find(l, r, -1), || find(r, l, 1));
         Ok(EndpointMaps {
             l: EndMap {
                 view: view_l,
                 maps: maps_l,
+                planes: planes_l,
                 edge: found_l.edge,
                 beyond: found_l.beyond,
                 found: found_l.counts,
@@ -170,6 +190,7 @@ impl EndpointMaps {
             r: EndMap {
                 view: view_r,
                 maps: maps_r,
+                planes: planes_r,
                 edge: found_r.edge,
                 beyond: found_r.beyond,
                 found: found_r.counts,
@@ -178,43 +199,62 @@ impl EndpointMaps {
     }
 }
 
-/// [`EndMap::surface_depth`] for a view and its maps.
-fn surface_depth(
-    view: &LightView,
-    maps: &LightMaps,
-    triangles: &[[DVec3; 3]],
-    col: u32,
-    row: u32,
-    u: DVec2,
-) -> f64 {
-    if !maps.is_covered(col, row) {
-        return f64::INFINITY;
-    }
-    let texel = maps.depth_at(col, row);
-    let Some(t) = triangles.get(maps.triangle_at(col, row) as usize) else {
-        return texel;
-    };
-    let frame = view.frame();
-    let [a, b, c] = t.map(|p| frame.to_light(p));
-    let n = (b - a).cross(c - a);
-    // The ray is `z·(u, 1)`; it meets the plane `n·(p − a) = 0` at
-    // `z = n·a / n·(u, 1)`.
-    let z = n.dot(a) / n.dot(u.extend(1.0));
-    if z.is_finite() && z > 0.0 {
-        z
-    } else {
-        texel
+/// A triangle's plane in a light frame: the points `p` with `n·p = d`.
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Plane {
+    n: DVec3,
+    d: f64,
+}
+
+/// The planes of `triangles` in `frame`.
+fn planes(frame: &LightFrame, triangles: &[[DVec3; 3]]) -> Vec<Plane> {
+    triangles
+        .par_iter()
+        .map(|t| {
+            let [a, b, c] = t.map(|p| frame.to_light(p));
+            let n = (b - a).cross(c - a);
+            Plane { n, d: n.dot(a) }
+        })
+        .collect()
+}
+
+/// One end's map as the edge search reads it.
+#[derive(Clone, Copy)]
+struct Sampled<'a> {
+    view: &'a LightView,
+    maps: &'a LightMaps,
+    planes: &'a [Plane],
+}
+
+impl Sampled<'_> {
+    /// The depth, along the ray through image point `u`, of the plane of
+    /// the triangle the map sees at texel `(col, row)`: the surface's
+    /// depth there, free of the texel's sampling (the texel's own depth
+    /// where the plane is edge-on); infinite where the texel sees nothing.
+    fn surface_depth(&self, col: u32, row: u32, u: DVec2) -> f64 {
+        if !self.maps.is_covered(col, row) {
+            return f64::INFINITY;
+        }
+        let texel = self.maps.depth_at(col, row);
+        let Some(p) = self.planes.get(self.maps.triangle_at(col, row) as usize) else {
+            return texel;
+        };
+        // The ray is `z·(u, 1)`; it meets the plane at `z = d / n·(u, 1)`.
+        let z = p.d / p.n.dot(u.extend(1.0));
+        if z.is_finite() && z > 0.0 {
+            z
+        } else {
+            texel
+        }
     }
 }
 
 /// The search of one end's map.
 struct Finder<'a> {
-    view: &'a LightView,
-    maps: &'a LightMaps,
-    other_view: &'a LightView,
-    other: &'a LightMaps,
-    triangles: &'a [[DVec3; 3]],
-    ends: (DVec3, DVec3),
+    this: Sampled<'a>,
+    other: Sampled<'a>,
+    /// Per triangle, whether both ends see the same side of it.
+    facing: &'a [bool],
     /// The other end's offset along x from this one's (±ℓ).
     shift: f64,
     /// The penumbra's direction along a row: −1 for `L`'s map, +1 for `R`'s.
@@ -222,88 +262,79 @@ struct Finder<'a> {
     strategies: Strategies,
 }
 
+/// One row's texels as the search reads them.
+#[derive(Clone, Copy, Default)]
+struct Texel {
+    /// The texel's surface point in the other map: its image point and
+    /// its continuous column; `None` where the texel sees nothing.
+    other: Option<(DVec2, f64)>,
+    /// Whether the other end sees the side of the texel's triangle this
+    /// end sees; `None` where the texel sees nothing.
+    faces_other: Option<bool>,
+    /// The texel's depth.
+    depth: f64,
+}
+
 impl Finder<'_> {
-    /// The continuous column, in the other map, of texel `(col, row)`'s
-    /// surface point; `None` where the texel sees nothing.
-    fn corresponding(&self, col: u32, row: u32) -> Option<f64> {
-        if !self.maps.is_covered(col, row) {
-            return None;
+    /// Texel `(col, row)` as the search reads it.
+    fn texel(&self, col: u32, row: u32) -> Texel {
+        let maps = self.this.maps;
+        if !maps.is_covered(col, row) {
+            return Texel::default();
         }
-        let z = self.maps.depth_at(col, row);
-        let u = self.view.pixel_center(col, row);
+        let z = maps.depth_at(col, row);
+        let u = self.this.view.pixel_center(col, row);
         // From the other end the point is `shift` further along −x.
         let other = DVec2::new(u.x - self.shift / z, u.y);
-        Some(self.other_view.to_pixel(other).x)
-    }
-
-    /// Whether the other end sees the side of texel `(col, row)`'s triangle
-    /// that this end sees (both ends on one side of its plane).
-    fn faces_other(&self, col: u32, row: u32) -> Option<bool> {
-        if !self.maps.is_covered(col, row) {
-            return None;
+        let column = self.other.view.to_pixel(other).x;
+        Texel {
+            other: Some((other, column)),
+            faces_other: self
+                .facing
+                .get(maps.triangle_at(col, row) as usize)
+                .copied(),
+            depth: z,
         }
-        let t = self
-            .triangles
-            .get(self.maps.triangle_at(col, row) as usize)?;
-        let (sa, sb) = (
-            orient3d(t[0], t[1], t[2], self.ends.0),
-            orient3d(t[0], t[1], t[2], self.ends.1),
-        );
-        Some(sa == sb && sa != Sign::Zero)
     }
 
-    /// Whether texel `(col, row)`'s surface point is hidden from the other
-    /// end: its triangle faces away from the other end, or the other map,
-    /// at its corresponding texel, sees something nearer by more than the
-    /// margin. Off the other map: not hidden.
+    /// Whether a texel's surface point is hidden from the other end: its
+    /// triangle faces away from the other end, or the other map, at its
+    /// corresponding texel, sees something nearer by more than the margin.
+    /// Off the other map: not hidden.
     ///
     /// The facing test comes first: near an occluder's rim the surface
     /// turned away from the other end is within the depth margin of the
     /// rim the other map sees, and only the facing test tells it hidden.
-    fn hidden(&self, col: u32, row: u32) -> bool {
-        if self.faces_other(col, row) == Some(false) {
+    fn hidden(&self, t: &Texel, row: u32) -> bool {
+        if t.faces_other == Some(false) {
             return true;
         }
-        let Some(c) = self.corresponding(col, row) else {
+        let Some((u, c)) = t.other else {
             return false;
         };
-        if !(c >= 0.0 && c < f64::from(self.other_view.width())) {
+        if !(c >= 0.0 && c < f64::from(self.other.view.width())) {
             return false;
         }
-        let z = self.maps.depth_at(col, row);
-        let u = self.view.pixel_center(col, row);
-        let other = DVec2::new(u.x - self.shift / z, u.y);
-        let d = surface_depth(
-            self.other_view,
-            self.other,
-            self.triangles,
-            c as u32,
-            row,
-            other,
-        );
-        d < z * (1.0 - self.strategies.bias)
+        self.other.surface_depth(c as u32, row, u) < t.depth * (1.0 - self.strategies.bias)
     }
 
-    /// Whether texel `c` of `row` is an occluding edge.
-    fn is_edge(&self, c: u32, row: u32) -> (bool, bool) {
-        let w = i64::from(self.view.width());
-        let (ahead, behind) = (i64::from(c) + self.dir, i64::from(c) - self.dir);
+    /// Whether the texel at `c` of a row (`texels`) is an occluding edge,
+    /// by tilt and by corresponding pixels.
+    fn is_edge(&self, texels: &[Texel], c: usize) -> (bool, bool) {
+        let w = texels.len() as i64;
+        let (ahead, behind) = (c as i64 + self.dir, c as i64 - self.dir);
         if ahead < 0 || ahead >= w {
             return (false, false);
         }
-        let ahead = ahead as u32;
+        let (this, ahead) = (&texels[c], &texels[ahead as usize]);
         let tilt = self.strategies.tilt
-            && self.faces_other(c, row) == Some(true)
-            && self.faces_other(ahead, row) == Some(false);
+            && this.faces_other == Some(true)
+            && ahead.faces_other == Some(false);
         let corresponding = self.strategies.corresponding
             && behind >= 0
             && behind < w
-            && match (
-                self.corresponding(ahead, row),
-                self.corresponding(c, row),
-                self.corresponding(behind as u32, row),
-            ) {
-                (Some(qa), Some(q), Some(qb)) => {
+            && match (ahead.other, this.other, texels[behind as usize].other) {
+                (Some((_, qa)), Some((_, q)), Some((_, qb))) => {
                     // Backward from the penumbra side into the texel (a
                     // depth step toward the light), forward after it.
                     let s = -(self.dir as f64);
@@ -317,10 +348,11 @@ impl Finder<'_> {
     /// The outreach of every row: per texel the edge column, the nearest
     /// edge beyond, and how many edges each strategy found.
     fn edges(&self) -> Found {
-        let (w, h) = (self.view.width(), self.view.height());
+        let (w, h) = (self.this.view.width(), self.this.view.height());
         let rows: Vec<Found> = (0..h)
             .into_par_iter()
             .map(|row| {
+                let texels: Vec<Texel> = (0..w).map(|c| self.texel(c, row)).collect();
                 let mut edge = vec![NONE; w as usize];
                 let mut beyond = vec![NONE; w as usize];
                 let (mut by_tilt, mut by_corr) = (0, 0);
@@ -334,7 +366,7 @@ impl Finder<'_> {
                 };
                 let mut found = Vec::new();
                 for c in order {
-                    let (t, k) = self.is_edge(c, row);
+                    let (t, k) = self.is_edge(&texels, c as usize);
                     by_tilt += usize::from(t);
                     by_corr += usize::from(k);
                     if !(t || k) {
@@ -343,12 +375,13 @@ impl Finder<'_> {
                     found.push(c);
                     let mut k = i64::from(c) + self.dir;
                     while k >= 0 && k < i64::from(w) {
-                        let kk = k as u32;
-                        if !self.maps.is_covered(kk, row) || !self.hidden(kk, row) {
+                        let kk = k as usize;
+                        let t = &texels[kk];
+                        if t.other.is_none() || !self.hidden(t, row) {
                             break;
                         }
-                        if edge[kk as usize] == NONE {
-                            edge[kk as usize] = c;
+                        if edge[kk] == NONE {
+                            edge[kk] = c;
                         }
                         k += self.dir;
                     }
@@ -400,18 +433,14 @@ struct Found {
 }
 
 impl EndMap {
-    /// The depth, along the ray through image point `u`, of the plane of
-    /// the triangle this map sees at texel `(col, row)`: the surface's
-    /// depth there, free of the texel's sampling (the texel's own depth
-    /// where the plane is edge-on); infinite where the texel sees nothing.
-    pub(crate) fn surface_depth(
-        &self,
-        triangles: &[[DVec3; 3]],
-        col: u32,
-        row: u32,
-        u: DVec2,
-    ) -> f64 {
-        surface_depth(&self.view, &self.maps, triangles, col, row, u)
+    /// [`Sampled::surface_depth`] in this map.
+    pub(crate) fn surface_depth(&self, col: u32, row: u32, u: DVec2) -> f64 {
+        Sampled {
+            view: &self.view,
+            maps: &self.maps,
+            planes: &self.planes,
+        }
+        .surface_depth(col, row, u)
     }
 
     /// The world point of the occluding edge texel `(col, row)`: its

@@ -192,14 +192,6 @@ impl Method for Oess {
     }
 }
 
-/// What the lookups read: the light, the maps, the occluder triangles
-/// (whose planes give the depth a texel sees along a receiver's ray).
-struct Seen<'a> {
-    light: &'a Segment,
-    maps: &'a EndpointMaps,
-    triangles: &'a [[DVec3; 3]],
-}
-
 /// One receiver's lookup in one end's map.
 struct Lookup<'a> {
     map: &'a EndMap,
@@ -268,12 +260,7 @@ impl Oess {
             .as_ref()
             .as_ref()
             .map_err(|e| MethodError::LightView(*e))?;
-        let scene = Seen {
-            light: &segment,
-            maps,
-            triangles: stages.bvh().occluders().triangles(),
-        };
-        let results = per_receiver(input, || (), |(), _, r| Ok(self.shade(&scene, r)))?;
+        let results = per_receiver(input, || (), |(), _, r| Ok(self.shade(&segment, maps, r)))?;
         let mut out = OessPasses::default();
         for (v, w, reached) in results {
             out.visibility.push(v);
@@ -284,8 +271,12 @@ impl Oess {
     }
 
     /// `V`, the end weights and which maps reached receiver `r`.
-    fn shade(&self, scene: &Seen<'_>, r: &Receiver) -> (f64, [f64; 2], [bool; 2]) {
-        let (light, maps) = (scene.light, scene.maps);
+    fn shade(
+        &self,
+        light: &Segment,
+        maps: &EndpointMaps,
+        r: &Receiver,
+    ) -> (f64, [f64; 2], [bool; 2]) {
         let f = r.position;
         let lf = maps.l.view.frame();
         let q = lf.to_light(f);
@@ -305,7 +296,7 @@ impl Oess {
         let mut part = VisiblePart::FULL;
         let mut reached = [false, false];
         for (k, lookup) in lookups.iter().enumerate() {
-            let Some(e) = self.edge_for(scene, lookup.map, f) else {
+            let Some(e) = self.edge_for(lookup.map, f) else {
                 continue;
             };
             reached[k] = true;
@@ -316,7 +307,7 @@ impl Oess {
             return (part.fraction, [part.weight_l, part.weight_r], reached);
         }
         // Reached by no outreach: umbra, lit, or seen by one end only.
-        let seen = [self.seen(scene, &maps.l, f), self.seen(scene, &maps.r, f)];
+        let seen = [self.seen(&maps.l, f), self.seen(&maps.r, f)];
         let part = match seen {
             [true, true] => VisiblePart::FULL,
             [false, false] => VisiblePart::EMPTY,
@@ -327,7 +318,7 @@ impl Oess {
             // shadows, half the light (ours).
             [true, false] | [false, true] => {
                 let lookup = if seen[0] { &lookups[0] } else { &lookups[1] };
-                match self.edge_beyond(scene, lookup.map, f) {
+                match self.edge_beyond(lookup.map, f) {
                     Some(e) => self.visible(light, f, e, lookup.side),
                     None if seen[0] => VisiblePart::interval(0.0, 0.5),
                     None => VisiblePart::interval(0.5, 1.0),
@@ -362,21 +353,20 @@ impl Oess {
     /// The occluding edge for the receiver at `f` in `map`: the edges that
     /// reached its texel in the two rows around its position, interpolated
     /// to it (one row's alone where the other has none).
-    fn edge_for(&self, scene: &Seen<'_>, map: &EndMap, f: DVec3) -> Option<DVec3> {
-        self.row_edges(scene, map, f, EndMap::edge_at)
+    fn edge_for(&self, map: &EndMap, f: DVec3) -> Option<DVec3> {
+        self.row_edges(map, f, EndMap::edge_at)
     }
 
     /// The edges nearest the receiver's texel on the occluder's side in
     /// the two rows around it, interpolated as [`Oess::edge_for`] does.
-    fn edge_beyond(&self, scene: &Seen<'_>, map: &EndMap, f: DVec3) -> Option<DVec3> {
-        self.row_edges(scene, map, f, EndMap::beyond_at)
+    fn edge_beyond(&self, map: &EndMap, f: DVec3) -> Option<DVec3> {
+        self.row_edges(map, f, EndMap::beyond_at)
     }
 
     /// The edge columns `column` gives for the receiver's texel in the two
     /// rows around it, as edge points interpolated to its row position.
     fn row_edges(
         &self,
-        scene: &Seen<'_>,
         map: &EndMap,
         f: DVec3,
         column: impl Fn(&EndMap, i64, i64) -> Option<u32>,
@@ -396,7 +386,7 @@ impl Oess {
             let c = column(map, col, row)?;
             if self.depth_check {
                 // Penumbra only where the map sees the receiver's surface.
-                let d = map.surface_depth(scene.triangles, col as u32, row as u32, u);
+                let d = map.surface_depth(col as u32, row as u32, u);
                 if (d - q.z).abs() > self.bias * q.z {
                     return None;
                 }
@@ -411,7 +401,7 @@ impl Oess {
     }
 
     /// Whether the end of `map` sees the receiver at `f`.
-    fn seen(&self, scene: &Seen<'_>, map: &EndMap, f: DVec3) -> bool {
+    fn seen(&self, map: &EndMap, f: DVec3) -> bool {
         let view = &map.view;
         let q = view.frame().to_light(f);
         let u = DVec2::new(q.x / q.z, q.y / q.z);
@@ -423,7 +413,7 @@ impl Oess {
         {
             return true;
         }
-        map.surface_depth(scene.triangles, t.x as u32, t.y as u32, u) >= q.z * (1.0 - self.bias)
+        map.surface_depth(t.x as u32, t.y as u32, u) >= q.z * (1.0 - self.bias)
     }
 }
 
