@@ -104,17 +104,23 @@ fn random_scene(seed: u64) -> Result<Scene, Box<dyn std::error::Error>> {
     let height = rng.range(2.0, 3.5);
     let along = DVec3::new(turn.cos(), 0.0, turn.sin()) * half;
     let centre = DVec3::new(rng.range(-0.3, 0.3), height, rng.range(-0.3, 0.3));
-    let mut scene = Scene::new(Light::segment(centre - along, centre + along)?).with_mesh(
-        "floor",
-        quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0)?,
-    );
+    let mut scene = Scene::new(Light::segment(centre - along, centre + along)?)
+        .with_mesh("floor", quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0)?);
     let count = 2 + (rng.next() * 4.0) as usize;
     for k in 0..count {
         let at = DVec3::new(rng.range(-1.2, 1.2), 0.0, rng.range(-1.2, 1.2));
         let mesh = match (rng.next() * 3.0) as u32 {
             0 => {
-                let size = DVec3::new(rng.range(0.1, 0.6), rng.range(0.1, 0.8), rng.range(0.1, 0.6));
-                let lift = if rng.next() < 0.5 { 0.0 } else { rng.range(0.2, 0.8) };
+                let size = DVec3::new(
+                    rng.range(0.1, 0.6),
+                    rng.range(0.1, 0.8),
+                    rng.range(0.1, 0.6),
+                );
+                let lift = if rng.next() < 0.5 {
+                    0.0
+                } else {
+                    rng.range(0.2, 0.8)
+                };
                 cuboid(at + DVec3::Y * lift, at + DVec3::Y * lift + size)?
             }
             1 => {
@@ -122,9 +128,17 @@ fn random_scene(seed: u64) -> Result<Scene, Box<dyn std::error::Error>> {
                 sphere(at + DVec3::Y * rng.range(r, 1.2), r, 24)?
             }
             _ => {
-                let plate = quad(DVec3::ZERO, DVec3::X * rng.range(0.1, 0.5), -DVec3::Z * rng.range(0.1, 0.5))?;
-                Transform::new(1.0, rng.range(0.0, 90.0), at + DVec3::Y * rng.range(0.3, 1.5))?
-                    .apply(&plate)?
+                let plate = quad(
+                    DVec3::ZERO,
+                    DVec3::X * rng.range(0.1, 0.5),
+                    -DVec3::Z * rng.range(0.1, 0.5),
+                )?;
+                Transform::new(
+                    1.0,
+                    rng.range(0.0, 90.0),
+                    at + DVec3::Y * rng.range(0.3, 1.5),
+                )?
+                .apply(&plate)?
             }
         };
         scene = scene.with_mesh(format!("occluder {k}"), mesh);
@@ -147,7 +161,10 @@ fn random_scenes(side: u32, count: u64) -> Result<(), Box<dyn std::error::Error>
     let mut rmse: Vec<Vec<(f64, f64)>> = vec![Vec::new(); RANDOM.len()];
     for seed in 0..count {
         let scene = random_scene(seed)?;
-        let camera = scene.camera().ok_or("a camera")?.with_resolution(side, side)?;
+        let camera = scene
+            .camera()
+            .ok_or("a camera")?
+            .with_resolution(side, side)?;
         let stages = Stages::new(&scene);
         let frame = Frame::from_camera(&camera, stages.bvh());
         let exact = method::run(&Exact, &stages, &frame)?.output.visibility;
@@ -196,7 +213,11 @@ fn random_scenes(side: u32, count: u64) -> Result<(), Box<dyn std::error::Error>
             mean(&all),
             median(pen.clone()),
             mean(&pen),
-            if k == 0 { "—".to_owned() } else { format!("{wins} of {count}") }
+            if k == 0 {
+                "—".to_owned()
+            } else {
+                format!("{wins} of {count}")
+            }
         );
     }
     println!();

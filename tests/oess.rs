@@ -6,7 +6,7 @@
 //! paper's three artifacts show where the paper says they appear.
 
 use glam::{DVec2, DVec3};
-use softshadow::method::{self, Exact, Method, Oess};
+use softshadow::method::{self, Exact, Oess};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::primitive::{cuboid, quad, sphere};
 use softshadow::scene::{builtin, Light, Scene};
@@ -96,11 +96,15 @@ fn floor_frame(points: impl Iterator<Item = (f64, f64)>) -> Frame {
 fn texel(stages: &Stages, frame: &Frame, n: u32, depth: f64) -> DVec2 {
     let mut lo = DVec2::splat(f64::INFINITY);
     let mut hi = DVec2::splat(f64::NEG_INFINITY);
-    let points = frame
-        .receivers()
-        .iter()
-        .map(|r| r.position)
-        .chain(stages.bvh().occluders().triangles().iter().flatten().copied());
+    let points = frame.receivers().iter().map(|r| r.position).chain(
+        stages
+            .bvh()
+            .occluders()
+            .triangles()
+            .iter()
+            .flatten()
+            .copied(),
+    );
     for p in points {
         for e in [L, R] {
             let u = DVec2::new(p.x - e.x, p.z - e.z) / (e.y - p.y);
@@ -226,11 +230,7 @@ fn the_law_of_sines_agrees_with_the_stable_construction() {
     // largest difference is rounding (measured 2e-15), far below 1e-9.
     let scene = builtin("linear-light").unwrap();
     let stages = Stages::new(&scene);
-    let camera = scene
-        .camera()
-        .unwrap()
-        .with_resolution(160, 160)
-        .unwrap();
+    let camera = scene.camera().unwrap().with_resolution(160, 160).unwrap();
     let frame = Frame::from_camera(&camera, stages.bvh());
     let (stable, reached) = oess(&Oess::default(), &stages, &frame);
     let (sines, _) = oess(&Oess::default().with_law_of_sines(true), &stages, &frame);
@@ -273,10 +273,7 @@ fn object_alternation() {
             "wall",
             cuboid(DVec3::new(0.5, 0.0, -1.0), DVec3::new(0.7, 1.2, 1.0)).unwrap(),
         ),
-        (
-            "ball",
-            sphere(DVec3::new(0.0, 0.7, 0.0), 0.35, 32).unwrap(),
-        ),
+        ("ball", sphere(DVec3::new(0.0, 0.7, 0.0), 0.35, 32).unwrap()),
     ]);
     let stages = Stages::new(&scene);
     let zs: Vec<f64> = (0..=200).map(|k| 0.005 * f64::from(k)).collect();
@@ -302,8 +299,15 @@ fn object_alternation() {
     );
     // Where the ball's cross-section ends: its shadow on this line ends
     // near z = 0.35·2.5/1.8 ≈ 0.49.
-    assert!((0.4..0.55).contains(&zs[at]), "the leap is at z = {}", zs[at]);
-    assert!(excess > 0.15, "OESS changes only {excess} more than the exact answer");
+    assert!(
+        (0.4..0.55).contains(&zs[at]),
+        "the leap is at z = {}",
+        zs[at]
+    );
+    assert!(
+        excess > 0.15,
+        "OESS changes only {excess} more than the exact answer"
+    );
 }
 
 /// The root mean square of `v` minus its running mean over `±half`
@@ -337,8 +341,15 @@ fn spare_edge_interpolation() {
     // Along a line that stays in the penumbra's middle: the edge's shadow
     // runs at 45° on the floor too.
     let frame = floor_frame(zs.iter().map(|&z| (z + 0.15, z)));
-    let want: Vec<f64> = frame.receivers().iter().map(|r| edge.fraction(r.position)).collect();
-    assert!(want.iter().all(|&w| w > 0.05 && w < 0.95), "the line leaves the penumbra");
+    let want: Vec<f64> = frame
+        .receivers()
+        .iter()
+        .map(|r| edge.fraction(r.position))
+        .collect();
+    assert!(
+        want.iter().all(|&w| w > 0.05 && w < 0.95),
+        "the line leaves the penumbra"
+    );
     let mut ripples = Vec::new();
     for map in [400, 800, 1600] {
         let (v, _) = oess(&Oess::default().with_resolution(map), &stages, &frame);
@@ -348,7 +359,9 @@ fn spare_edge_interpolation() {
         let half = (2.0 * row / 0.001).round() as usize;
         ripples.push((map, ripple(&error, half), ripple(&want, half)));
     }
-    println!("spare edge interpolation: (map, ripple of the error, of the exact answer) {ripples:?}");
+    println!(
+        "spare edge interpolation: (map, ripple of the error, of the exact answer) {ripples:?}"
+    );
     for w in ripples.windows(2) {
         let ratio = w[0].1 / w[1].1;
         assert!(
@@ -392,7 +405,10 @@ fn receiver_penetration() {
         .output
         .visibility;
     // Umbra up to the exact reference's rounding.
-    assert!(exact.iter().all(|&v| v < 1e-12), "the face is umbra: {exact:?}");
+    assert!(
+        exact.iter().all(|&v| v < 1e-12),
+        "the face is umbra: {exact:?}"
+    );
     let (v, reached) = oess(&Oess::default(), &stages, &frame);
     let penetrated = reached.iter().filter(|r| r[0] || r[1]).count();
     let lit = v.iter().filter(|&&v| v > 0.0).count();
@@ -403,7 +419,10 @@ fn receiver_penetration() {
     );
     assert!(lit * 4 > v.len() && mean > 0.05);
     let (checked, reached) = oess(&Oess::default().with_depth_check(true), &stages, &frame);
-    assert!(reached.iter().all(|r| !r[0] && !r[1]), "no penumbra with the depth check");
+    assert!(
+        reached.iter().all(|r| !r[0] && !r[1]),
+        "no penumbra with the depth check"
+    );
     let mean_checked = checked.iter().sum::<f64>() / checked.len() as f64;
     println!("with depth-check: mean V {mean_checked:.3}");
     assert!(mean_checked < 0.25 * mean);
