@@ -440,3 +440,34 @@ fn receiver_penetration() {
         );
     }
 }
+
+#[test]
+fn end_weights_shade_on_the_plain_picture_s_scale() {
+    use softshadow::render::image::{shaded, shaded_by_ends};
+    let scene = builtin("linear-light").unwrap();
+    let stages = Stages::new(&scene);
+    let camera = scene.camera().unwrap().with_resolution(48, 36).unwrap();
+    let frame = Frame::from_camera(&camera, stages.bvh());
+    let n = frame.receivers().len();
+    // The light wholly visible: the picture is the plain one at V = 1.
+    assert_eq!(
+        shaded_by_ends(&scene, &frame, &vec![[0.5, 0.5]; n]).data,
+        shaded(&scene, &frame, &vec![1.0; n]).data
+    );
+    // Half the light visible, at one end or the other: a receiver nearer
+    // to L (x < 0, where L is at x = −1.2) is brighter with L's half.
+    let left = shaded_by_ends(&scene, &frame, &vec![[0.5, 0.0]; n]);
+    let right = shaded_by_ends(&scene, &frame, &vec![[0.0, 0.5]; n]);
+    let mut compared = 0;
+    for (pixel, &k) in frame.pixels().iter().enumerate() {
+        let Some(r) = frame.receivers().get(k as usize) else {
+            continue; // background
+        };
+        let (a, b) = (left.data[3 * pixel], right.data[3 * pixel]);
+        if r.position.x < -0.3 && r.normal.is_some_and(|n| n.y > 0.9) {
+            assert!(a >= b, "pixel {pixel}, receiver at {}", r.position);
+            compared += usize::from(a > b);
+        }
+    }
+    assert!(compared > 50, "{compared} receivers brighter from L's half");
+}

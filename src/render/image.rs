@@ -152,20 +152,21 @@ pub fn shaded(scene: &Scene, frame: &Frame, visibility: &[f64]) -> Rgb {
 }
 
 /// The frame shaded by a segment light's two end samples, as OESS does
-/// (linear emission, its substep 4.3): `E = w_L·g(L) + w_R·g(R)` with the
+/// (linear emission, its substep 4.3), on [`shaded`]'s scale: the
+/// unshadowed term is [`shaded`]'s, and `V` is replaced by the end
+/// samples' share `(w_L·g(L) + w_R·g(R)) / ((g(L) + g(R)) / 2)`, with the
 /// weights `[w_L, w_R]` of each receiver ([`Output::end_weights`]) and
-/// `g(X) = max(0, n·x̂) / |x|²`, `x` from the receiver to the end `X`; the
-/// unshadowed value (`w_L = w_R = ½`) of the brightest receiver is white.
-/// For a light that is not a segment the weights' sum is the visibility
-/// and the picture is [`shaded`]'s.
+/// `g(X) = max(0, n·x̂) / |x|²`, `x` from the receiver to the end `X`. With
+/// the light wholly visible (`w_L = w_R = ½`) the picture is [`shaded`]'s;
+/// where one end's part of the light is hidden, the receiver gets that
+/// end's share of the light's strength. So the pictures of every method
+/// share one exposure. For a light that is not a segment, or a receiver
+/// that neither end lights, the weights' sum is `V`.
 ///
 /// [`Output::end_weights`]: crate::method::Output::end_weights
 #[must_use]
 pub fn shaded_by_ends(scene: &Scene, frame: &Frame, weights: &[[f64; 2]]) -> Rgb {
-    let Light::Segment(segment) = scene.light() else {
-        let v: Vec<f64> = weights.iter().map(|[l, r]| l + r).collect();
-        return shaded(scene, frame, &v);
-    };
+    let light = scene.light();
     let g = |end: DVec3, r: &Receiver| {
         let x = end - r.position;
         let e = facing(end, r).dot(x.normalize_or_zero()).max(0.0) / x.length_squared();
@@ -175,12 +176,25 @@ pub fn shaded_by_ends(scene: &Scene, frame: &Frame, weights: &[[f64; 2]]) -> Rgb
             0.0
         }
     };
-    let ends = frame.receivers().iter().zip(weights).map(|(r, [wl, wr])| {
+    let visible = |r: &Receiver, [wl, wr]: [f64; 2]| {
+        let Light::Segment(segment) = light else {
+            return wl + wr;
+        };
         let (gl, gr) = (g(segment.a(), r), g(segment.b(), r));
-        (0.5 * (gl + gr), wl * gl + wr * gr)
-    });
-    let (unshadowed, shadowed): (Vec<f64>, Vec<f64>) = ends.unzip();
-    expose_values(frame, &unshadowed, &shadowed)
+        let share = (wl * gl + wr * gr) / (0.5 * (gl + gr));
+        if share.is_finite() {
+            share.clamp(0.0, 2.0)
+        } else {
+            wl + wr
+        }
+    };
+    let v: Vec<f64> = frame
+        .receivers()
+        .iter()
+        .zip(weights)
+        .map(|(r, &w)| visible(r, w))
+        .collect();
+    shaded(scene, frame, &v)
 }
 
 /// The receiver's normal, or the direction to `toward` where it has none.
