@@ -74,6 +74,9 @@
 //!   and the shadow methods (turns on `bvh` and `reference`; `png`).
 //! - `scene-file`: `scene::file` and `scene::builtin`: JSON scene and points
 //!   files, OBJ meshes, the built-in scenes (`serde`, `serde_json`, `tobj`).
+//! - `report`: [`report`], the accuracy-against-run-time report (turns on
+//!   `render` and `scene-file`; `plotters` for the SVG plots). On by
+//!   default through `cli`.
 //! - `arbitrary`: [`arbitrary`], deterministic generators of near-degenerate
 //!   inputs, shared by the property tests, the fuzz targets and the
 //!   benchmarks.
@@ -91,4 +94,6 @@ pub mod method;
 pub mod reference;
 #[cfg(feature = "render")]
 pub mod render;
+#[cfg(feature = "report")]
+pub mod report;
 pub mod scene;

@@ -46,6 +46,35 @@ impl Rgb {
         }
     }
 
+    /// The image shrunk by `factor` in each direction, each pixel the mean
+    /// of its `factor × factor` block (of the sRGB codes; the edge blocks
+    /// of a side not divisible by `factor` are dropped). `factor ≤ 1` is a
+    /// copy.
+    #[must_use]
+    pub fn downsample(&self, factor: u32) -> Rgb {
+        if factor <= 1 {
+            return self.clone();
+        }
+        let (w, h) = (self.width / factor, self.height / factor);
+        let mut out = Rgb::new(w, h, [0, 0, 0]);
+        let n = u64::from(factor * factor);
+        for y in 0..h {
+            for x in 0..w {
+                let mut sum = [0u64; 3];
+                for dy in 0..factor {
+                    for dx in 0..factor {
+                        let i = 3 * (((y * factor + dy) * self.width + x * factor + dx) as usize);
+                        for c in 0..3 {
+                            sum[c] += u64::from(self.data[i + c]);
+                        }
+                    }
+                }
+                out.set(x, y, sum.map(|s| ((s + n / 2) / n) as u8));
+            }
+        }
+        out
+    }
+
     /// Writes the image as a PNG file, atomically: the bytes go to a
     /// temporary file in the same folder, which is renamed to `path` only
     /// once complete, so a reader never sees a partial picture, whatever

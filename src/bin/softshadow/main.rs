@@ -9,6 +9,8 @@
 //!   exact and Monte Carlo references side by side on the default scene.
 //! - `softshadow visibility --scene NAME|FILE --points FILE --method M
 //!   [--seed S]`: the visibility of each receiver point as JSON on stdout.
+//! - `softshadow report [--scene S]… [--method M]… [--out DIR] [--shard
+//!   i/n] [--merge DIR…]`: the accuracy-against-run-time report.
 //!
 //! Bad input ends with one line on stderr naming the file, the place and
 //! the field, exit status 2, and nothing on stdout.
@@ -16,6 +18,7 @@
 mod check;
 mod progress;
 mod render;
+mod report;
 mod selfcheck;
 mod visibility;
 
@@ -42,6 +45,9 @@ enum Command {
     Render(render::Args),
     /// The visibility V(p) of each receiver of a points file, as JSON.
     Visibility(visibility::Args),
+    /// The accuracy-against-run-time report: every scene × method setting,
+    /// timed and measured against exact, with the Monte Carlo yardstick.
+    Report(report::Args),
 }
 
 /// Exit status for bad input (a file, an argument).
@@ -93,6 +99,7 @@ fn main() -> ExitCode {
         Some(Command::Check) => return check::run(),
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Visibility(args)) => visibility::run(&args),
+        Some(Command::Report(args)) => report::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,

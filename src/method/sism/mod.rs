@@ -297,6 +297,8 @@ impl Configurable for Sism {
         "sism:exact-union",
         "sism:horizon",
         "sism:exact-union,horizon",
+        "sism:all-edges",
+        "sism:conservative",
     ];
     #[rustfmt::skip]
     const FIELDS: &'static [Field<Sism>] = &[

@@ -1,0 +1,160 @@
+//! `softshadow report`: the accuracy-against-run-time report
+//! (`softshadow::report`), one part of it (`--shard i/n`), or the merge of
+//! parts (`--merge DIR…`).
+
+use crate::visibility::resolve_scene;
+use clap::Args as ClapArgs;
+use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use softshadow::report::{self, Case, Config, Results, Shard};
+use softshadow::scene::BUILTIN_NAMES;
+use std::io::IsTerminal;
+use std::path::{Path, PathBuf};
+
+#[derive(ClapArgs)]
+pub struct Args {
+    /// A scene to sweep (built-in name or JSON file with a camera); repeat
+    /// for several. Default: every built-in scene.
+    #[arg(long = "scene")]
+    scenes: Vec<String>,
+    /// A method setting to run instead of the registry's comparison
+    /// settings (NAME or NAME:OPTION,…); repeat for several. `exact` and
+    /// the Monte Carlo yardstick always run.
+    #[arg(long = "method")]
+    methods: Vec<String>,
+    /// The folder the report is written to (created if missing).
+    #[arg(long, default_value = "report")]
+    out: PathBuf,
+    /// Run the i-th of n disjoint parts of the sweep (1 ≤ i ≤ n).
+    #[arg(long)]
+    shard: Option<Shard>,
+    /// Join the parts written to these folders (each holds a results.json)
+    /// into --out, instead of running.
+    #[arg(long, num_args = 1.., conflicts_with_all = ["scenes", "methods", "shard"])]
+    merge: Vec<PathBuf>,
+    /// The side of every scene's camera frame.
+    #[arg(long, default_value_t = 256, value_parser = clap::value_parser!(u32).range(8..=4096))]
+    side: u32,
+    /// Timed runs per cell (the median is reported).
+    #[arg(long, default_value_t = 3, value_parser = clap::value_parser!(u32).range(1..=100))]
+    runs: u32,
+    /// The largest Monte Carlo sample count of the yardstick (2, 4, … up to
+    /// this power of two).
+    #[arg(long, default_value_t = 4096, value_parser = clap::value_parser!(u32).range(2..=1_048_576))]
+    mc_max: u32,
+    /// The side of the pictures (the default scene's: twice this, up to
+    /// --side); 0 for none.
+    #[arg(long, default_value_t = 128)]
+    pictures: u32,
+    /// Also write the accuracy pages (methods.md, one per method) into this
+    /// folder, keeping each page's text above its marker line.
+    #[arg(long)]
+    accuracy: Option<PathBuf>,
+}
+
+/// A progress bar on stderr, when it is a terminal.
+fn bar() -> ProgressBar {
+    let bar = ProgressBar::with_draw_target(
+        None,
+        if std::io::stderr().is_terminal() {
+            ProgressDrawTarget::stderr()
+        } else {
+            ProgressDrawTarget::hidden()
+        },
+    );
+    if let Ok(style) = ProgressStyle::with_template("{wide_bar} {pos}/{len} cells, {elapsed} · {msg}") {
+        bar.set_style(style);
+    }
+    bar
+}
+
+fn read_part(dir: &Path) -> Result<Results, String> {
+    let path = dir.join("results.json");
+    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Copies the parts' pictures into `out`.
+fn copy_pictures(parts: &[PathBuf], results: &Results, out: &Path) -> Result<(), String> {
+    for cell in &results.cells {
+        let Some(p) = &cell.picture else { continue };
+        let to = out.join(p);
+        if to.exists() {
+            continue;
+        }
+        if let Some(from) = parts.iter().map(|d| d.join(p)).find(|f| f.exists()) {
+            if let Some(parent) = to.parent() {
+                std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+            }
+            std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
+        }
+    }
+    Ok(())
+}
+
+pub fn run(args: &Args) -> Result<(), String> {
+    let results = if args.merge.is_empty() {
+        let names: Vec<String> = if args.scenes.is_empty() {
+            BUILTIN_NAMES.iter().map(|s| (*s).to_owned()).collect()
+        } else {
+            args.scenes.clone()
+        };
+        let cases = names
+            .iter()
+            .map(|n| {
+                Ok(Case {
+                    name: n.clone(),
+                    scene: resolve_scene(n)?,
+                })
+            })
+            .collect::<Result<Vec<_>, String>>()?;
+        for m in &args.methods {
+            softshadow::method::parse(m).map_err(|e| format!("--method {m}: {e}"))?;
+        }
+        let config = Config {
+            side: args.side,
+            runs: args.runs,
+            mc: (1..=20)
+                .map(|k| 1u32 << k)
+                .take_while(|&n| n <= args.mc_max)
+                .collect(),
+            methods: args.methods.clone(),
+            shard: args.shard,
+            picture_side: args.pictures,
+        };
+        let bar = bar();
+        let progress = |done: usize, total: usize, what: &str| {
+            bar.set_length(total as u64);
+            bar.set_position(done as u64);
+            bar.set_message(what.to_owned());
+        };
+        let part = report::run(&cases, &config, Some(&args.out), &progress)?;
+        bar.finish_and_clear();
+        report::finish(part)
+    } else {
+        let parts = args
+            .merge
+            .iter()
+            .map(|d| read_part(d))
+            .collect::<Result<Vec<_>, String>>()?;
+        let merged = report::merge(parts)?;
+        copy_pictures(&args.merge, &merged, &args.out)?;
+        merged
+    };
+    report::write(&results, &args.out)?;
+    if let Some(dir) = &args.accuracy {
+        let command = std::env::args().collect::<Vec<_>>().join(" ");
+        report::write_accuracy(&results, dir, &command)?;
+    }
+    let missing = results.config.cells - results.cells.len();
+    println!(
+        "wrote {} ({} cells{})",
+        args.out.join("index.md").display(),
+        results.cells.len(),
+        if missing > 0 {
+            format!(", {missing} of the sweep's in other parts")
+        } else {
+            String::new()
+        }
+    );
+    Ok(())
+}

@@ -1,0 +1,734 @@
+//! The accuracy-against-run-time report (`softshadow report`): every
+//! scene × method setting × Monte Carlo yardstick, timed and measured
+//! against the exact reference, written as Markdown tables, SVG plots,
+//! side-by-side pictures and `results.json`.
+//!
+//! # The sweep
+//!
+//! A *cell* is one (scene, method setting). The settings are the
+//! registry's: every built method's [`Entry::compare`] list (so a method
+//! registered tomorrow is in the next report with no list here), `exact`
+//! (the reference itself, for its time), and the yardstick `mc:N` for each
+//! `N` of [`Config::mc`]. A setting whose method does not handle the
+//! scene's light is a cell reading "n/a (segment light)". Cells are
+//! numbered in a fixed order (scenes, then settings); shard `i/n` runs the
+//! cells whose number is `i − 1` modulo `n`.
+//!
+//! # What a cell measures
+//!
+//! - **Time**: the wall time of [`method::run`] on fresh [`Stages`] whose BVH
+//!   is built beforehand (so the maps a method builds are paid, the shared
+//!   BVH and primary rays not; those are in [`SceneRecord`]), the median of
+//!   [`Config::runs`] runs — fewer when a run takes more than
+//!   [`SLOW_RUN`] seconds, the count kept per cell.
+//! - **Error** of `V` against [`Exact`] (DESIGN §7): mean absolute, RMSE,
+//!   99th percentile, maximum, mean signed, share over 0.05
+//!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
+//!   exact penumbra (`0 < V_exact < 1`), the ground (object 0, the floor of
+//!   every built-in scene) and the occluders (every other object); and the
+//!   same for the shaded value `V·max(0, n·l̂)` (`l̂` toward the light's
+//!   centre), which is what the papers' pictures show.
+//! - **The falloff profile**: `V` along the scene's profile row, the image
+//!   row with the most exact-penumbra receivers.
+//! - **The yardstick** (derived when the parts are finished, [`finish`]):
+//!   per scene, Monte Carlo's RMSE against `N` fitted by a power law (least
+//!   squares in log–log) and its time against `N` by a line; per cell, the
+//!   `N` at which the fitted RMSE equals the cell's ([`Equal`]: stated as
+//!   below or above the measured range rather than extrapolated) and the
+//!   speed-up, Monte Carlo's fitted time at that `N` over the cell's time.
+//!
+//! # `results.json`
+//!
+//! [`Results`] serialized with `serde_json`: `format`, `config` (`side`,
+//! `runs`, `mc`), `machines` (one line per machine that ran a part),
+//! `scenes` ([`SceneRecord`]), `cells` ([`CellRecord`]) and `yardsticks`
+//! (per scene, [`Yardstick`]). Times are seconds.
+
+mod machine;
+mod papers;
+mod plots;
+mod write;
+mod yardstick;
+
+pub use machine::machine_line;
+pub use write::{write, write_accuracy, ACCURACY_MARKER};
+pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
+
+use crate::method::registry::{self, REGISTRY};
+use crate::method::{self, Exact, Method};
+use crate::render::image::ErrorSummary;
+use crate::render::{Frame, Stages};
+use crate::scene::{Light, LightKind, Scene};
+use serde::{Deserialize, Serialize};
+use std::collections::BTreeMap;
+use std::time::Instant;
+
+/// The format tag of `results.json`.
+pub const FORMAT: &str = "softshadow-report/1";
+
+/// A run longer than this many seconds is not repeated.
+pub const SLOW_RUN: f64 = 2.0;
+
+/// The receiver groups, in table order.
+pub const GROUPS: [&str; 4] = ["all", "penumbra", "ground", "occluders"];
+
+/// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
+#[must_use]
+pub fn default_mc() -> Vec<u32> {
+    (1..=12).map(|k| 1u32 << k).collect()
+}
+
+/// One part of a sweep.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct Shard {
+    /// Which part, from 1.
+    pub index: u32,
+    /// Of how many.
+    pub count: u32,
+}
+
+impl std::str::FromStr for Shard {
+    type Err = String;
+
+    /// `i/n` with `1 ≤ i ≤ n`.
+    fn from_str(s: &str) -> Result<Shard, String> {
+        let bad = || format!("'{s}': a shard is i/n with 1 ≤ i ≤ n");
+        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+        let (index, count): (u32, u32) = (
+            i.trim().parse().map_err(|_| bad())?,
+            n.trim().parse().map_err(|_| bad())?,
+        );
+        if index == 0 || index > count {
+            return Err(bad());
+        }
+        Ok(Shard { index, count })
+    }
+}
+
+/// What to sweep.
+#[derive(Clone, Debug)]
+pub struct Config {
+    /// The image side of every scene's camera frame (default 256).
+    pub side: u32,
+    /// Timed runs per cell (default 3).
+    pub runs: u32,
+    /// The yardstick's Monte Carlo sample counts (default [`default_mc`]).
+    pub mc: Vec<u32>,
+    /// Method settings to run instead of the registry's (empty: the
+    /// registry's); the yardstick and `exact` are always run.
+    pub methods: Vec<String>,
+    /// The part of the sweep to run (`None`: all of it).
+    pub shard: Option<Shard>,
+    /// The side of the pictures (`0`: none); the scene named `default`
+    /// gets twice this, up to [`Config::side`].
+    pub picture_side: u32,
+}
+
+impl Default for Config {
+    fn default() -> Config {
+        Config {
+            side: 256,
+            runs: 3,
+            mc: default_mc(),
+            methods: Vec::new(),
+            shard: None,
+            picture_side: 128,
+        }
+    }
+}
+
+/// A scene to sweep: its name (a built-in name or a file) and the scene.
+#[derive(Clone, Debug)]
+pub struct Case {
+    /// How the report names it.
+    pub name: String,
+    /// The scene; it must have a camera.
+    pub scene: Scene,
+}
+
+/// What the report records of a scene.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct SceneRecord {
+    /// The scene's name.
+    pub name: String,
+    /// Its light's kind (`sphere`, `segment`, …).
+    pub light: String,
+    /// The frame's size.
+    pub width: u32,
+    /// The frame's height.
+    pub height: u32,
+    /// Receivers (eye-visible points).
+    pub receivers: usize,
+    /// Receivers in the exact penumbra.
+    pub penumbra: usize,
+    /// Receivers per group, [`GROUPS`] order.
+    pub groups: [usize; 4],
+    /// The shared stages' seconds: BVH build, primary rays.
+    pub shared: [f64; 2],
+    /// The profile row (image row) and its pixels' columns.
+    pub profile_row: u32,
+    /// The profile's columns, one per receiver on the row.
+    pub profile_columns: Vec<u32>,
+    /// The exact `V` along the profile.
+    pub profile_exact: Vec<f64>,
+    /// The machine (index into [`Results::machines`]) that built this
+    /// record.
+    pub machine: usize,
+}
+
+/// One error summary, as recorded.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
+pub struct Errors {
+    /// Receivers compared.
+    pub count: usize,
+    /// Mean `|e|`.
+    pub mean_abs: f64,
+    /// `√(mean e²)`.
+    pub rmse: f64,
+    /// 99th percentile of `|e|`.
+    pub p99_abs: f64,
+    /// Largest `|e|`.
+    pub max_abs: f64,
+    /// Mean `e` (negative: too dark).
+    pub mean_signed: f64,
+    /// Share with `|e| > 0.05`.
+    pub share_over_0_05: f64,
+}
+
+impl From<ErrorSummary> for Errors {
+    fn from(s: ErrorSummary) -> Errors {
+        Errors {
+            count: s.count,
+            mean_abs: s.mean_abs,
+            rmse: s.rmse,
+            p99_abs: s.p99_abs,
+            max_abs: s.max_abs,
+            mean_signed: s.mean_signed,
+            share_over_0_05: s.share_over_0_05,
+        }
+    }
+}
+
+/// One cell of the sweep, as recorded.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct CellRecord {
+    /// Its number in the sweep.
+    pub index: usize,
+    /// The scene's name.
+    pub scene: String,
+    /// The method setting (`sism:exact-union`).
+    pub method: String,
+    /// The method's base name (`sism`).
+    pub base: String,
+    /// `ok`, `n/a (segment light)`, or the error.
+    pub status: String,
+    /// The machine (index into [`Results::machines`]) that ran it.
+    pub machine: usize,
+    /// Seconds of each timed run.
+    pub runs: Vec<f64>,
+    /// Their median.
+    pub seconds: Option<f64>,
+    /// Errors of `V` per group ([`GROUPS`] order).
+    pub errors: Option<[Errors; 4]>,
+    /// Errors of the shaded value per group.
+    pub shaded: Option<[Errors; 4]>,
+    /// `V` along the scene's profile.
+    pub profile: Vec<f64>,
+    /// The side-by-side picture, relative to the report's folder.
+    pub picture: Option<String>,
+    /// The Monte Carlo sample count of equal RMSE over every receiver
+    /// (derived).
+    pub mc_equal: Option<Equal>,
+    /// The same over the penumbra (derived).
+    pub mc_equal_penumbra: Option<Equal>,
+    /// Monte Carlo's time at `mc_equal` over this cell's (derived).
+    pub speedup: Option<f64>,
+}
+
+/// A report, or one part of one.
+#[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
+pub struct Results {
+    /// [`FORMAT`].
+    pub format: String,
+    /// The sweep's settings.
+    pub config: ConfigRecord,
+    /// One line per machine that ran a part (CPU, cores, load).
+    pub machines: Vec<String>,
+    /// The scenes, in sweep order.
+    pub scenes: Vec<SceneRecord>,
+    /// The cells, by number.
+    pub cells: Vec<CellRecord>,
+    /// Per scene name, Monte Carlo's fitted curves (derived).
+    pub yardsticks: BTreeMap<String, Yardstick>,
+}
+
+/// What of [`Config`] a report records.
+#[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
+pub struct ConfigRecord {
+    /// The frames' side.
+    pub side: u32,
+    /// Timed runs per cell.
+    pub runs: u32,
+    /// The yardstick's sample counts.
+    pub mc: Vec<u32>,
+    /// The sweep's cell count.
+    pub cells: usize,
+}
+
+/// The settings a sweep runs on every scene: `exact`, the registry's
+/// comparison settings (or `config.methods`), then the yardstick.
+#[must_use]
+pub fn settings(config: &Config) -> Vec<String> {
+    let mut out = vec!["exact".to_owned()];
+    if config.methods.is_empty() {
+        for entry in REGISTRY.iter().filter(|e| e.is_built()) {
+            out.extend(entry.compare.iter().map(|s| (*s).to_owned()));
+        }
+    } else {
+        out.extend(config.methods.iter().filter(|m| *m != "exact").cloned());
+    }
+    out.extend(config.mc.iter().map(|n| format!("mc:{n}")));
+    let mut seen = std::collections::HashSet::new();
+    out.retain(|s| seen.insert(s.clone()));
+    out
+}
+
+/// The settings that get a picture: `exact` and the first comparison
+/// setting of each method (its defaults).
+fn pictured(setting: &str) -> bool {
+    setting == "exact"
+        || REGISTRY
+            .iter()
+            .any(|e| e.compare.first().is_some_and(|s| *s == setting))
+}
+
+/// Progress: called with the cells done, the cells of this part, and what
+/// runs now.
+pub type Progress<'a> = &'a (dyn Fn(usize, usize, &str) + Sync);
+
+/// One scene's shared state in a run: its frame, the exact answer, the
+/// groups and the shading factors.
+struct Prepared {
+    frame: Frame,
+    exact: Vec<f64>,
+    groups: [Vec<bool>; 4],
+    shading: Vec<f64>,
+    profile: Vec<usize>,
+    record: SceneRecord,
+}
+
+/// Runs this part of the sweep over `cases`, writing pictures under
+/// `out/pictures` (when `out` is given); the derived columns are left
+/// empty ([`finish`] fills them).
+///
+/// # Errors
+/// A method setting that does not parse; a picture that cannot be
+/// written. A scene without a camera, a method that fails, are recorded
+/// in the cells, not returned.
+pub fn run(
+    cases: &[Case],
+    config: &Config,
+    out: Option<&std::path::Path>,
+    progress: Progress<'_>,
+) -> Result<Results, String> {
+    let settings = settings(config);
+    let methods: Vec<Box<dyn Method>> = settings
+        .iter()
+        .map(|s| registry::parse(s))
+        .collect::<Result<_, _>>()?;
+    let machine = machine_line();
+    let total = cases.len() * settings.len();
+    let mine: Vec<usize> = (0..total)
+        .filter(|k| {
+            config
+                .shard
+                .is_none_or(|s| (*k as u32) % s.count == s.index - 1)
+        })
+        .collect();
+    let mut results = Results {
+        format: FORMAT.to_owned(),
+        config: ConfigRecord {
+            side: config.side,
+            runs: config.runs,
+            mc: config.mc.clone(),
+            cells: total,
+        },
+        machines: vec![machine],
+        scenes: Vec::new(),
+        cells: Vec::new(),
+        yardsticks: BTreeMap::new(),
+    };
+    let mut done = 0;
+    for (s, case) in cases.iter().enumerate() {
+        let cells: Vec<usize> = mine
+            .iter()
+            .copied()
+            .filter(|k| k / settings.len() == s)
+            .collect();
+        if cells.is_empty() {
+            continue;
+        }
+        progress(done, mine.len(), &format!("{}: exact", case.name));
+        let prepared = match prepare(case, config) {
+            Ok(p) => p,
+            Err(e) => {
+                for k in cells {
+                    results.cells.push(failed(k, case, &settings[k % settings.len()], &e));
+                    done += 1;
+                }
+                continue;
+            }
+        };
+        results.scenes.push(prepared.record.clone());
+        for k in cells {
+            let setting = &settings[k % settings.len()];
+            progress(done, mine.len(), &format!("{}: {setting}", case.name));
+            let method = methods[k % settings.len()].as_ref();
+            let mut cell = run_cell(k, case, &prepared, method, config);
+            if cell.status == "ok" && pictured(setting) && config.picture_side > 0 {
+                if let Some(dir) = out {
+                    cell.picture = Some(picture(case, &prepared, method, config, dir)?);
+                }
+            }
+            results.cells.push(cell);
+            done += 1;
+        }
+    }
+    progress(done, mine.len(), "done");
+    Ok(results)
+}
+
+/// A cell that could not run.
+fn failed(index: usize, case: &Case, setting: &str, why: &str) -> CellRecord {
+    CellRecord {
+        index,
+        scene: case.name.clone(),
+        method: setting.to_owned(),
+        base: base(setting),
+        status: format!("error: {why}"),
+        machine: 0,
+        runs: Vec::new(),
+        seconds: None,
+        errors: None,
+        shaded: None,
+        profile: Vec::new(),
+        picture: None,
+        mc_equal: None,
+        mc_equal_penumbra: None,
+        speedup: None,
+    }
+}
+
+fn base(setting: &str) -> String {
+    setting.split(':').next().unwrap_or(setting).to_owned()
+}
+
+/// The scene's frame, exact answer, groups and profile.
+fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
+    let scene = &case.scene;
+    let camera = scene
+        .camera()
+        .ok_or("the scene has no camera")?
+        .with_resolution(config.side, config.side)
+        .map_err(|e| e.to_string())?;
+    let stages = Stages::new(scene);
+    let bvh = stages.bvh();
+    let frame = stages.timed("receivers", || {
+        let f = Frame::from_camera(&camera, bvh);
+        (f, String::new())
+    });
+    let exact = method::run(&Exact, &stages, &frame)
+        .map_err(|e| format!("exact: {e}"))?
+        .output
+        .visibility;
+    let receivers = frame.receivers();
+    let penumbra: Vec<bool> = exact.iter().map(|&v| v > 0.0 && v < 1.0).collect();
+    let ground: Vec<bool> = receivers.iter().map(|r| r.object == Some(0)).collect();
+    let groups = [
+        vec![true; receivers.len()],
+        penumbra.clone(),
+        ground.clone(),
+        ground.iter().map(|g| !g).collect(),
+    ];
+    let light = scene.light();
+    let shading: Vec<f64> = receivers
+        .iter()
+        .map(|r| {
+            let l = (light.center() - r.position).normalize_or_zero();
+            r.normal.map_or(1.0, |n| n.dot(l).max(0.0))
+        })
+        .collect();
+    // The profile: the image row with the most exact-penumbra receivers.
+    let (w, h) = frame.size();
+    let pixels = frame.pixels();
+    let row_count = |row: u32| {
+        (0..w)
+            .filter(|&c| {
+                let k = pixels[(row * w + c) as usize] as usize;
+                penumbra.get(k).copied().unwrap_or(false)
+            })
+            .count()
+    };
+    let profile_row = (0..h).max_by_key(|&r| (row_count(r), std::cmp::Reverse(r))).unwrap_or(0);
+    let (profile, profile_columns): (Vec<usize>, Vec<u32>) = (0..w)
+        .filter_map(|c| {
+            let k = pixels[(profile_row * w + c) as usize] as usize;
+            (k < receivers.len()).then_some((k, c))
+        })
+        .unzip();
+    let stats = stages.stats();
+    let record = SceneRecord {
+        name: case.name.clone(),
+        light: light.kind().name().to_owned(),
+        width: w,
+        height: h,
+        receivers: receivers.len(),
+        penumbra: penumbra.iter().filter(|p| **p).count(),
+        groups: groups.each_ref().map(|g| g.iter().filter(|x| **x).count()),
+        shared: [stats.seconds("bvh"), stats.seconds("receivers")],
+        profile_row,
+        profile_columns,
+        profile_exact: profile.iter().map(|&k| exact[k]).collect(),
+        machine: 0,
+    };
+    Ok(Prepared {
+        frame,
+        exact,
+        groups,
+        shading,
+        profile,
+        record,
+    })
+}
+
+/// The light kind's name for "n/a (… light)".
+fn light_name(light: &Light) -> &'static str {
+    light.kind().name()
+}
+
+/// Times and measures one cell.
+fn run_cell(
+    index: usize,
+    case: &Case,
+    prepared: &Prepared,
+    method: &dyn Method,
+    config: &Config,
+) -> CellRecord {
+    let setting = method.name();
+    let mut cell = failed(index, case, &setting, "");
+    let kind: LightKind = case.scene.light().kind();
+    if !method.lights().contains(&kind) {
+        cell.status = format!("n/a ({} light)", light_name(case.scene.light()));
+        return cell;
+    }
+    let mut visibility = None;
+    for _ in 0..config.runs.max(1) {
+        let stages = Stages::new(&case.scene);
+        stages.bvh();
+        let start = Instant::now();
+        let run = method::run(method, &stages, &prepared.frame);
+        let seconds = start.elapsed().as_secs_f64();
+        match run {
+            Ok(r) => {
+                cell.runs.push(seconds);
+                visibility = Some(r.output.visibility);
+            }
+            Err(e) => {
+                cell.status = format!("error: {e}");
+                cell.runs.clear();
+                return cell;
+            }
+        }
+        if seconds > SLOW_RUN {
+            break;
+        }
+    }
+    let Some(v) = visibility else {
+        return cell;
+    };
+    cell.status = "ok".to_owned();
+    cell.seconds = Some(median(&cell.runs));
+    let exact = &prepared.exact;
+    cell.errors = Some(
+        prepared
+            .groups
+            .each_ref()
+            .map(|g| ErrorSummary::new(&v, exact, |i| g[i]).into()),
+    );
+    let shade = |x: &[f64]| -> Vec<f64> {
+        x.iter().zip(&prepared.shading).map(|(v, s)| v * s).collect()
+    };
+    let (sv, se) = (shade(&v), shade(exact));
+    cell.shaded = Some(
+        prepared
+            .groups
+            .each_ref()
+            .map(|g| ErrorSummary::new(&sv, &se, |i| g[i]).into()),
+    );
+    cell.profile = prepared.profile.iter().map(|&k| v[k]).collect();
+    cell
+}
+
+/// The median of `x` (0 for none).
+fn median(x: &[f64]) -> f64 {
+    let mut s = x.to_vec();
+    s.sort_by(f64::total_cmp);
+    match s.len() {
+        0 => 0.0,
+        n if n % 2 == 1 => s[n / 2],
+        n => 0.5 * (s[n / 2 - 1] + s[n / 2]),
+    }
+}
+
+/// Writes the cell's side-by-side picture (shaded | signed error) under
+/// `dir/pictures`, and returns its path relative to `dir`.
+fn picture(
+    case: &Case,
+    prepared: &Prepared,
+    method: &dyn Method,
+    config: &Config,
+    dir: &std::path::Path,
+) -> Result<String, String> {
+    use crate::render::image::{error_heat_map, shaded, shaded_by_ends};
+    let stages = Stages::new(&case.scene);
+    let run = method::run(method, &stages, &prepared.frame).map_err(|e| e.to_string())?;
+    let v = &run.output.visibility;
+    let scene = &case.scene;
+    let left = match &run.output.end_weights {
+        Some(w) => shaded_by_ends(scene, &prepared.frame, w),
+        None => shaded(scene, &prepared.frame, v),
+    };
+    let right = error_heat_map(&prepared.frame, v, &prepared.exact);
+    let side = if case.name == "default" {
+        (2 * config.picture_side).min(config.side)
+    } else {
+        config.picture_side.min(config.side)
+    };
+    let factor = (config.side / side.max(1)).max(1);
+    let image = write::side_by_side(&left.downsample(factor), &right.downsample(factor));
+    let name = format!(
+        "pictures/{}-{}.png",
+        write::file_part(&case.name),
+        write::file_part(&method.name())
+    );
+    let path = dir.join(&name);
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+    }
+    image
+        .write_png(&path)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    Ok(name)
+}
+
+/// Joins parts of one sweep (the same format and settings) into one,
+/// keeping each cell's machine, and fills the derived columns.
+///
+/// # Errors
+/// Parts of different formats or settings, a cell in two parts.
+pub fn merge(parts: Vec<Results>) -> Result<Results, String> {
+    let mut parts = parts.into_iter();
+    let mut all = parts.next().ok_or("nothing to merge")?;
+    for part in parts {
+        if part.format != all.format || part.config != all.config {
+            return Err("the parts are of different sweeps (format or settings differ)".to_owned());
+        }
+        let offset = all.machines.len();
+        let remap: Vec<usize> = part
+            .machines
+            .iter()
+            .enumerate()
+            .map(|(k, m)| match all.machines.iter().position(|x| x == m) {
+                Some(p) => p,
+                None => {
+                    all.machines.push(m.clone());
+                    offset + k
+                }
+            })
+            .collect();
+        for mut s in part.scenes {
+            if !all.scenes.iter().any(|x| x.name == s.name) {
+                s.machine = remap.get(s.machine).copied().unwrap_or(0);
+                all.scenes.push(s);
+            }
+        }
+        for mut c in part.cells {
+            if all.cells.iter().any(|x| x.index == c.index) {
+                return Err(format!("cell {} ({}, {}) is in two parts", c.index, c.scene, c.method));
+            }
+            c.machine = remap.get(c.machine).copied().unwrap_or(0);
+            all.cells.push(c);
+        }
+    }
+    Ok(finish(all))
+}
+
+/// Orders the scenes and cells and fills the derived columns: the
+/// yardstick per scene, each cell's equal-RMSE sample counts and speed-up.
+#[must_use]
+pub fn finish(mut results: Results) -> Results {
+    results.cells.sort_by_key(|c| c.index);
+    let order: Vec<String> = {
+        let mut names = Vec::new();
+        for c in &results.cells {
+            if !names.contains(&c.scene) {
+                names.push(c.scene.clone());
+            }
+        }
+        names
+    };
+    results
+        .scenes
+        .sort_by_key(|s| order.iter().position(|n| *n == s.name).unwrap_or(usize::MAX));
+    results.yardsticks.clear();
+    for scene in &order {
+        let points: Vec<(u32, f64, f64, f64)> = results
+            .cells
+            .iter()
+            .filter(|c| c.scene == *scene && c.base == "mc" && c.status == "ok")
+            .filter_map(|c| {
+                let n: u32 = c.method.strip_prefix("mc:")?.parse().ok()?;
+                let e = c.errors?;
+                Some((n, e[0].rmse, e[1].rmse, c.seconds?))
+            })
+            .collect();
+        if let Some(y) = Yardstick::new(&points) {
+            results.yardsticks.insert(scene.clone(), y);
+        }
+    }
+    for c in &mut results.cells {
+        let (Some(y), Some(e), Some(t)) = (results.yardsticks.get(&c.scene), c.errors, c.seconds)
+        else {
+            continue;
+        };
+        c.mc_equal = y.equal(&y.rmse, e[0].rmse);
+        c.mc_equal_penumbra = y.rmse_penumbra.and_then(|law| y.equal(&law, e[1].rmse));
+        c.speedup = c.mc_equal.and_then(|n| y.speedup(n, t));
+    }
+    results
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn shards_parse_and_refuse() {
+        assert_eq!("2/3".parse::<Shard>(), Ok(Shard { index: 2, count: 3 }));
+        for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
+            assert!(bad.parse::<Shard>().is_err(), "{bad}");
+        }
+    }
+
+    #[test]
+    fn the_settings_come_from_the_registry() {
+        let s = settings(&Config::default());
+        assert_eq!(s[0], "exact");
+        for entry in REGISTRY.iter().filter(|e| e.is_built()) {
+            for c in entry.compare {
+                assert!(s.iter().any(|x| x == c), "{c} missing");
+            }
+        }
+        assert!(s.iter().any(|x| x == "mc:4096"));
+    }
+}

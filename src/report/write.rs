@@ -1,0 +1,398 @@
+//! Writing a report: `results.json`, `index.md`, the plots, and the
+//! accuracy pages under `docs/accuracy/`.
+
+use super::papers::PAPERS;
+use super::plots;
+use super::{CellRecord, Errors, Results, SceneRecord, GROUPS, SLOW_RUN};
+use crate::method::registry::REGISTRY;
+use crate::render::image::Rgb;
+use std::fmt::Write as _;
+use std::path::Path;
+
+/// The line of an accuracy page under which the report writes; what is
+/// above it (the page's title and prose) is kept.
+pub const ACCURACY_MARKER: &str =
+    "<!-- Tables below are written by `softshadow report --accuracy`: edit above this line. -->";
+
+/// A file name part for a name (`sism:exact-union,horizon` →
+/// `sism-exact-union-horizon`).
+pub(crate) fn file_part(name: &str) -> String {
+    let mut out = String::new();
+    for c in name.chars() {
+        if c.is_ascii_alphanumeric() {
+            out.push(c);
+        } else if !out.ends_with('-') && !out.is_empty() {
+            out.push('-');
+        }
+    }
+    out.trim_end_matches('-').to_owned()
+}
+
+/// `a` and `b` side by side, `b` on the right, a white gap between.
+pub(crate) fn side_by_side(a: &Rgb, b: &Rgb) -> Rgb {
+    const GAP: u32 = 4;
+    let (w, h) = (a.width + GAP + b.width, a.height.max(b.height));
+    let mut data = vec![255u8; (3 * w * h) as usize];
+    for (img, x0) in [(a, 0), (b, a.width + GAP)] {
+        for y in 0..img.height {
+            let src = &img.data[(3 * y * img.width) as usize..(3 * (y + 1) * img.width) as usize];
+            let at = (3 * (y * w + x0)) as usize;
+            data[at..at + src.len()].copy_from_slice(src);
+        }
+    }
+    Rgb {
+        width: w,
+        height: h,
+        data,
+    }
+}
+
+fn write_file(path: &Path, text: &str) -> Result<(), String> {
+    if let Some(parent) = path.parent() {
+        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+    }
+    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+}
+
+/// Writes `results.json`, `index.md` and `plots/` into `dir` (the
+/// pictures were written by the run).
+///
+/// # Errors
+/// A file that cannot be written.
+pub fn write(results: &Results, dir: &Path) -> Result<(), String> {
+    let json = serde_json::to_string_pretty(results).map_err(|e| e.to_string())?;
+    write_file(&dir.join("results.json"), &json)?;
+    let mut plots_written = Vec::new();
+    for scene in &results.scenes {
+        for g in 0..GROUPS.len() {
+            if let Some(svg) = plots::error_against_time(results, scene, g) {
+                let name = format!("plots/{}-{}.svg", file_part(&scene.name), GROUPS[g]);
+                write_file(&dir.join(&name), &svg)?;
+                plots_written.push(name);
+            }
+        }
+        if let Some(svg) = plots::profile(results, scene) {
+            let name = format!("plots/{}-profile.svg", file_part(&scene.name));
+            write_file(&dir.join(&name), &svg)?;
+            plots_written.push(name);
+        }
+    }
+    write_file(&dir.join("index.md"), &index(results, &plots_written))
+}
+
+fn ms(c: &CellRecord) -> String {
+    c.seconds.map_or("—".to_owned(), |s| format!("{:.1}", s * 1e3))
+}
+
+fn opt<T: std::fmt::Display>(x: Option<T>) -> String {
+    x.map_or("—".to_owned(), |x| x.to_string())
+}
+
+/// The report's `index.md`.
+fn index(results: &Results, plots: &[String]) -> String {
+    let mut s = String::new();
+    let c = &results.config;
+    let _ = writeln!(s, "# Soft shadows: accuracy against run time\n");
+    let _ = writeln!(
+        s,
+        "Every scene × method setting of the registry, on each scene's camera at {0}×{0}, \
+         against the exact reference; Monte Carlo at {1} samples as the yardstick. Written by \
+         `softshadow report`; every number is in [`results.json`](results.json).\n",
+        c.side,
+        c.mc.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+    );
+    let _ = writeln!(s, "Machine{}:\n", if results.machines.len() > 1 { "s (cells timed on different machines are marked with the machine's number)" } else { "" });
+    for (k, m) in results.machines.iter().enumerate() {
+        let _ = writeln!(s, "{}. {m}", k + 1);
+    }
+    let _ = writeln!(
+        s,
+        "\n**Time** is the wall time of `method::run` on fresh stages whose BVH is built \
+         beforehand — the maps a method builds are paid, the BVH and the primary rays (shared, \
+         listed per scene) are not — the median of {} runs (one where a run takes over {SLOW_RUN} \
+         s; each cell's count is in `results.json`). **Error** is `V − V_exact` (negative: too \
+         dark) over four receiver groups: all, the exact penumbra (`0 < V_exact < 1`), the \
+         ground (object 0) and the occluders (the other objects); \"shaded\" is the error of \
+         `V·max(0, n·l̂)` (`l̂` toward the light's centre), what the papers' pictures show. \
+         **MC N** is the Monte Carlo sample count of equal RMSE: per scene, Monte Carlo's RMSE \
+         over N = {} is fitted by a power law `a·N^b` (least squares in log–log), and the N \
+         where it meets the method's RMSE is given, or \"< {}\" / \"> {}\" outside the measured \
+         range (not extrapolated). **Speed-up** is Monte Carlo's time at that N — its measured \
+         times fitted by a line in N — over the method's time.\n",
+        c.runs,
+        c.mc.iter().map(u32::to_string).collect::<Vec<_>>().join(", "),
+        c.mc.first().copied().unwrap_or(0),
+        c.mc.last().copied().unwrap_or(0),
+    );
+    let multi = results.machines.len() > 1;
+    let _ = writeln!(s, "## Summary\n");
+    let _ = writeln!(
+        s,
+        "| scene | method | time (ms) | RMSE | RMSE penumbra | RMSE shaded | MC N of equal RMSE | (penumbra) | speed-up over MC |{}",
+        if multi { " machine |" } else { "" }
+    );
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|{}", if multi { "---:|" } else { "" });
+    for cell in results.cells.iter().filter(|c| c.base != "mc") {
+        let Some(e) = cell.errors else { continue };
+        let shaded = cell.shaded.map_or(0.0, |x| x[0].rmse);
+        let _ = writeln!(
+            s,
+            "| {} | `{}` | {} | {:.4} | {:.4} | {:.4} | {} | {} | {} |{}",
+            cell.scene,
+            cell.method,
+            ms(cell),
+            e[0].rmse,
+            e[1].rmse,
+            shaded,
+            opt(cell.mc_equal),
+            opt(cell.mc_equal_penumbra),
+            cell.speedup.map_or("—".to_owned(), |x| format!("{x:.2}×")),
+            if multi { format!(" {} |", cell.machine + 1) } else { String::new() }
+        );
+    }
+    let _ = writeln!(s, "\n## What the papers report\n");
+    let _ = writeln!(
+        s,
+        "Each paper's own speed figures beside our time on our closest scene. Different hardware \
+         (GPUs of 2002–2016 against this CPU), different scenes and resolutions: the rows place \
+         the orders of magnitude side by side, no more. The papers give no error figures.\n"
+    );
+    let _ = writeln!(s, "| method | paper | scene | resolution | hardware | the paper's speed | ours: scene, time at {0}² |", c.side);
+    let _ = writeln!(s, "|---|---|---|---|---|---|---|");
+    for p in PAPERS {
+        let ours = results
+            .cells
+            .iter()
+            .find(|x| x.scene == p.ours && x.method == p.method && x.seconds.is_some())
+            .map_or("—".to_owned(), |x| format!("`{}`, {} ms", p.ours, ms(x)));
+        let _ = writeln!(
+            s,
+            "| `{}` | {} | {} | {} | {} | {} | {} |",
+            p.method, p.paper, p.scene, p.resolution, p.hardware, p.speed, ours
+        );
+    }
+    for scene in &results.scenes {
+        scene_section(&mut s, results, scene, plots);
+    }
+    s
+}
+
+/// One row of the errors table.
+fn error_row(s: &mut String, method: &str, group: &str, e: &Errors) {
+    let _ = writeln!(
+        s,
+        "| `{method}` | {group} | {} | {:.5} | {:.5} | {:.4} | {:.4} | {:+.5} | {:.4} |",
+        e.count, e.mean_abs, e.rmse, e.p99_abs, e.max_abs, e.mean_signed, e.share_over_0_05
+    );
+}
+
+fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: &[String]) {
+    let part = file_part(&scene.name);
+    let _ = writeln!(s, "\n## `{}`\n", scene.name);
+    let _ = writeln!(
+        s,
+        "{} light; {}×{}, {} receivers ({} in the exact penumbra, {} on the ground, {} on \
+         occluders). Shared, not in the times: BVH {:.1} ms, primary rays {:.1} ms.\n",
+        scene.light,
+        scene.width,
+        scene.height,
+        scene.receivers,
+        scene.penumbra,
+        scene.groups[2],
+        scene.groups[3],
+        scene.shared[0] * 1e3,
+        scene.shared[1] * 1e3
+    );
+    if let Some(y) = results.yardsticks.get(&scene.name) {
+        let _ = writeln!(
+            s,
+            "Monte Carlo: RMSE ≈ {:.3}·N^{:.3} (all receivers){}; time ≈ {:.2} ms + {:.4} ms·N.\n",
+            y.rmse.a,
+            y.rmse.b,
+            y.rmse_penumbra
+                .map_or(String::new(), |p| format!(", {:.3}·N^{:.3} (penumbra)", p.a, p.b)),
+            y.seconds.c * 1e3,
+            y.seconds.d * 1e3
+        );
+    }
+    for name in plots.iter().filter(|p| p.starts_with(&format!("plots/{part}-"))) {
+        let _ = writeln!(s, "![{name}]({name})\n");
+    }
+    let pictures: Vec<&CellRecord> = results
+        .cells
+        .iter()
+        .filter(|c| c.scene == scene.name && c.picture.is_some())
+        .collect();
+    if !pictures.is_empty() {
+        let _ = writeln!(s, "Shaded (left) and the signed error against exact (right: blue too dark, red too bright, ±0.25 saturates):\n");
+        let _ = writeln!(s, "| method | shaded · error |\n|---|---|");
+        for c in pictures {
+            let p = c.picture.as_deref().unwrap_or_default();
+            let _ = writeln!(s, "| `{}` | ![{}]({p}) |", c.method, c.method);
+        }
+        let _ = writeln!(s);
+    }
+    let _ = writeln!(s, "| method | receivers | count | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 |");
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for c in results.cells.iter().filter(|c| c.scene == scene.name) {
+        match (&c.errors, &c.shaded) {
+            (Some(e), Some(sh)) => {
+                for (g, name) in GROUPS.iter().enumerate() {
+                    if e[g].count > 0 {
+                        error_row(s, &c.method, name, &e[g]);
+                    }
+                }
+                error_row(s, &c.method, "shaded, all", &sh[0]);
+                error_row(s, &c.method, "shaded, penumbra", &sh[1]);
+            }
+            _ => {
+                let _ = writeln!(s, "| `{}` | {} | | | | | | | |", c.method, c.status);
+            }
+        }
+    }
+}
+
+/// Writes the accuracy pages into `dir`: `methods.md` (every setting on
+/// every scene, all receivers and the penumbra) and one page per method
+/// (its comparison settings by receiver group, the hard shadow beside).
+/// Each page keeps what is above [`ACCURACY_MARKER`].
+///
+/// # Errors
+/// A file that cannot be read or written.
+pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<(), String> {
+    let mut methods = String::new();
+    let _ = writeln!(methods, "Regenerate with `{command}` ({}).\n", results.machines.join("; "));
+    let _ = writeln!(methods, "| scene | method | time (ms) | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 | RMSE penumbra |");
+    let _ = writeln!(methods, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
+    let keep_mc = ["mc:16", "mc:256"];
+    for c in &results.cells {
+        if c.base == "mc" && !keep_mc.contains(&c.method.as_str()) {
+            continue;
+        }
+        match c.errors {
+            Some(e) => {
+                let _ = writeln!(
+                    methods,
+                    "| {} | {} | {} | {:.5} | {:.5} | {:.4} | {:.4} | {:+.5} | {:.4} | {:.5} |",
+                    c.scene, c.method, ms(c), e[0].mean_abs, e[0].rmse, e[0].p99_abs, e[0].max_abs,
+                    e[0].mean_signed, e[0].share_over_0_05, e[1].rmse
+                );
+            }
+            None => {
+                let _ = writeln!(methods, "| {} | {} | {} | | | | | | | |", c.scene, c.method, c.status);
+            }
+        }
+    }
+    horizon_table(&mut methods, results);
+    update_page(&dir.join("methods.md"), "Accuracy of the methods against the exact answer", &methods)?;
+    for entry in REGISTRY.iter().filter(|e| e.is_built() && !e.compare.is_empty()) {
+        if entry.name == "hard" {
+            continue;
+        }
+        let mut page = String::new();
+        let _ = writeln!(page, "Regenerate with `{command}` ({}).\n", results.machines.join("; "));
+        let mut wanted: Vec<&str> = entry.compare.to_vec();
+        wanted.push("hard");
+        for scene in &results.scenes {
+            let rows: Vec<&CellRecord> = results
+                .cells
+                .iter()
+                .filter(|c| c.scene == scene.name && wanted.contains(&c.method.as_str()) && c.errors.is_some())
+                .collect();
+            if rows.iter().all(|c| c.base == "hard") {
+                continue;
+            }
+            let _ = writeln!(
+                page,
+                "## `{}` ({} receivers, {} in the exact penumbra)\n",
+                scene.name, scene.receivers, scene.penumbra
+            );
+            let _ = writeln!(page, "| method | receivers | count | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 |");
+            let _ = writeln!(page, "|---|---|---:|---:|---:|---:|---:|---:|---:|");
+            for c in rows {
+                let e = c.errors.unwrap_or_default();
+                for (g, name) in GROUPS.iter().enumerate() {
+                    if e[g].count > 0 {
+                        error_row(&mut page, &c.method, name, &e[g]);
+                    }
+                }
+            }
+            let _ = writeln!(page);
+        }
+        let title = format!("`{}` against the exact reference", entry.name);
+        update_page(&dir.join(format!("{}.md", entry.name)), &title, &page)?;
+    }
+    Ok(())
+}
+
+/// The horizon option's effect: per scene, each setting `M` beside
+/// `M,horizon` (or `M:horizon`), RMSE over every receiver, without → with.
+fn horizon_table(s: &mut String, results: &Results) {
+    let with_horizon = |m: &str| {
+        if m.contains(':') {
+            format!("{m},horizon")
+        } else {
+            format!("{m}:horizon")
+        }
+    };
+    let rmse = |scene: &str, m: &str| {
+        results
+            .cells
+            .iter()
+            .find(|c| c.scene == scene && c.method == m)
+            .and_then(|c| c.errors)
+            .map(|e| e[0].rmse)
+    };
+    let pairs: Vec<String> = {
+        let mut p = Vec::new();
+        for c in &results.cells {
+            let h = with_horizon(&c.method);
+            if !c.method.contains("horizon")
+                && results.cells.iter().any(|x| x.method == h)
+                && !p.contains(&c.method)
+            {
+                p.push(c.method.clone());
+            }
+        }
+        p
+    };
+    if pairs.is_empty() {
+        return;
+    }
+    let _ = writeln!(s, "\n## The horizon option: RMSE over every receiver, without → with\n");
+    let _ = writeln!(s, "| scene | {} |", pairs.join(" | "));
+    let _ = writeln!(s, "|---|{}", "---|".repeat(pairs.len()));
+    for scene in &results.scenes {
+        let cols: Vec<String> = pairs
+            .iter()
+            .map(|m| match (rmse(&scene.name, m), rmse(&scene.name, &with_horizon(m))) {
+                (Some(a), Some(b)) => format!("{a:.4} → {b:.4}"),
+                _ => "—".to_owned(),
+            })
+            .collect();
+        let _ = writeln!(s, "| {} | {} |", scene.name, cols.join(" | "));
+    }
+}
+
+/// Rewrites what is below the marker of the page at `path` (a new page
+/// gets `title` and the marker).
+fn update_page(path: &Path, title: &str, tables: &str) -> Result<(), String> {
+    let head = match std::fs::read_to_string(path) {
+        Ok(text) => match text.find(ACCURACY_MARKER) {
+            Some(k) => text[..k].to_owned(),
+            None => format!("{}\n\n", text.trim_end()),
+        },
+        Err(_) => format!("# {title}\n\n"),
+    };
+    write_file(path, &format!("{head}{ACCURACY_MARKER}\n\n{tables}"))
+}
+
+#[cfg(test)]
+mod tests {
+    #[test]
+    fn file_parts_are_plain() {
+        assert_eq!(super::file_part("sism:exact-union,horizon"), "sism-exact-union-horizon");
+        assert_eq!(super::file_part("mc:16"), "mc-16");
+        assert_eq!(super::file_part("several-objects"), "several-objects");
+    }
+}
