@@ -1,0 +1,87 @@
+//! The light-view rasterizer on fuzzed triangles and views: no panic; a
+//! covered texel holds a finite depth at or past `near`, a valid triangle
+//! index, and that triangle's depth along the texel centre's ray (its
+//! plane, to a relative `1e-9`) — the rasterizer reports the surface it
+//! says it saw; an uncovered texel holds `+∞`.
+//!
+//! The first 8 bytes seed `arbitrary::scene::visibility_case` for the
+//! triangles; the following words, read as raw `f64` bit patterns, replace
+//! vertex coordinates (finite ones are kept) and then set the window; the
+//! resolution is small (up to 24²) so that every texel is checked.
+#![no_main]
+
+use glam::{DVec2, DVec3};
+use libfuzzer_sys::fuzz_target;
+use softshadow::arbitrary::scene::visibility_case;
+use softshadow::arbitrary::Rng;
+use softshadow::bvh::Occluders;
+use softshadow::render::raster::{rasterize_occluders, LightView};
+use softshadow::scene::LightFrame;
+
+fn word(data: &[u8], i: usize) -> Option<u64> {
+    let bytes = data.get(8 * i..8 * i + 8)?;
+    Some(u64::from_le_bytes(bytes.try_into().ok()?))
+}
+
+fuzz_target!(|data: &[u8]| {
+    let seed = word(data, 0).unwrap_or(0);
+    let mut rng = Rng::new(seed);
+    let mut case = visibility_case(&mut rng, 6);
+    let mut k = 1;
+    for t in case.triangles.iter_mut() {
+        for v in t.iter_mut() {
+            for c in 0..3 {
+                if let Some(w) = word(data, k) {
+                    let x = f64::from_bits(w);
+                    if x.is_finite() {
+                        v[c] = x;
+                    }
+                }
+                k += 1;
+            }
+        }
+    }
+    let centre = case.light.center();
+    let Ok(frame) = LightFrame::toward(centre, case.receiver) else {
+        return;
+    };
+    let side = 1 + (seed % 24) as u32;
+    let span = 0.5 + (seed >> 8) as f64 % 4.0;
+    let near = 1e-3 + ((seed >> 16) % 100) as f64 * 1e-3;
+    let Ok(view) = LightView::new(
+        frame,
+        DVec2::splat(-span),
+        DVec2::splat(span),
+        side,
+        side,
+        near,
+    ) else {
+        return;
+    };
+    let occluders = Occluders::from_triangles(case.triangles.clone());
+    let maps = rasterize_occluders(&view, &occluders);
+    for row in 0..side {
+        for col in 0..side {
+            let depth = maps.depth_at(col, row);
+            if !maps.is_covered(col, row) {
+                assert_eq!(depth, f64::INFINITY);
+                continue;
+            }
+            assert!(depth.is_finite() && depth >= near * (1.0 - 1e-12), "{depth} < {near}");
+            let t = occluders.triangles()[maps.triangle_at(col, row) as usize];
+            let [a, b, c] = t.map(|p| frame.to_light(p));
+            let n = (b - a).cross(c - a);
+            let u = view.pixel_center(col, row);
+            let ray = DVec3::new(u.x, u.y, 1.0);
+            let z = n.dot(a) / n.dot(ray);
+            // Edge-on triangles have no well-defined plane depth there.
+            let edge_on = n.dot(ray).abs() <= 1e-9 * n.length() * ray.length();
+            if z.is_finite() && !edge_on {
+                assert!(
+                    (z - depth).abs() <= 1e-9 * depth.abs().max(z.abs()).max(1.0),
+                    "texel ({col}, {row}): depth {depth}, the triangle's plane {z}"
+                );
+            }
+        }
+    }
+});
