@@ -5,7 +5,7 @@
 //! unit normals and object ids below the mesh count.
 //!
 //! The input is read as UTF-8 (lossily); the first byte picks the parser
-//! (even: scene, odd: points, the mesh count from the second byte). A
+//! (even: scene; odd: points, for `pick / 2 % 8` meshes). A
 //! seed corpus of valid files is worth giving (`examples/scenes/*.json`).
 #![no_main]
 
@@ -43,7 +43,7 @@ fuzz_target!(|data: &[u8]| {
             }
         }
     } else {
-        let meshes = usize::from(rest.first().copied().unwrap_or(0) % 8);
+        let meshes = usize::from(pick / 2 % 8);
         match points_from_str("points.json", &text, meshes) {
             Ok(points) => {
                 for r in points {
