@@ -47,6 +47,7 @@
 mod machine;
 mod papers;
 mod plots;
+pub mod stability;
 mod write;
 mod yardstick;
 

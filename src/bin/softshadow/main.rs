@@ -11,6 +11,7 @@
 //!   [--seed S]`: the visibility of each receiver point as JSON on stdout.
 //! - `softshadow report [--scene S]… [--method M]… [--out DIR] [--shard
 //!   i/n] [--merge DIR…]`: the accuracy-against-run-time report.
+//! - `softshadow stability [--out DIR]`: the stability suite.
 //!
 //! Bad input ends with one line on stderr naming the file, the place and
 //! the field, exit status 2, and nothing on stdout.
@@ -20,6 +21,7 @@ mod progress;
 mod render;
 mod report;
 mod selfcheck;
+mod stability;
 mod visibility;
 
 use clap::{Parser, Subcommand};
@@ -48,6 +50,9 @@ enum Command {
     /// The accuracy-against-run-time report: every scene × method setting,
     /// timed and measured against exact, with the Monte Carlo yardstick.
     Report(report::Args),
+    /// The stability suite: the kernels, the exact reference and the methods
+    /// on stiff and extreme input, written as stability.md.
+    Stability(stability::Args),
 }
 
 /// Exit status for bad input (a file, an argument).
@@ -100,6 +105,7 @@ fn main() -> ExitCode {
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Visibility(args)) => visibility::run(&args),
         Some(Command::Report(args)) => report::run(&args),
+        Some(Command::Stability(args)) => stability::run(&args),
     };
     match result {
         Ok(()) => ExitCode::SUCCESS,
