@@ -46,7 +46,10 @@ fn a_cell_s_rmse_is_the_buffers_rmse() {
     let camera = scene.camera().unwrap().with_resolution(40, 40).unwrap();
     let stages = Stages::new(&scene);
     let frame = Frame::from_camera(&camera, stages.bvh());
-    let exact = method::run(&Exact, &stages, &frame).unwrap().output.visibility;
+    let exact = method::run(&Exact, &stages, &frame)
+        .unwrap()
+        .output
+        .visibility;
     let pcss = method::parse("pcss:map=256").unwrap();
     let v = method::run(pcss.as_ref(), &Stages::new(&scene), &frame)
         .unwrap()
@@ -106,7 +109,11 @@ fn three_shards_merged_are_the_whole_sweep() {
         .collect();
     // Each part holds a third of the cells, none twice.
     let counts: Vec<usize> = parts.iter().map(|p| p.cells.len()).collect();
-    assert_eq!(counts.iter().sum::<usize>(), whole.cells.len(), "{counts:?}");
+    assert_eq!(
+        counts.iter().sum::<usize>(),
+        whole.cells.len(),
+        "{counts:?}"
+    );
     let merged = report::merge(parts.clone()).unwrap();
     // The derived columns were computed at the merge.
     assert!(merged.yardsticks.contains_key("contact"));
@@ -119,8 +126,7 @@ fn three_shards_merged_are_the_whole_sweep() {
     // A part given twice is refused.
     assert!(report::merge(vec![parts[0].clone(), parts[0].clone()]).is_err());
     // The n/a cells say why.
-    assert!(a
-        .cells
-        .iter()
-        .any(|c| c.scene == "contact" && c.method == "oess:map=128" && c.status == "n/a (sphere light)"));
+    assert!(a.cells.iter().any(|c| c.scene == "contact"
+        && c.method == "oess:map=128"
+        && c.status == "n/a (sphere light)"));
 }

@@ -64,8 +64,8 @@ impl Rgb {
                 for dy in 0..factor {
                     for dx in 0..factor {
                         let i = 3 * (((y * factor + dy) * self.width + x * factor + dx) as usize);
-                        for c in 0..3 {
-                            sum[c] += u64::from(self.data[i + c]);
+                        for (c, total) in sum.iter_mut().enumerate() {
+                            *total += u64::from(self.data[i + c]);
                         }
                     }
                 }

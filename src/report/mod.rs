@@ -6,7 +6,7 @@
 //! # The sweep
 //!
 //! A *cell* is one (scene, method setting). The settings are the
-//! registry's: every built method's [`Entry::compare`] list (so a method
+//! registry's: every built method's [`Entry::compare`](crate::method::registry::Entry::compare) list (so a method
 //! registered tomorrow is in the next report with no list here), `exact`
 //! (the reference itself, for its time), and the yardstick `mc:N` for each
 //! `N` of [`Config::mc`]. A setting whose method does not handle the
@@ -374,7 +374,9 @@ pub fn run(
             Ok(p) => p,
             Err(e) => {
                 for k in cells {
-                    results.cells.push(failed(k, case, &settings[k % settings.len()], &e));
+                    results
+                        .cells
+                        .push(failed(k, case, &settings[k % settings.len()], &e));
                     done += 1;
                 }
                 continue;
@@ -470,7 +472,9 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
             })
             .count()
     };
-    let profile_row = (0..h).max_by_key(|&r| (row_count(r), std::cmp::Reverse(r))).unwrap_or(0);
+    let profile_row = (0..h)
+        .max_by_key(|&r| (row_count(r), std::cmp::Reverse(r)))
+        .unwrap_or(0);
     let (profile, profile_columns): (Vec<usize>, Vec<u32>) = (0..w)
         .filter_map(|c| {
             let k = pixels[(profile_row * w + c) as usize] as usize;
@@ -557,7 +561,10 @@ fn run_cell(
             .map(|g| ErrorSummary::new(&v, exact, |i| g[i]).into()),
     );
     let shade = |x: &[f64]| -> Vec<f64> {
-        x.iter().zip(&prepared.shading).map(|(v, s)| v * s).collect()
+        x.iter()
+            .zip(&prepared.shading)
+            .map(|(v, s)| v * s)
+            .collect()
     };
     let (sv, se) = (shade(&v), shade(exact));
     cell.shaded = Some(
@@ -655,7 +662,10 @@ pub fn merge(parts: Vec<Results>) -> Result<Results, String> {
         }
         for mut c in part.cells {
             if all.cells.iter().any(|x| x.index == c.index) {
-                return Err(format!("cell {} ({}, {}) is in two parts", c.index, c.scene, c.method));
+                return Err(format!(
+                    "cell {} ({}, {}) is in two parts",
+                    c.index, c.scene, c.method
+                ));
             }
             c.machine = remap.get(c.machine).copied().unwrap_or(0);
             all.cells.push(c);
@@ -678,9 +688,12 @@ pub fn finish(mut results: Results) -> Results {
         }
         names
     };
-    results
-        .scenes
-        .sort_by_key(|s| order.iter().position(|n| *n == s.name).unwrap_or(usize::MAX));
+    results.scenes.sort_by_key(|s| {
+        order
+            .iter()
+            .position(|n| *n == s.name)
+            .unwrap_or(usize::MAX)
+    });
     results.yardsticks.clear();
     for scene in &order {
         let points: Vec<(u32, f64, f64, f64)> = results

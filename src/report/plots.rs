@@ -57,7 +57,11 @@ fn pareto(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
 
 /// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, as SVG
 /// text; `None` when there is nothing to plot.
-pub(crate) fn error_against_time(results: &Results, scene: &SceneRecord, g: usize) -> Option<String> {
+pub(crate) fn error_against_time(
+    results: &Results,
+    scene: &SceneRecord,
+    g: usize,
+) -> Option<String> {
     let cells: Vec<&CellRecord> = results
         .cells
         .iter()
@@ -79,12 +83,20 @@ pub(crate) fn error_against_time(results: &Results, scene: &SceneRecord, g: usiz
         .filter_map(|c| point(c))
         .collect();
     mc.sort_by(|a, b| a.0.total_cmp(&b.0));
-    let all: Vec<(f64, f64)> = methods.iter().map(|m| m.1).chain(mc.iter().copied()).collect();
+    let all: Vec<(f64, f64)> = methods
+        .iter()
+        .map(|m| m.1)
+        .chain(mc.iter().copied())
+        .collect();
     if all.is_empty() {
         return None;
     }
-    let (t0, t1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.0), b.max(p.0)));
-    let (e0, e1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| (a.min(p.1), b.max(p.1)));
+    let (t0, t1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.0), b.max(p.0))
+    });
+    let (e0, e1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
+        (a.min(p.1), b.max(p.1))
+    });
     let front = pareto(&all);
     let mut svg = String::new();
     {
@@ -123,14 +135,21 @@ pub(crate) fn error_against_time(results: &Results, scene: &SceneRecord, g: usiz
                     results.config.mc.first().copied().unwrap_or(0),
                     results.config.mc.last().copied().unwrap_or(0)
                 ))
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+                .legend(|(x, y)| {
+                    PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
+                });
             chart
                 .draw_series(mc.iter().map(|&p| Circle::new(p, 3, BLACK.filled())))
                 .ok()?;
         }
         if front.len() >= 2 {
             chart
-                .draw_series(DashedLineSeries::new(front.clone(), 6, 4, BLACK.stroke_width(1)))
+                .draw_series(DashedLineSeries::new(
+                    front.clone(),
+                    6,
+                    4,
+                    BLACK.stroke_width(1),
+                ))
                 .ok()?
                 .label("Pareto front (ringed: no point both faster and closer)")
                 .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
@@ -225,7 +244,10 @@ pub(crate) fn profile(results: &Results, scene: &SceneRecord) -> Option<String> 
                 .legend(move |(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], col));
         }
         chart
-            .draw_series(LineSeries::new(line(&scene.profile_exact), BLACK.stroke_width(3)))
+            .draw_series(LineSeries::new(
+                line(&scene.profile_exact),
+                BLACK.stroke_width(3),
+            ))
             .ok()?
             .label("exact")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3)));

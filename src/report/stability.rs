@@ -84,7 +84,8 @@ impl Plate {
         copies: usize,
         shift: f64,
     ) -> Option<(Light, Vec<[DVec3; 3]>)> {
-        let light = Light::disk(DVec3::new(0.0, self.big_h, 0.0) + offset, -DVec3::Y, self.r).ok()?;
+        let light =
+            Light::disk(DVec3::new(0.0, self.big_h, 0.0) + offset, -DVec3::Y, self.r).ok()?;
         let mut tris = Vec::with_capacity(2 * copies);
         for k in 0..copies {
             let s = self.s + shift * k as f64;
@@ -101,8 +102,15 @@ impl Plate {
 
 /// The largest `|V − V_closed|` of the exact reference over `points`, and
 /// how many receivers were refused.
-fn exact_error(plate: &Plate, offset: DVec3, points: &[DVec3], copies: usize, shift: f64) -> (f64, usize) {
-    let reach = 64.0 * (plate.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max));
+fn exact_error(
+    plate: &Plate,
+    offset: DVec3,
+    points: &[DVec3],
+    copies: usize,
+    shift: f64,
+) -> (f64, usize) {
+    let reach =
+        64.0 * (plate.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max));
     let Some((light, tris)) = plate.scene(offset, reach, copies, shift) else {
         return (f64::NAN, points.len());
     };
@@ -175,13 +183,23 @@ fn exact_rows(rows: &mut Vec<Row>) {
     for e in [3, 4, 5, 6, 7, 8] {
         let d = 2f64.powi((f64::from(e) * std::f64::consts::LOG2_10).round() as i32);
         let offset = DVec3::new(d, d * 0.5, -d);
-        rows.push(row("far offset", format!("10^{e} (2^{})", d.log2() as i32), exact_error(&unit, offset, &base, 1, 0.0), base.len()));
+        rows.push(row(
+            "far offset",
+            format!("10^{e} (2^{})", d.log2() as i32),
+            exact_error(&unit, offset, &base, 1, 0.0),
+            base.len(),
+        ));
     }
     // Light size relative to its height.
     for r in [1e-6, 1e-5, 1e-4, 1e-3, 10.0, 100.0, 1000.0] {
         let plate = Plate { r, ..unit };
         let pts = receivers(&plate, 0.0, 33);
-        rows.push(row("light size", format!("r = {r:e}"), exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0), pts.len()));
+        rows.push(row(
+            "light size",
+            format!("r = {r:e}"),
+            exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
+            pts.len(),
+        ));
     }
     // Grazing: the receivers far to the side, seeing the light at
     // elevation θ.
@@ -203,24 +221,49 @@ fn exact_rows(rows: &mut Vec<Row>) {
                 DVec3::new(dyadic((t * plate.r - plate.s * k) / (1.0 - k)), 0.0, 0.0)
             })
             .collect();
-        rows.push(row("grazing", format!("elevation 1e-{e}"), exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0), pts.len()));
+        rows.push(row(
+            "grazing",
+            format!("elevation 1e-{e}"),
+            exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
+            pts.len(),
+        ));
     }
     // Contact: the receivers just under the plate.
     for e in [10, 20, 30] {
         let y = unit.h - 2f64.powi(-e);
         let pts = receivers(&unit, y, 33);
-        rows.push(row("contact", format!("2^-{e} under the plate"), exact_error(&unit, DVec3::ZERO, &pts, 1, 0.0), pts.len()));
+        rows.push(row(
+            "contact",
+            format!("2^-{e} under the plate"),
+            exact_error(&unit, DVec3::ZERO, &pts, 1, 0.0),
+            pts.len(),
+        ));
     }
     // Nearly coincident edges: a second plate's edge 2^-k past the first.
     for e in [20, 40, 52] {
         let pts = receivers(&unit, 0.0, 33);
-        rows.push(row("coincident edges", format!("second edge 2^-{e} away"), exact_error(&unit, DVec3::ZERO, &pts, 2, 2f64.powi(-e)), pts.len()));
+        rows.push(row(
+            "coincident edges",
+            format!("second edge 2^-{e} away"),
+            exact_error(&unit, DVec3::ZERO, &pts, 2, 2f64.powi(-e)),
+            pts.len(),
+        ));
     }
     // Deep overlap: 10⁴ plates on one another (the same, then each 2^-30
     // further; the union is the first).
     let pts = receivers(&unit, 0.0, 9);
-    rows.push(row("deep overlap", "10^4 coincident plates".to_owned(), exact_error(&unit, DVec3::ZERO, &pts, 10_000, 0.0), pts.len()));
-    rows.push(row("deep overlap", "10^4 plates, each 2^-30 further".to_owned(), exact_error(&unit, DVec3::ZERO, &pts, 10_000, 2f64.powi(-30)), pts.len()));
+    rows.push(row(
+        "deep overlap",
+        "10^4 coincident plates".to_owned(),
+        exact_error(&unit, DVec3::ZERO, &pts, 10_000, 0.0),
+        pts.len(),
+    ));
+    rows.push(row(
+        "deep overlap",
+        "10^4 plates, each 2^-30 further".to_owned(),
+        exact_error(&unit, DVec3::ZERO, &pts, 10_000, 2f64.powi(-30)),
+        pts.len(),
+    ));
 }
 
 /// `f32` kernels against `f64` on the same `f32` input.
@@ -296,7 +339,13 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             let f = DVec2::new(x0 + 0.5 * len, -y);
             let e = f + (l + (r - l) * t - f) * 0.5;
             let conv = |p: DVec2| p.as_vec2();
-            let got = linear_light::f32::visible_part(conv(l), conv(r), conv(f), conv(e), OccluderSide::TowardR);
+            let got = linear_light::f32::visible_part(
+                conv(l),
+                conv(r),
+                conv(f),
+                conv(e),
+                OccluderSide::TowardR,
+            );
             let want = linear_light::f64::visible_part(
                 conv(l).as_dvec2(),
                 conv(r).as_dvec2(),
@@ -351,7 +400,7 @@ fn moved(name: &str, offset: DVec3, light_scale: f64) -> Option<Scene> {
     let t = Transform::new(1.0, 0.0, offset).ok()?;
     let light = match scene.light() {
         Light::Sphere(s) => Light::sphere(s.center() + offset, s.radius() * light_scale).ok()?,
-        other => other.clone(),
+        other => *other,
     };
     let camera = scene.camera()?;
     let (w, h) = camera.resolution();
@@ -386,12 +435,36 @@ fn grazing(deg: f64) -> Option<Scene> {
 /// scene as built in.
 fn method_rows(rows: &mut Vec<Row>, side: u32) {
     let cases: Vec<(&'static str, String, Option<Scene>)> = vec![
-        ("far offset", "moved by 2^10".to_owned(), moved("default", DVec3::splat(1024.0), 1.0)),
-        ("far offset", "moved by 2^20".to_owned(), moved("default", DVec3::splat(1_048_576.0), 1.0)),
-        ("light size", "light radius × 2^-10".to_owned(), moved("default", DVec3::ZERO, 1.0 / 1024.0)),
-        ("light size", "light radius × 4".to_owned(), moved("default", DVec3::ZERO, 4.0)),
-        ("grazing", "light 2° over the floor".to_owned(), grazing(2.0)),
-        ("contact", "the contact scene".to_owned(), builtin("contact")),
+        (
+            "far offset",
+            "moved by 2^10".to_owned(),
+            moved("default", DVec3::splat(1024.0), 1.0),
+        ),
+        (
+            "far offset",
+            "moved by 2^20".to_owned(),
+            moved("default", DVec3::splat(1_048_576.0), 1.0),
+        ),
+        (
+            "light size",
+            "light radius × 2^-10".to_owned(),
+            moved("default", DVec3::ZERO, 1.0 / 1024.0),
+        ),
+        (
+            "light size",
+            "light radius × 4".to_owned(),
+            moved("default", DVec3::ZERO, 4.0),
+        ),
+        (
+            "grazing",
+            "light 2° over the floor".to_owned(),
+            grazing(2.0),
+        ),
+        (
+            "contact",
+            "the contact scene".to_owned(),
+            builtin("contact"),
+        ),
     ];
     // Each method's RMSE on the default scene as built in.
     let mut unmoved: Vec<(String, f64)> = Vec::new();
@@ -507,7 +580,8 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
          stiff versions of the default scene. Rows outside a subject's documented domain say so \
          in the last column rather than being left out.\n"
     );
-    let sections: [(&str, &dyn Fn(&Row) -> bool, &str); 3] = [
+    type Keep<'a> = &'a dyn Fn(&Row) -> bool;
+    let sections: [(&str, Keep<'_>, &str); 3] = [
         (
             "The exact reference against closed forms",
             &|r: &Row| r.subject == "exact reference",
@@ -536,7 +610,10 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
     ];
     for (title, keep, text) in sections {
         let _ = writeln!(s, "## {title}\n\n{text}\n");
-        let _ = writeln!(s, "| subject | family | case | precision | inputs | max | domain / note |");
+        let _ = writeln!(
+            s,
+            "| subject | family | case | precision | inputs | max | domain / note |"
+        );
         let _ = writeln!(s, "|---|---|---|---|---:|---:|---|");
         for r in rows.iter().filter(|r| keep(r)) {
             let _ = writeln!(

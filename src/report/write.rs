@@ -64,9 +64,9 @@ pub fn write(results: &Results, dir: &Path) -> Result<(), String> {
     write_file(&dir.join("results.json"), &json)?;
     let mut plots_written = Vec::new();
     for scene in &results.scenes {
-        for g in 0..GROUPS.len() {
+        for (g, group) in GROUPS.iter().enumerate() {
             if let Some(svg) = plots::error_against_time(results, scene, g) {
-                let name = format!("plots/{}-{}.svg", file_part(&scene.name), GROUPS[g]);
+                let name = format!("plots/{}-{group}.svg", file_part(&scene.name));
                 write_file(&dir.join(&name), &svg)?;
                 plots_written.push(name);
             }
@@ -81,7 +81,8 @@ pub fn write(results: &Results, dir: &Path) -> Result<(), String> {
 }
 
 fn ms(c: &CellRecord) -> String {
-    c.seconds.map_or("—".to_owned(), |s| format!("{:.1}", s * 1e3))
+    c.seconds
+        .map_or("—".to_owned(), |s| format!("{:.1}", s * 1e3))
 }
 
 fn opt<T: std::fmt::Display>(x: Option<T>) -> String {
@@ -99,9 +100,20 @@ fn index(results: &Results, plots: &[String]) -> String {
          against the exact reference; Monte Carlo at {1} samples as the yardstick. Written by \
          `softshadow report`; every number is in [`results.json`](results.json).\n",
         c.side,
-        c.mc.iter().map(u32::to_string).collect::<Vec<_>>().join(", ")
+        c.mc.iter()
+            .map(u32::to_string)
+            .collect::<Vec<_>>()
+            .join(", ")
     );
-    let _ = writeln!(s, "Machine{}:\n", if results.machines.len() > 1 { "s (cells timed on different machines are marked with the machine's number)" } else { "" });
+    let _ = writeln!(
+        s,
+        "Machine{}:\n",
+        if results.machines.len() > 1 {
+            "s (cells timed on different machines are marked with the machine's number)"
+        } else {
+            ""
+        }
+    );
     for (k, m) in results.machines.iter().enumerate() {
         let _ = writeln!(s, "{}. {m}", k + 1);
     }
@@ -120,7 +132,10 @@ fn index(results: &Results, plots: &[String]) -> String {
          range (not extrapolated). **Speed-up** is Monte Carlo's time at that N — its measured \
          times fitted by a line in N — over the method's time.\n",
         c.runs,
-        c.mc.iter().map(u32::to_string).collect::<Vec<_>>().join(", "),
+        c.mc.iter()
+            .map(u32::to_string)
+            .collect::<Vec<_>>()
+            .join(", "),
         c.mc.first().copied().unwrap_or(0),
         c.mc.last().copied().unwrap_or(0),
     );
@@ -131,7 +146,11 @@ fn index(results: &Results, plots: &[String]) -> String {
         "| scene | method | time (ms) | RMSE | RMSE penumbra | RMSE shaded | MC N of equal RMSE | (penumbra) | speed-up over MC |{}",
         if multi { " machine |" } else { "" }
     );
-    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|{}", if multi { "---:|" } else { "" });
+    let _ = writeln!(
+        s,
+        "|---|---|---:|---:|---:|---:|---:|---:|---:|{}",
+        if multi { "---:|" } else { "" }
+    );
     for cell in results.cells.iter().filter(|c| c.base != "mc") {
         let Some(e) = cell.errors else { continue };
         let shaded = cell.shaded.map_or(0.0, |x| x[0].rmse);
@@ -147,7 +166,11 @@ fn index(results: &Results, plots: &[String]) -> String {
             opt(cell.mc_equal),
             opt(cell.mc_equal_penumbra),
             cell.speedup.map_or("—".to_owned(), |x| format!("{x:.2}×")),
-            if multi { format!(" {} |", cell.machine + 1) } else { String::new() }
+            if multi {
+                format!(" {} |", cell.machine + 1)
+            } else {
+                String::new()
+            }
         );
     }
     let _ = writeln!(s, "\n## What the papers report\n");
@@ -204,7 +227,8 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
         scene.shared[1] * 1e3
     );
     if let Some(y) = results.yardsticks.get(&scene.name) {
-        let _ = writeln!(
+        let _ =
+            writeln!(
             s,
             "Monte Carlo: RMSE ≈ {:.3}·N^{:.3} (all receivers){}; time ≈ {:.2} ms + {:.4} ms·N.\n",
             y.rmse.a,
@@ -215,7 +239,10 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
             y.seconds.d * 1e3
         );
     }
-    for name in plots.iter().filter(|p| p.starts_with(&format!("plots/{part}-"))) {
+    for name in plots
+        .iter()
+        .filter(|p| p.starts_with(&format!("plots/{part}-")))
+    {
         let _ = writeln!(s, "![{name}]({name})\n");
     }
     let pictures: Vec<&CellRecord> = results
@@ -261,7 +288,11 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
 /// A file that cannot be read or written.
 pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<(), String> {
     let mut methods = String::new();
-    let _ = writeln!(methods, "Regenerate with `{command}` ({}).\n", results.machines.join("; "));
+    let _ = writeln!(
+        methods,
+        "Regenerate with `{command}` ({}).\n",
+        results.machines.join("; ")
+    );
     let _ = writeln!(methods, "| scene | method | time (ms) | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 | RMSE penumbra |");
     let _ = writeln!(methods, "|---|---|---:|---:|---:|---:|---:|---:|---:|---:|");
     let keep_mc = ["mc:16", "mc:256"];
@@ -274,30 +305,57 @@ pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<()
                 let _ = writeln!(
                     methods,
                     "| {} | {} | {} | {:.5} | {:.5} | {:.4} | {:.4} | {:+.5} | {:.4} | {:.5} |",
-                    c.scene, c.method, ms(c), e[0].mean_abs, e[0].rmse, e[0].p99_abs, e[0].max_abs,
-                    e[0].mean_signed, e[0].share_over_0_05, e[1].rmse
+                    c.scene,
+                    c.method,
+                    ms(c),
+                    e[0].mean_abs,
+                    e[0].rmse,
+                    e[0].p99_abs,
+                    e[0].max_abs,
+                    e[0].mean_signed,
+                    e[0].share_over_0_05,
+                    e[1].rmse
                 );
             }
             None => {
-                let _ = writeln!(methods, "| {} | {} | {} | | | | | | | |", c.scene, c.method, c.status);
+                let _ = writeln!(
+                    methods,
+                    "| {} | {} | {} | | | | | | | |",
+                    c.scene, c.method, c.status
+                );
             }
         }
     }
     horizon_table(&mut methods, results);
-    update_page(&dir.join("methods.md"), "Accuracy of the methods against the exact answer", &methods)?;
-    for entry in REGISTRY.iter().filter(|e| e.is_built() && !e.compare.is_empty()) {
+    update_page(
+        &dir.join("methods.md"),
+        "Accuracy of the methods against the exact answer",
+        &methods,
+    )?;
+    for entry in REGISTRY
+        .iter()
+        .filter(|e| e.is_built() && !e.compare.is_empty())
+    {
         if entry.name == "hard" {
             continue;
         }
         let mut page = String::new();
-        let _ = writeln!(page, "Regenerate with `{command}` ({}).\n", results.machines.join("; "));
+        let _ = writeln!(
+            page,
+            "Regenerate with `{command}` ({}).\n",
+            results.machines.join("; ")
+        );
         let mut wanted: Vec<&str> = entry.compare.to_vec();
         wanted.push("hard");
         for scene in &results.scenes {
             let rows: Vec<&CellRecord> = results
                 .cells
                 .iter()
-                .filter(|c| c.scene == scene.name && wanted.contains(&c.method.as_str()) && c.errors.is_some())
+                .filter(|c| {
+                    c.scene == scene.name
+                        && wanted.contains(&c.method.as_str())
+                        && c.errors.is_some()
+                })
                 .collect();
             if rows.iter().all(|c| c.base == "hard") {
                 continue;
@@ -359,16 +417,21 @@ fn horizon_table(s: &mut String, results: &Results) {
     if pairs.is_empty() {
         return;
     }
-    let _ = writeln!(s, "\n## The horizon option: RMSE over every receiver, without → with\n");
+    let _ = writeln!(
+        s,
+        "\n## The horizon option: RMSE over every receiver, without → with\n"
+    );
     let _ = writeln!(s, "| scene | {} |", pairs.join(" | "));
     let _ = writeln!(s, "|---|{}", "---|".repeat(pairs.len()));
     for scene in &results.scenes {
         let cols: Vec<String> = pairs
             .iter()
-            .map(|m| match (rmse(&scene.name, m), rmse(&scene.name, &with_horizon(m))) {
-                (Some(a), Some(b)) => format!("{a:.4} → {b:.4}"),
-                _ => "—".to_owned(),
-            })
+            .map(
+                |m| match (rmse(&scene.name, m), rmse(&scene.name, &with_horizon(m))) {
+                    (Some(a), Some(b)) => format!("{a:.4} → {b:.4}"),
+                    _ => "—".to_owned(),
+                },
+            )
             .collect();
         let _ = writeln!(s, "| {} | {} |", scene.name, cols.join(" | "));
     }
@@ -391,7 +454,10 @@ fn update_page(path: &Path, title: &str, tables: &str) -> Result<(), String> {
 mod tests {
     #[test]
     fn file_parts_are_plain() {
-        assert_eq!(super::file_part("sism:exact-union,horizon"), "sism-exact-union-horizon");
+        assert_eq!(
+            super::file_part("sism:exact-union,horizon"),
+            "sism-exact-union-horizon"
+        );
         assert_eq!(super::file_part("mc:16"), "mc-16");
         assert_eq!(super::file_part("several-objects"), "several-objects");
     }

@@ -38,7 +38,7 @@ impl PowerLaw {
     /// The `N` with `a · N^b = y`; `None` where the law is flat or `y ≤ 0`.
     #[must_use]
     pub fn solve(&self, y: f64) -> Option<f64> {
-        if !(y > 0.0) || self.b == 0.0 {
+        if y.is_nan() || y <= 0.0 || self.b == 0.0 {
             return None;
         }
         let n = (y / self.a).powf(1.0 / self.b);
@@ -81,7 +81,7 @@ fn least_squares(points: &[(f64, f64)]) -> Option<(f64, f64)> {
     let my = points.iter().map(|p| p.1).sum::<f64>() / n;
     let sxx: f64 = points.iter().map(|p| (p.0 - mx).powi(2)).sum();
     let sxy: f64 = points.iter().map(|p| (p.0 - mx) * (p.1 - my)).sum();
-    if !(sxx > 0.0) {
+    if sxx.is_nan() || sxx <= 0.0 {
         return None;
     }
     let slope = sxy / sxx;

@@ -61,7 +61,9 @@ fn bar() -> ProgressBar {
             ProgressDrawTarget::hidden()
         },
     );
-    if let Ok(style) = ProgressStyle::with_template("{wide_bar} {pos}/{len} cells, {elapsed} · {msg}") {
+    if let Ok(style) =
+        ProgressStyle::with_template("{wide_bar} {pos}/{len} cells, {elapsed} · {msg}")
+    {
         bar.set_style(style);
     }
     bar
@@ -83,7 +85,8 @@ fn copy_pictures(parts: &[PathBuf], results: &Results, out: &Path) -> Result<(),
         }
         if let Some(from) = parts.iter().map(|d| d.join(p)).find(|f| f.exists()) {
             if let Some(parent) = to.parent() {
-                std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+                std::fs::create_dir_all(parent)
+                    .map_err(|e| format!("{}: {e}", parent.display()))?;
             }
             std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
         }
