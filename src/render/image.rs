@@ -367,8 +367,10 @@ fn draw_text(img: &mut Rgb, x: u32, y: u32, s: &str, colour: [u8; 3]) {
     }
 }
 
-/// Error statistics of values against a reference (DESIGN §7).
+/// Error statistics of values against a reference: over the compared
+/// values, `e = value − reference`.
 #[derive(Clone, Copy, Debug, Default, PartialEq)]
+#[cfg_attr(feature = "report", derive(serde::Serialize, serde::Deserialize))]
 pub struct ErrorSummary {
     /// How many values were compared.
     pub count: usize,

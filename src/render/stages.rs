@@ -36,6 +36,13 @@ impl Needs {
     /// the method ([`Input::emitters`](crate::method::Input::emitters)).
     pub const EMITTERS: Needs = Needs(16);
 
+    /// The stages of `self` and of `other` (`self | other`, usable in
+    /// constants).
+    #[must_use]
+    pub const fn union(self, other: Needs) -> Needs {
+        Needs(self.0 | other.0)
+    }
+
     /// Whether every stage of `other` is in `self`.
     #[must_use]
     pub fn contains(self, other: Needs) -> bool {
@@ -62,7 +69,7 @@ impl Needs {
 impl std::ops::BitOr for Needs {
     type Output = Needs;
     fn bitor(self, rhs: Needs) -> Needs {
-        Needs(self.0 | rhs.0)
+        self.union(rhs)
     }
 }
 

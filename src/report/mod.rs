@@ -21,7 +21,7 @@
 //!   BVH and primary rays not; those are in [`SceneRecord`]), the median of
 //!   [`Config::runs`] runs — fewer when a run takes more than
 //!   [`SLOW_RUN`] seconds, the count kept per cell.
-//! - **Error** of `V` against [`Exact`] (DESIGN §7): mean absolute, RMSE,
+//! - **Error** of `V` against [`Exact`]: mean absolute, RMSE,
 //!   99th percentile, maximum, mean signed, share over 0.05
 //!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
 //!   exact penumbra (`0 < V_exact < 1`), the ground (object 0, the floor of
@@ -177,38 +177,8 @@ pub struct SceneRecord {
     pub machine: usize,
 }
 
-/// One error summary, as recorded.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Serialize, Deserialize)]
-pub struct Errors {
-    /// Receivers compared.
-    pub count: usize,
-    /// Mean `|e|`.
-    pub mean_abs: f64,
-    /// `√(mean e²)`.
-    pub rmse: f64,
-    /// 99th percentile of `|e|`.
-    pub p99_abs: f64,
-    /// Largest `|e|`.
-    pub max_abs: f64,
-    /// Mean `e` (negative: too dark).
-    pub mean_signed: f64,
-    /// Share with `|e| > 0.05`.
-    pub share_over_0_05: f64,
-}
-
-impl From<ErrorSummary> for Errors {
-    fn from(s: ErrorSummary) -> Errors {
-        Errors {
-            count: s.count,
-            mean_abs: s.mean_abs,
-            rmse: s.rmse,
-            p99_abs: s.p99_abs,
-            max_abs: s.max_abs,
-            mean_signed: s.mean_signed,
-            share_over_0_05: s.share_over_0_05,
-        }
-    }
-}
+/// One error summary, as recorded: [`ErrorSummary`].
+pub type Errors = ErrorSummary;
 
 /// One cell of the sweep, as recorded.
 #[derive(Clone, Debug, PartialEq, Serialize, Deserialize)]
@@ -558,7 +528,7 @@ fn run_cell(
         prepared
             .groups
             .each_ref()
-            .map(|g| ErrorSummary::new(&v, exact, |i| g[i]).into()),
+            .map(|g| ErrorSummary::new(&v, exact, |i| g[i])),
     );
     let shade = |x: &[f64]| -> Vec<f64> {
         x.iter()
@@ -571,7 +541,7 @@ fn run_cell(
         prepared
             .groups
             .each_ref()
-            .map(|g| ErrorSummary::new(&sv, &se, |i| g[i]).into()),
+            .map(|g| ErrorSummary::new(&sv, &se, |i| g[i])),
     );
     cell.profile = prepared.profile.iter().map(|&k| v[k]).collect();
     cell

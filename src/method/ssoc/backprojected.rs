@@ -170,15 +170,11 @@ impl Method for BackprojectedSsoc {
     }
 
     fn needs(&self) -> Needs {
-        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS | Needs::TOPOLOGY
+        super::NEEDS
     }
 
     fn requires(&self) -> Requires {
-        Requires {
-            normals: true,
-            objects: false,
-            normals_hint: "the shadow-map test compares texels with the receiver's tangent plane",
-        }
+        super::REQUIRES
     }
 
     fn horizon(&self) -> Horizon {

@@ -458,6 +458,20 @@ fn ratio(d: f64, dmax: f64) -> f64 {
     }
 }
 
+/// What SSOC and its backprojected variant need: the shadow map and the
+/// distortion maps built from the silhouettes.
+const NEEDS: Needs = Needs::BVH
+    .union(Needs::LIGHT_FRAME)
+    .union(Needs::LIGHT_MAPS)
+    .union(Needs::TOPOLOGY);
+
+/// What both variants require of the receivers.
+const REQUIRES: Requires = Requires {
+    normals: true,
+    objects: false,
+    normals_hint: "the shadow-map test compares texels with the receiver's tangent plane",
+};
+
 impl super::Method for Ssoc {
     fn name(&self) -> String {
         super::options::print(self)
@@ -468,15 +482,11 @@ impl super::Method for Ssoc {
     }
 
     fn needs(&self) -> Needs {
-        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS | Needs::TOPOLOGY
+        NEEDS
     }
 
     fn requires(&self) -> Requires {
-        Requires {
-            normals: true,
-            objects: false,
-            normals_hint: "the shadow-map test compares texels with the receiver's tangent plane",
-        }
+        REQUIRES
     }
 
     fn horizon(&self) -> Horizon {
