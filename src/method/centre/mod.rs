@@ -62,6 +62,18 @@ pub struct ProjectedEdge {
     pub weight: f64,
 }
 
+/// The point of segment `[a, b]` nearest `p`, and its parameter.
+pub(crate) fn nearest_on(a: DVec2, b: DVec2, p: DVec2) -> (DVec2, f64) {
+    let d = b - a;
+    let dd = d.length_squared();
+    let t = if dd > 0.0 {
+        ((p - a).dot(d) / dd).clamp(0.0, 1.0)
+    } else {
+        0.0
+    };
+    (a + d * t, t)
+}
+
 /// `true` when `s` is on the left of `a → b`, ties (`s` on the line) broken
 /// by the edge's direction so that the two directions of an edge disagree:
 /// a point on an edge shared by two triangles is inside exactly one.

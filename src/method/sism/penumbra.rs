@@ -184,7 +184,7 @@ fn penumbra_bin(
                     // projected edge: from its centre, less its half
                     // diagonal.
                     let (lo, hi) = grid.cell_box(cx, cy);
-                    let dmin = (point_segment_distance((lo + hi) * 0.5, e.a, e.b)
+                    let dmin = (segment_distance((lo + hi) * 0.5, e.a, e.b)
                         - 0.5 * (hi - lo).length())
                     .max(0.0);
                     // The depth where the footprint reaches the cell;
@@ -232,17 +232,6 @@ fn penumbra_bin(
     counts
 }
 
-/// Distance from point `p` to segment `[a, b]`.
-fn point_segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    let d = b - a;
-    let dd = d.length_squared();
-    let t = if dd > 0.0 {
-        ((p - a).dot(d) / dd).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + d * t - p).length()
-}
 
 /// Work counters of the penumbra pass.
 #[derive(Clone, Copy, Debug, Default)]
@@ -428,4 +417,9 @@ mod tests {
         assert!(left(a, b, DVec2::new(0.0, 1.0)));
         assert!(!left(b, a, DVec2::new(0.0, 1.0)));
     }
+}
+
+/// Distance from point `p` to segment `[a, b]`.
+fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    (crate::method::centre::nearest_on(a, b, p).0 - p).length()
 }

@@ -181,17 +181,6 @@ impl DistortionMaps {
     }
 }
 
-/// The point of segment `[a, b]` nearest `p`, and its parameter.
-pub(crate) fn nearest_on(a: DVec2, b: DVec2, p: DVec2) -> (DVec2, f64) {
-    let d = b - a;
-    let dd = d.length_squared();
-    let t = if dd > 0.0 {
-        ((p - a).dot(d) / dd).clamp(0.0, 1.0)
-    } else {
-        0.0
-    };
-    (a + d * t, t)
-}
 
 /// The x-range where the line `y` meets the capsule of radius `half`
 /// around `[a, b]` (empty: `x0 > x1`).

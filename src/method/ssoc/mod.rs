@@ -72,7 +72,8 @@ use crate::render::raster::{LightMaps, LightView, MAX_RESOLUTION};
 use crate::render::{FittedMaps, Needs, Receiver};
 use crate::scene::LightKind;
 use glam::{DVec2, DVec3};
-use maps::{nearest_on, DistortionMaps, NONE};
+use super::centre::nearest_on;
+use maps::{DistortionMaps, NONE};
 use std::sync::Arc;
 
 /// The soft shadow occlusion camera: see the [module docs](self). Sphere
