@@ -145,7 +145,10 @@ pub fn run(args: &Args) -> Result<(), String> {
     };
     report::write(&results, &args.out)?;
     if let Some(dir) = &args.accuracy {
-        let command = std::env::args().collect::<Vec<_>>().join(" ");
+        let command = std::iter::once("softshadow".to_owned())
+            .chain(std::env::args().skip(1))
+            .collect::<Vec<_>>()
+            .join(" ");
         report::write_accuracy(&results, dir, &command)?;
     }
     let missing = results.config.cells - results.cells.len();
