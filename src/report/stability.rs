@@ -392,6 +392,170 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             note: "inside".to_owned(),
         });
     }
+    scalar_kernel_rows(rows);
+}
+
+/// One `f32` kernel of scalars against its `f64` twin on the same
+/// (`f32`-rounded) inputs: the largest error, absolute or relative to the
+/// `f64` value.
+fn scalar_row(
+    rows: &mut Vec<Row>,
+    (subject, family, case): (&str, &'static str, String),
+    inputs: &[[f64; 3]],
+    f32_fn: impl Fn([f32; 3]) -> f32,
+    f64_fn: impl Fn([f64; 3]) -> f64,
+    relative: bool,
+) {
+    let mut worst = 0.0f64;
+    for x in inputs {
+        let xf = x.map(|v| v as f32);
+        let got = f64::from(f32_fn(xf));
+        let want = f64_fn(xf.map(f64::from));
+        let e = if relative {
+            (got - want).abs() / want.abs().max(f64::MIN_POSITIVE)
+        } else {
+            (got - want).abs()
+        };
+        worst = worst.max(if e.is_nan() { f64::INFINITY } else { e });
+    }
+    rows.push(Row {
+        subject: subject.to_owned(),
+        family,
+        case,
+        precision: "f32",
+        count: inputs.len(),
+        max: worst,
+        note: "inside".to_owned(),
+    });
+}
+
+/// The scalar kernels in `f32` against `f64`: the falloffs near their
+/// ends, `atan2` at extreme magnitudes and near the axes, the footprint
+/// radius and SSOC's distortion at contact and far away.
+fn scalar_kernel_rows(rows: &mut Vec<Row>) {
+    use crate::kernel::{angle, distortion, falloff, footprint};
+    let ramp = |lo: f64, hi: f64, n: usize| -> Vec<[f64; 3]> {
+        (0..=n)
+            .map(|i| [lo + (hi - lo) * i as f64 / n as f64, 0.0, 0.0])
+            .collect()
+    };
+    let ends = |eps: f64| -> Vec<[f64; 3]> {
+        (0..=20)
+            .flat_map(|i| {
+                let t = eps * (1.0 + i as f64 / 20.0);
+                [[t, 0.0, 0.0], [1.0 - t, 0.0, 0.0]]
+            })
+            .collect()
+    };
+    for (name, f32_fn, f64_fn) in [
+        (
+            "falloff::bernstein (absolute)",
+            falloff::f32::bernstein as fn(f32) -> f32,
+            falloff::f64::bernstein as fn(f64) -> f64,
+        ),
+        (
+            "falloff::disk_edge_falloff (absolute)",
+            falloff::f32::disk_edge_falloff,
+            falloff::f64::disk_edge_falloff,
+        ),
+    ] {
+        scalar_row(
+            rows,
+            (name, "uniform", "t in [0, 1]".to_owned()),
+            &ramp(0.0, 1.0, 200),
+            |x| f32_fn(x[0]),
+            |x| f64_fn(x[0]),
+            false,
+        );
+        for e in [3, 6] {
+            scalar_row(
+                rows,
+                (name, "contact", format!("t within 1e-{e} of 0 and 1")),
+                &ends(10f64.powi(-e)),
+                |x| f32_fn(x[0]),
+                |x| f64_fn(x[0]),
+                false,
+            );
+        }
+    }
+    let name = "angle::atan2 (relative)";
+    for (family, case, scale) in [
+        ("far offset", "x and y of magnitude 1e30", 1e30),
+        ("light size", "x and y of magnitude 1e-30", 1e-30),
+        ("uniform", "x and y of magnitude 1", 1.0),
+    ] {
+        let inputs: Vec<[f64; 3]> = (0..64)
+            .map(|i| {
+                let a = -3.1 + 6.2 * f64::from(i) / 63.0;
+                [a.sin() * scale, a.cos() * scale, 0.0]
+            })
+            .collect();
+        scalar_row(
+            rows,
+            (name, family, case.to_owned()),
+            &inputs,
+            |x| angle::f32::atan2(x[0], x[1]),
+            |x| angle::f64::atan2(x[0], x[1]),
+            true,
+        );
+    }
+    let near_axis: Vec<[f64; 3]> = (1..=30)
+        .map(|k| [10f64.powi(-k / 2 - 1), 1.0, 0.0])
+        .collect();
+    scalar_row(
+        rows,
+        (name, "grazing", "y/x from 1e-1 to 1e-16".to_owned()),
+        &near_axis,
+        |x| angle::f32::atan2(x[0], x[1]),
+        |x| angle::f64::atan2(x[0], x[1]),
+        true,
+    );
+    let name = "footprint::radius (relative)";
+    for (family, case, inputs) in [
+        (
+            "contact",
+            "receiver 1e-3 … 1e-6 past the occluder (relative)",
+            (3..=6)
+                .map(|e| [0.5, 2.0, 2.0 * (1.0 + 10f64.powi(-e))])
+                .collect::<Vec<_>>(),
+        ),
+        (
+            "light size",
+            "light radius 1e-6 … 1e3",
+            [1e-6, 1e-3, 1.0, 1e3].map(|r| [r, 2.0, 3.0]).to_vec(),
+        ),
+        (
+            "far offset",
+            "depths 1e3 … 1e8",
+            (3..=8)
+                .map(|e| [0.5, 10f64.powi(e), 1.5 * 10f64.powi(e)])
+                .collect(),
+        ),
+    ] {
+        scalar_row(
+            rows,
+            (name, family, case.to_owned()),
+            &inputs,
+            |x| footprint::f32::radius(x[0], x[1], x[2]),
+            |x| footprint::f64::radius(x[0], x[1], x[2]),
+            true,
+        );
+    }
+    let name = "distortion::max_distortion (relative)";
+    scalar_row(
+        rows,
+        (
+            name,
+            "contact",
+            "receiver 1e-3 … 1e-6 past the near depth".to_owned(),
+        ),
+        &(3..=6)
+            .map(|e| [0.5, 2.0, 2.0 * (1.0 + 10f64.powi(-e))])
+            .collect::<Vec<_>>(),
+        |x| distortion::f32::max_distortion(x[0], x[1], x[2]),
+        |x| distortion::f64::max_distortion(x[0], x[1], x[2]),
+        true,
+    );
 }
 
 /// A built-in scene moved by `offset`, its light scaled by `light_scale`.

@@ -24,9 +24,9 @@ pub fn run(args: &Args) -> Result<(), String> {
         }
     });
     let command = std::iter::once("softshadow".to_owned())
-            .chain(std::env::args().skip(1))
-            .collect::<Vec<_>>()
-            .join(" ");
+        .chain(std::env::args().skip(1))
+        .collect::<Vec<_>>()
+        .join(" ");
     let text = stability::markdown(&rows, &machine_line(), &command);
     std::fs::create_dir_all(&args.out).map_err(|e| format!("--out {}: {e}", args.out.display()))?;
     let path = args.out.join("stability.md");

@@ -232,7 +232,6 @@ fn penumbra_bin(
     counts
 }
 
-
 /// Work counters of the penumbra pass.
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Counts {
@@ -377,6 +376,11 @@ fn map_edge(e: &ProjectedEdge, s: DVec2, zp: f64, r: f64) -> Option<MappedEdge> 
     })
 }
 
+/// Distance from point `p` to segment `[a, b]`.
+fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
+    (crate::method::centre::nearest_on(a, b, p).0 - p).length()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -417,9 +421,4 @@ mod tests {
         assert!(left(a, b, DVec2::new(0.0, 1.0)));
         assert!(!left(b, a, DVec2::new(0.0, 1.0)));
     }
-}
-
-/// Distance from point `p` to segment `[a, b]`.
-fn segment_distance(p: DVec2, a: DVec2, b: DVec2) -> f64 {
-    (crate::method::centre::nearest_on(a, b, p).0 - p).length()
 }

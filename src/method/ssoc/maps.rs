@@ -181,7 +181,6 @@ impl DistortionMaps {
     }
 }
 
-
 /// The x-range where the line `y` meets the capsule of radius `half`
 /// around `[a, b]` (empty: `x0 > x1`).
 fn row_span(a: DVec2, b: DVec2, half: f64, y: f64) -> (f64, f64) {

@@ -63,6 +63,7 @@ mod backprojected;
 pub use backprojected::BackprojectedSsoc;
 
 use super::centre::depth::DepthTest;
+use super::centre::nearest_on;
 use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge};
 use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, MethodError, Output, Requires};
@@ -72,7 +73,6 @@ use crate::render::raster::{LightMaps, LightView, MAX_RESOLUTION};
 use crate::render::{FittedMaps, Needs, Receiver};
 use crate::scene::LightKind;
 use glam::{DVec2, DVec3};
-use super::centre::nearest_on;
 use maps::{DistortionMaps, NONE};
 use std::sync::Arc;
 
