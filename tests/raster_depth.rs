@@ -137,3 +137,89 @@ fn depth_is_exact_for_a_plane_parallel_to_the_image_plane() {
     assert!(maps.depth().iter().all(|&d| d == 3.0 || d == f64::INFINITY));
     assert!(maps.depth().iter().filter(|&&d| d == 3.0).count() > 500);
 }
+
+#[path = "support/dd.rs"]
+#[allow(dead_code)]
+mod dd;
+
+/// The plane depth along `(u, v, 1)` of the triangle `q` (light frame), in
+/// double-double: `z = n·p / n·(u, v, 1)` with `n = (b − a) × (c − a)` and
+/// `p` the corner nearest the light, the differences and products carried
+/// to about 106 bits.
+fn depth_dd(q: [DVec3; 3], u: DVec2) -> f64 {
+    use dd::{two_prod, Dd};
+    let c = |x: f64| Dd { hi: x, lo: 0.0 };
+    let sub = |p: DVec3, r: DVec3| [0, 1, 2].map(|k| c(p[k]).sub(c(r[k])));
+    let (e1, e2) = (sub(q[1], q[0]), sub(q[2], q[0]));
+    let n = [
+        e1[1].mul(e2[2]).sub(e1[2].mul(e2[1])),
+        e1[2].mul(e2[0]).sub(e1[0].mul(e2[2])),
+        e1[0].mul(e2[1]).sub(e1[1].mul(e2[0])),
+    ];
+    let dot = |v: [f64; 3]| {
+        n[0].mul(c(v[0]))
+            .add(n[1].mul(c(v[1])))
+            .add(n[2].mul(c(v[2])))
+    };
+    let _ = two_prod;
+    // The plane's offset from the corner nearest the light: `n` carries an
+    // absolute error (about 10⁻³² of its products), which a far corner
+    // would multiply by its distance.
+    let base = q
+        .into_iter()
+        .min_by(|x, y| x.length().total_cmp(&y.length()))
+        .unwrap_or(q[0]);
+    dot(base.to_array()).div(dot([u.x, u.y, 1.0])).to_f64()
+}
+
+#[test]
+fn a_corner_far_behind_the_light_keeps_the_depth_of_the_sliver() {
+    // Found by the `raster` fuzz target: a sliver whose third corner lies
+    // 4·10¹³ away behind the light, clipped at the near depth. From that
+    // corner both edges round to one direction, and the plane they gave
+    // put a pixel at the sliver's far end (4.0739) where the plane is at
+    // 4.0439; the plane is now taken from the corner opposite the longest
+    // edge.
+    let q = [
+        DVec3::new(-41250006549658.49, 41192122540089.48, -2270596109324.049),
+        DVec3::new(
+            0.003796701237584077,
+            -0.0006640484041836314,
+            4.050879326622124,
+        ),
+        DVec3::new(
+            0.017790165384235168,
+            -0.018957469921259018,
+            4.073942340988978,
+        ),
+    ];
+    let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
+    let world = q.map(|p| frame.to_world(p));
+    let q = world.map(|p| frame.to_light(p));
+    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 11, 11, 0.015).unwrap();
+    let maps = rasterize(&view, &[world], &[0]).unwrap();
+    let mut covered = 0;
+    for row in 0..11 {
+        for col in 0..11 {
+            if !maps.is_covered(col, row) {
+                continue;
+            }
+            covered += 1;
+            let u = view.pixel_center(col, row);
+            let want = depth_dd(q, u);
+            let got = maps.depth_at(col, row);
+            // The documented bound: a few ulps times the conditioning
+            // |n|·|(u, v, 1)| / |n·(u, v, 1)| (the sliver is seen nearly
+            // edge-on here).
+            let n = (q[2] - q[1]).cross(q[0] - q[1]);
+            let ray = DVec3::new(u.x, u.y, 1.0);
+            let kappa = n.length() * ray.length() / n.dot(ray).abs();
+            let bound = 8.0 * f64::EPSILON * kappa * want;
+            assert!(
+                (got - want).abs() <= bound,
+                "pixel ({col}, {row}): {got} against {want} (κ = {kappa:.3e})"
+            );
+        }
+    }
+    assert!(covered > 0);
+}

@@ -69,7 +69,18 @@ fuzz_target!(|data: &[u8]| {
             }
             assert!(depth.is_finite() && depth >= near * (1.0 - 1e-12), "{depth} < {near}");
             let t = occluders.triangles()[maps.triangle_at(col, row) as usize];
-            let [a, b, c] = t.map(|p| frame.to_light(p));
+            let q = t.map(|p| frame.to_light(p));
+            // The plane from the corner opposite the longest edge (from a
+            // corner far away, both edges round to one direction).
+            let long = |i: usize| (q[(i + 1) % 3] - q[(i + 2) % 3]).length();
+            let i = if long(0) >= long(1) && long(0) >= long(2) {
+                0
+            } else if long(1) >= long(2) {
+                1
+            } else {
+                2
+            };
+            let (a, b, c) = (q[i], q[(i + 1) % 3], q[(i + 2) % 3]);
             let n = (b - a).cross(c - a);
             let u = view.pixel_center(col, row);
             let ray = DVec3::new(u.x, u.y, 1.0);
@@ -79,7 +90,7 @@ fuzz_target!(|data: &[u8]| {
             if z.is_finite() && !edge_on {
                 assert!(
                     (z - depth).abs() <= 1e-9 * depth.abs().max(z.abs()).max(1.0),
-                    "texel ({col}, {row}): depth {depth}, the triangle's plane {z}"
+                    "texel ({col}, {row}): depth {depth}, the triangle's plane {z}; light-frame corners {a} {b} {c}; centre ray {ray}; near {near}"
                 );
             }
         }

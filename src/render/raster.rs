@@ -80,7 +80,9 @@
 //! **Depth.** The stored depth is the light-frame `z` at which the ray from
 //! the light's centre in direction `(u, v, 1)`, `(u, v)` the pixel centre,
 //! meets the plane of the triangle: `z = (n·a) / (n·(u, v, 1))` with
-//! `n = (b − a) × (c − a)` in light-frame coordinates, clamped to the range
+//! `n = (b − a) × (c − a)` in light-frame coordinates, `a` the corner
+//! opposite the longest edge (so that a corner far behind the light does
+//! not swamp the differences; found by the `raster` fuzz target), clamped to the range
 //! of the (clipped) polygon's depths (the exact value lies in it). Relative
 //! error a few ulps times the conditioning `|n|·|(u,v,1)| / |n·(u,v,1)|`
 //! (grazing triangles lose digits). Against an independent Möller–Trumbore
@@ -523,6 +525,22 @@ fn crossing(p: DVec3, r: DVec3, near: f64) -> DVec3 {
     DVec3::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), near)
 }
 
+/// A triangle's plane as a normal `n = (b − a) × (c − a)` and a corner
+/// `a`, with `a` the corner opposite the longest edge: the two edges from
+/// it are the shortest, so their differences keep the triangle's shape when
+/// another corner is far away (a sliver clipped at the near depth whose
+/// third corner lies 10¹³ behind the light: from that corner, both edges
+/// round to the same direction and the plane is lost). Cyclic, so `n`
+/// keeps the winding of `q`.
+pub(crate) fn plane_of(q: &[DVec3; 3]) -> (DVec3, DVec3) {
+    let opposite = |i: usize| (q[(i + 1) % 3] - q[(i + 2) % 3]).length_squared();
+    let i = (0..3)
+        .max_by(|&x, &y| opposite(x).total_cmp(&opposite(y)))
+        .unwrap_or(0);
+    let (a, b, c) = (q[i], q[(i + 1) % 3], q[(i + 2) % 3]);
+    ((b - a).cross(c - a), a)
+}
+
 /// The triangle's plane for the depth along a pixel ray.
 struct Plane {
     n: DVec3,
@@ -533,10 +551,10 @@ struct Plane {
 
 impl Plane {
     fn new(q: &[DVec3; 3], zmin: f64, zmax: f64) -> Plane {
-        let n = (q[1] - q[0]).cross(q[2] - q[0]);
+        let (n, a) = plane_of(q);
         Plane {
             n,
-            na: n.dot(q[0]),
+            na: n.dot(a),
             zmin,
             zmax,
         }

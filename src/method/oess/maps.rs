@@ -211,8 +211,7 @@ fn planes(frame: &LightFrame, triangles: &[[DVec3; 3]]) -> Vec<Plane> {
     triangles
         .par_iter()
         .map(|t| {
-            let [a, b, c] = t.map(|p| frame.to_light(p));
-            let n = (b - a).cross(c - a);
+            let (n, a) = crate::render::raster::plane_of(&t.map(|p| frame.to_light(p)));
             Plane { n, d: n.dot(a) }
         })
         .collect()
