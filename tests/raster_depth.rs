@@ -223,3 +223,42 @@ fn a_corner_far_behind_the_light_keeps_the_depth_of_the_sliver() {
     }
     assert!(covered > 0);
 }
+
+#[test]
+fn a_corner_far_past_the_near_depth_keeps_the_clipped_outline() {
+    // Found by the `raster` fuzz target: one corner behind the near depth,
+    // one 10⁶⁶ beyond it. The crossing of their edge with the near plane
+    // was interpolated from the far end, whose parameter rounds to 1, and
+    // landed near the origin instead of at x ≈ −30; the clipped polygon
+    // then covered the lower left of this window. Exactly (rational
+    // arithmetic), the clipped polygon's corners project to
+    // (−92.3, −169.7), (−0.645, −1.409), (−5.875, 0.055) and (−5025, −104):
+    // all left of or below the window [−½, ½]², whose pixels it misses.
+    let q = [
+        DVec3::new(
+            -1.0920388876787268,
+            -0.8949689611650419,
+            -4.9403953462796935,
+        ),
+        DVec3::new(-0.47437574118339815, -1.036587284102709, 0.7358299309484109),
+        DVec3::new(
+            -6.18817473522882e66,
+            5.776022231042852e64,
+            1.053276841691022e66,
+        ),
+    ];
+    let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
+    let world = q.map(|p| frame.to_world(p));
+    assert_eq!(
+        world.map(|p| frame.to_light(p)),
+        q,
+        "the frame is the identity"
+    );
+    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 13, 13, 0.006).unwrap();
+    let maps = rasterize(&view, &[world], &[0]).unwrap();
+    let covered = (0..13)
+        .flat_map(|r| (0..13).map(move |c| (c, r)))
+        .filter(|&(c, r)| maps.is_covered(c, r))
+        .count();
+    assert_eq!(covered, 0);
+}

@@ -513,12 +513,22 @@ impl Projected {
     }
 }
 
-/// The crossing of the edge `p r` with `z = near`, from the endpoints in a
-/// canonical (lexicographic) order, so that both triangles sharing the edge
-/// get the same bits. The caller guarantees the ends are on opposite sides.
+/// The crossing of the edge `p r` with `z = near`, interpolated from the
+/// endpoint nearer the plane (ties in lexicographic order): an order that
+/// does not depend on the edge's direction, so that both triangles sharing
+/// the edge get the same bits, and a parameter `t ≤ ½` from the near end,
+/// so that a far end (10⁶⁶ away, found by the `raster` fuzz target) does not
+/// round `t` to 1 and swamp the crossing. The caller guarantees the ends
+/// are on opposite sides.
 fn crossing(p: DVec3, r: DVec3, near: f64) -> DVec3 {
     let key = |v: DVec3| [v.x, v.y, v.z];
-    let (a, b) = if key(p) <= key(r) { (p, r) } else { (r, p) };
+    let gap = |v: DVec3| (v.z - near).abs();
+    let (a, b) = match gap(p).total_cmp(&gap(r)) {
+        std::cmp::Ordering::Less => (p, r),
+        std::cmp::Ordering::Greater => (r, p),
+        std::cmp::Ordering::Equal if key(p) <= key(r) => (p, r),
+        std::cmp::Ordering::Equal => (r, p),
+    };
     // a.z and b.z straddle `near`, so the difference is nonzero and
     // t ∈ [0, 1] (rounded differences are monotone).
     let t = (near - a.z) / (b.z - a.z);
