@@ -86,3 +86,35 @@ fn a_mapped_edge_hides_the_light_points_it_hides_from_the_receiver() {
         None
     );
 }
+
+#[test]
+fn a_cut_is_the_same_both_ways_and_not_swamped_by_a_far_end() {
+    // One end just behind the near plane, the other 10⁶⁶ beyond it: the
+    // cut, by hand, is at x = a.x + (near − a.z)/(b.z − a.z)·(b.x − a.x)
+    // from the near end, about −30.2 (the far end's parameter rounds to 1
+    // and would put it near 0).
+    let a = DVec3::new(
+        -1.0920388876787268,
+        -0.8949689611650419,
+        -4.9403953462796935,
+    );
+    let b = DVec3::new(
+        -6.18817473522882e66,
+        5.776022231042852e64,
+        1.053276841691022e66,
+    );
+    let near = 0.006;
+    let want = a.x + (near - a.z) / (b.z - a.z) * (b.x - a.x);
+    let (cut, end) = clip_near(a, b, near).unwrap();
+    assert_eq!(end, b);
+    assert!(
+        (cut.x - want).abs() <= 1e-12 * want.abs(),
+        "{} vs {want}",
+        cut.x
+    );
+    assert_eq!(cut.z, near);
+    // The other way round: the same bits.
+    let (end, cut2) = clip_near(b, a, near).unwrap();
+    assert_eq!(end, b);
+    assert_eq!(cut2, cut);
+}

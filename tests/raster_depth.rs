@@ -262,3 +262,37 @@ fn a_corner_far_past_the_near_depth_keeps_the_clipped_outline() {
         .count();
     assert_eq!(covered, 0);
 }
+
+#[test]
+fn two_far_corners_keep_the_depth_near_the_third() {
+    // Found by the `raster` fuzz target: two corners 10³⁰ away, one near
+    // the light. A plane anchored at a far corner places the near corner
+    // only to 10¹⁴; anchored at the nearest corner, the depth of the
+    // pixels near it is right. Checked against the double-double plane.
+    let q = [
+        DVec3::new(3.5294089286371225e30, 2.46995630644165e26, 3.006232127933387e28),
+        DVec3::new(-0.06181157149560154, -0.05291364706523842, 5.8231956460716745),
+        DVec3::new(3.559224254285812e30, -3.5868067201318507e30, -3.4408768982998435e30),
+    ];
+    let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
+    let world = q.map(|p| frame.to_world(p));
+    assert_eq!(world.map(|p| frame.to_light(p)), q, "the frame is the identity");
+    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 9, 9, 0.071).unwrap();
+    let maps = rasterize(&view, &[world], &[0]).unwrap();
+    let mut covered = 0;
+    for row in 0..9 {
+        for col in 0..9 {
+            if !maps.is_covered(col, row) {
+                continue;
+            }
+            covered += 1;
+            let want = depth_dd(q, view.pixel_center(col, row));
+            let got = maps.depth_at(col, row);
+            assert!(
+                (got - want).abs() <= 1e-9 * want,
+                "pixel ({col}, {row}): {got} against {want}"
+            );
+        }
+    }
+    assert!(covered > 0);
+}

@@ -70,18 +70,22 @@ fuzz_target!(|data: &[u8]| {
             assert!(depth.is_finite() && depth >= near * (1.0 - 1e-12), "{depth} < {near}");
             let t = occluders.triangles()[maps.triangle_at(col, row) as usize];
             let q = t.map(|p| frame.to_light(p));
-            // The plane from the corner opposite the longest edge (from a
-            // corner far away, both edges round to one direction).
-            let long = |i: usize| (q[(i + 1) % 3] - q[(i + 2) % 3]).length();
-            let i = if long(0) >= long(1) && long(0) >= long(2) {
+            // The plane from the corner nearest the light (from a far
+            // corner, the differences lose the near geometry): the same
+            // well-conditioned form as the rasterizer's, so this checks
+            // that the stored depth is the plane's along the centre ray
+            // (fill, clip, clamp); the form itself is checked against
+            // double-double planes in `tests/raster_depth.rs`.
+            let i = if q[0].length() <= q[1].length() && q[0].length() <= q[2].length() {
                 0
-            } else if long(1) >= long(2) {
+            } else if q[1].length() <= q[2].length() {
                 1
             } else {
                 2
             };
             let (a, b, c) = (q[i], q[(i + 1) % 3], q[(i + 2) % 3]);
-            let n = (b - a).cross(c - a);
+            let (e1, e2) = (b - a, c - a);
+            let n = e1.cross(e2);
             let u = view.pixel_center(col, row);
             let ray = DVec3::new(u.x, u.y, 1.0);
             let z = n.dot(a) / n.dot(ray);

@@ -118,6 +118,16 @@ macro_rules! footprint_kernels {
         /// `z` strictly between the ends' depths.
         #[inline]
         fn cut(a: $V3, b: $V3, z: $T) -> $V3 {
+            // From the end nearer the plane (ties in lexicographic order):
+            // the same bits whichever way the segment runs, and `t ≤ ½`, so
+            // that a far end does not round `t` to 1 and swamp the cut.
+            let key = |v: $V3| [v.x, v.y, v.z];
+            let (a, b) = match (a.z - z).abs().total_cmp(&(b.z - z).abs()) {
+                core::cmp::Ordering::Less => (a, b),
+                core::cmp::Ordering::Greater => (b, a),
+                core::cmp::Ordering::Equal if key(a) <= key(b) => (a, b),
+                core::cmp::Ordering::Equal => (b, a),
+            };
             let t = (z - a.z) / (b.z - a.z);
             let mut c = a + (b - a) * t;
             c.z = z;
@@ -126,8 +136,10 @@ macro_rules! footprint_kernels {
 
         /// The part of the light-frame segment `[a, b]` at depth `z ≥ near`
         /// (in front of a near plane), its order kept; `None` when none is.
-        /// An end already in front is returned bit for bit, so an edge
-        /// shared by two triangles is cut at the same point from both.
+        /// An end already in front is returned bit for bit, and the cut is
+        /// interpolated from the end nearer the plane whichever way the
+        /// segment runs, so an edge shared by two triangles is cut at the
+        /// same point from both, and a far end does not swamp it.
         #[must_use]
         #[inline]
         pub fn clip_near(a: $V3, b: $V3, near: $T) -> Option<($V3, $V3)> {

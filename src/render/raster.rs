@@ -81,8 +81,8 @@
 //! the light's centre in direction `(u, v, 1)`, `(u, v)` the pixel centre,
 //! meets the plane of the triangle: `z = (n·a) / (n·(u, v, 1))` with
 //! `n = (b − a) × (c − a)` in light-frame coordinates, `a` the corner
-//! opposite the longest edge (so that a corner far behind the light does
-//! not swamp the differences; found by the `raster` fuzz target), clamped to the range
+//! nearest the light (so that a far corner does not swamp the differences;
+//! found by the `raster` fuzz target), clamped to the range
 //! of the (clipped) polygon's depths (the exact value lies in it). Relative
 //! error a few ulps times the conditioning `|n|·|(u,v,1)| / |n·(u,v,1)|`
 //! (grazing triangles lose digits). Against an independent Möller–Trumbore
@@ -536,16 +536,15 @@ fn crossing(p: DVec3, r: DVec3, near: f64) -> DVec3 {
 }
 
 /// A triangle's plane as a normal `n = (b − a) × (c − a)` and a corner
-/// `a`, with `a` the corner opposite the longest edge: the two edges from
-/// it are the shortest, so their differences keep the triangle's shape when
-/// another corner is far away (a sliver clipped at the near depth whose
-/// third corner lies 10¹³ behind the light: from that corner, both edges
-/// round to the same direction and the plane is lost). Cyclic, so `n`
-/// keeps the winding of `q`.
+/// `a`, with `a` the corner nearest the light (the light frame's origin):
+/// the differences from it keep the triangle's shape near the light when
+/// another corner is far away (found by the `raster` fuzz target: a corner
+/// 10¹³ behind the light swamped both edges from it, a corner 10³⁰ away
+/// the offset `n·a`), and the offset is taken where the pixels that see the
+/// triangle look. Cyclic, so `n` keeps the winding of `q`.
 pub(crate) fn plane_of(q: &[DVec3; 3]) -> (DVec3, DVec3) {
-    let opposite = |i: usize| (q[(i + 1) % 3] - q[(i + 2) % 3]).length_squared();
     let i = (0..3)
-        .max_by(|&x, &y| opposite(x).total_cmp(&opposite(y)))
+        .min_by(|&x, &y| q[x].length_squared().total_cmp(&q[y].length_squared()))
         .unwrap_or(0);
     let (a, b, c) = (q[i], q[(i + 1) % 3], q[(i + 2) % 3]);
     ((b - a).cross(c - a), a)
