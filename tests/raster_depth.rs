@@ -270,18 +270,85 @@ fn two_far_corners_keep_the_depth_near_the_third() {
     // only to 10¹⁴; anchored at the nearest corner, the depth of the
     // pixels near it is right. Checked against the double-double plane.
     let q = [
-        DVec3::new(3.5294089286371225e30, 2.46995630644165e26, 3.006232127933387e28),
-        DVec3::new(-0.06181157149560154, -0.05291364706523842, 5.8231956460716745),
-        DVec3::new(3.559224254285812e30, -3.5868067201318507e30, -3.4408768982998435e30),
+        DVec3::new(
+            3.5294089286371225e30,
+            2.46995630644165e26,
+            3.006232127933387e28,
+        ),
+        DVec3::new(
+            -0.06181157149560154,
+            -0.05291364706523842,
+            5.8231956460716745,
+        ),
+        DVec3::new(
+            3.559224254285812e30,
+            -3.5868067201318507e30,
+            -3.4408768982998435e30,
+        ),
     ];
     let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
     let world = q.map(|p| frame.to_world(p));
-    assert_eq!(world.map(|p| frame.to_light(p)), q, "the frame is the identity");
+    assert_eq!(
+        world.map(|p| frame.to_light(p)),
+        q,
+        "the frame is the identity"
+    );
     let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 9, 9, 0.071).unwrap();
     let maps = rasterize(&view, &[world], &[0]).unwrap();
     let mut covered = 0;
     for row in 0..9 {
         for col in 0..9 {
+            if !maps.is_covered(col, row) {
+                continue;
+            }
+            covered += 1;
+            let want = depth_dd(q, view.pixel_center(col, row));
+            let got = maps.depth_at(col, row);
+            assert!(
+                (got - want).abs() <= 1e-9 * want,
+                "pixel ({col}, {row}): {got} against {want}"
+            );
+        }
+    }
+    assert!(covered > 0);
+}
+
+#[test]
+fn corners_far_apart_in_depth_keep_the_plane_near_the_light() {
+    // Found by the `raster` fuzz target: corners 10⁷⁸ and 10²⁸ away, one
+    // near the light. Both the near-plane cut of the far edge and the
+    // normal's components are differences of terms that cancel by 16
+    // digits or more; in double length (error-free products) the depths
+    // near the light are right. Checked against the double-double plane.
+    let q = [
+        DVec3::new(
+            0.004457689260174119,
+            0.001213924242751352,
+            3.1326282079377425,
+        ),
+        DVec3::new(
+            -1.5508161707532255e78,
+            3.793158882826991e75,
+            7.266293279499008e76,
+        ),
+        DVec3::new(
+            2.0793936589461615e28,
+            -5.086012563626311e25,
+            -9.742924051465575e26,
+        ),
+    ];
+    let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
+    let world = q.map(|p| frame.to_world(p));
+    assert_eq!(
+        world.map(|p| frame.to_light(p)),
+        q,
+        "the frame is the identity"
+    );
+    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 17, 17, 0.013).unwrap();
+    let maps = rasterize(&view, &[world], &[0]).unwrap();
+    let mut covered = 0;
+    for row in 0..17 {
+        for col in 0..17 {
             if !maps.is_covered(col, row) {
                 continue;
             }

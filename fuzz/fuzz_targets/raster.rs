@@ -71,11 +71,10 @@ fuzz_target!(|data: &[u8]| {
             let t = occluders.triangles()[maps.triangle_at(col, row) as usize];
             let q = t.map(|p| frame.to_light(p));
             // The plane from the corner nearest the light (from a far
-            // corner, the differences lose the near geometry): the same
-            // well-conditioned form as the rasterizer's, so this checks
-            // that the stored depth is the plane's along the centre ray
-            // (fill, clip, clamp); the form itself is checked against
-            // double-double planes in `tests/raster_depth.rs`.
+            // corner, the differences lose the near geometry), the normal's
+            // components by another compensated algorithm than the
+            // rasterizer's; the planes are also checked against
+            // double-double ones in `tests/raster_depth.rs`.
             let i = if q[0].length() <= q[1].length() && q[0].length() <= q[2].length() {
                 0
             } else if q[1].length() <= q[2].length() {
@@ -85,7 +84,18 @@ fuzz_target!(|data: &[u8]| {
             };
             let (a, b, c) = (q[i], q[(i + 1) % 3], q[(i + 2) % 3]);
             let (e1, e2) = (b - a, c - a);
-            let n = e1.cross(e2);
+            // Each component `x·y − z·w` by Kahan's fused algorithm (far
+            // corners make the two products cancel).
+            let det2 = |x: f64, y: f64, z: f64, w: f64| {
+                let zw = z * w;
+                let err = (-z).mul_add(w, zw);
+                x.mul_add(y, -zw) + err
+            };
+            let n = DVec3::new(
+                det2(e1.y, e2.z, e1.z, e2.y),
+                det2(e1.z, e2.x, e1.x, e2.z),
+                det2(e1.x, e2.y, e1.y, e2.x),
+            );
             let u = view.pixel_center(col, row);
             let ray = DVec3::new(u.x, u.y, 1.0);
             let z = n.dot(a) / n.dot(ray);

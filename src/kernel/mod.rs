@@ -21,7 +21,7 @@
 pub mod angle;
 pub mod disk;
 pub mod distortion;
-mod eft;
+pub(crate) mod eft;
 pub mod falloff;
 pub mod footprint;
 pub mod linear_light;

@@ -513,26 +513,33 @@ impl Projected {
     }
 }
 
-/// The crossing of the edge `p r` with `z = near`, interpolated from the
-/// endpoint nearer the plane (ties in lexicographic order): an order that
-/// does not depend on the edge's direction, so that both triangles sharing
-/// the edge get the same bits, and a parameter `t ≤ ½` from the near end,
-/// so that a far end (10⁶⁶ away, found by the `raster` fuzz target) does not
-/// round `t` to 1 and swamp the crossing. The caller guarantees the ends
-/// are on opposite sides.
+/// The crossing of the edge `p r` with `z = near`:
+/// `x = (x_p·(z_r − near) − x_r·(z_p − near)) / (z_r − z_p)` (and `y`
+/// alike), the numerator carried in double length (error-free products and
+/// sums), so that the two terms may cancel — an edge between corners 10⁷⁸
+/// and 10²⁸ away crossing the plane near the light, found by the `raster`
+/// fuzz target — without losing the crossing; the relative error is then a
+/// few ulps. Antisymmetric in `p, r` term by term, so both triangles sharing
+/// the edge get the same bits. The caller guarantees the ends are on
+/// opposite sides.
 fn crossing(p: DVec3, r: DVec3, near: f64) -> DVec3 {
-    let key = |v: DVec3| [v.x, v.y, v.z];
-    let gap = |v: DVec3| (v.z - near).abs();
-    let (a, b) = match gap(p).total_cmp(&gap(r)) {
-        std::cmp::Ordering::Less => (p, r),
-        std::cmp::Ordering::Greater => (r, p),
-        std::cmp::Ordering::Equal if key(p) <= key(r) => (p, r),
-        std::cmp::Ordering::Equal => (r, p),
+    use crate::kernel::eft::f64::two_prod;
+    // `a + b = s + e` exactly (Knuth).
+    let two_sum = |a: f64, b: f64| {
+        let s = a + b;
+        let bv = s - a;
+        (s, (a - (s - bv)) + (b - bv))
     };
-    // a.z and b.z straddle `near`, so the difference is nonzero and
-    // t ∈ [0, 1] (rounded differences are monotone).
-    let t = (near - a.z) / (b.z - a.z);
-    DVec3::new(a.x + t * (b.x - a.x), a.y + t * (b.y - a.y), near)
+    let (dp, ep) = two_sum(p.z, -near);
+    let (dr, er) = two_sum(r.z, -near);
+    let along = |xp: f64, xr: f64| {
+        let (a, ea) = two_prod(xp, dr);
+        let (b, eb) = two_prod(xr, dp);
+        let (s, es) = two_sum(a, -b);
+        let lo = es + ((ea + xp * er) - (eb + xr * ep));
+        (s + lo) / (r.z - p.z)
+    };
+    DVec3::new(along(p.x, r.x), along(p.y, r.y), near)
 }
 
 /// A triangle's plane as a normal `n = (b − a) × (c − a)` and a corner
@@ -541,13 +548,33 @@ fn crossing(p: DVec3, r: DVec3, near: f64) -> DVec3 {
 /// another corner is far away (found by the `raster` fuzz target: a corner
 /// 10¹³ behind the light swamped both edges from it, a corner 10³⁰ away
 /// the offset `n·a`), and the offset is taken where the pixels that see the
-/// triangle look. Cyclic, so `n` keeps the winding of `q`.
+/// triangle look; each component of `n` is a difference of exact products,
+/// rounded once (corners 10⁷⁸ and 10²⁸ away made the products cancel).
+/// Cyclic, so `n` keeps the winding of `q`.
 pub(crate) fn plane_of(q: &[DVec3; 3]) -> (DVec3, DVec3) {
+    use crate::kernel::eft::f64::two_prod;
     let i = (0..3)
         .min_by(|&x, &y| q[x].length_squared().total_cmp(&q[y].length_squared()))
         .unwrap_or(0);
     let (a, b, c) = (q[i], q[(i + 1) % 3], q[(i + 2) % 3]);
-    ((b - a).cross(c - a), a)
+    let (e1, e2) = (b - a, c - a);
+    // `x·y − z·w` to about one ulp of the result: the products are exact
+    // pairs, so two edges to far corners in nearly the same plane (their
+    // products cancel to a small normal component) keep it.
+    let det2 = |x: f64, y: f64, z: f64, w: f64| {
+        let (p, ep) = two_prod(x, y);
+        let (r, er) = two_prod(z, w);
+        let s = p - r;
+        let bv = s - p;
+        let es = (p - (s - bv)) + (-r - bv);
+        s + (es + (ep - er))
+    };
+    let n = DVec3::new(
+        det2(e1.y, e2.z, e1.z, e2.y),
+        det2(e1.z, e2.x, e1.x, e2.z),
+        det2(e1.x, e2.y, e1.y, e2.x),
+    );
+    (n, a)
 }
 
 /// The triangle's plane for the depth along a pixel ray.
