@@ -1,8 +1,10 @@
 //! The light-view rasterizer on fuzzed triangles and views: no panic; a
 //! covered texel holds a finite depth at or past `near`, a valid triangle
-//! index, and that triangle's depth along the texel centre's ray (its
-//! plane, to a relative `1e-9`) — the rasterizer reports the surface it
-//! says it saw; an uncovered texel holds `+∞`.
+//! index, and, inside the documented depth domain (corners within a
+//! factor `10¹⁵` of each other in distance) where the plane is well
+//! conditioned (the documented conditioning below `10⁶`), that triangle's depth along the texel
+//! centre's ray (its plane, to a relative `1e-9`) — the rasterizer reports
+//! the surface it says it saw; an uncovered texel holds `+∞`.
 //!
 //! The first 8 bytes seed `arbitrary::scene::visibility_case` for the
 //! triangles; the following words, read as raw `f64` bit patterns, replace
@@ -99,9 +101,17 @@ fuzz_target!(|data: &[u8]| {
             let u = view.pixel_center(col, row);
             let ray = DVec3::new(u.x, u.y, 1.0);
             let z = n.dot(a) / n.dot(ray);
-            // Edge-on triangles have no well-defined plane depth there.
-            let edge_on = n.dot(ray).abs() <= 1e-9 * n.length() * ray.length();
-            if z.is_finite() && !edge_on {
+            // The documented conditioning: the ray's (edge-on triangles
+            // have no well-defined depth) times the offset's (every corner
+            // far from the light compared with the plane's distance to it).
+            let kappa = n.length() * ray.length() / n.dot(ray).abs()
+                * (n.length() * a.length() / n.dot(a).abs()).max(1.0);
+            // The documented depth domain: corners' distances from the
+            // light within a factor 10¹⁵ of each other.
+            let far = q.iter().map(|p| p.length()).fold(0.0, f64::max);
+            let close = q.iter().map(|p| p.length()).fold(f64::INFINITY, f64::min);
+            let in_domain = far <= 1e15 * close.max(near);
+            if z.is_finite() && kappa < 1e6 && in_domain {
                 assert!(
                     (z - depth).abs() <= 1e-9 * depth.abs().max(z.abs()).max(1.0),
                     "texel ({col}, {row}): depth {depth}, the triangle's plane {z}; light-frame corners {a} {b} {c}; centre ray {ray}; near {near}"
