@@ -11,7 +11,7 @@ use softshadow::kernel::wedge::f64::{penumbra_quad, QuadBound};
 use std::f64::consts::PI;
 
 fn main() {
-    // The receiver view (DESIGN.md §2): the light is a disk of radius R at
+    // The receiver view (docs/definitions.md): the light is a disk of radius R at
     // the origin of its plane; an occluding triangle, already clipped and
     // projected onto that plane from the receiver, is a polygon.
     let radius = 0.5;

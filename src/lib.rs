@@ -7,38 +7,52 @@
 //!
 //! Every part computes the same quantity: the fraction `V(p) ∈ [0, 1]` of a
 //! light's emitting measure visible from a receiver point `p` (see
-//! `DESIGN.md` §1 in the repository).
+//! [`definitions`], which defines every quantity the crate computes).
 //!
 //! ## Modules
 //!
-//! - [`scene`]: lights, meshes, the camera and the scene, validated at
-//!   construction; primitives; with `scene-file`, the JSON scene and points
-//!   files and the built-in scenes.
-//! - `bvh` (feature `bvh`): the scene's triangles in one flat list
-//!   (`Occluders`) and the BVH over them (`Bvh`): conservative occlusion
-//!   rays, watertight closest hits, culling; shared by the references, the
-//!   renderer and the methods.
-//! - `reference` (feature `reference`): the exact and Monte Carlo
-//!   visibility references and the statistics that compare them.
-//! - `render` (feature `render`): the scalar renderer — receivers from the
-//!   camera's primary rays or a points file (`Frame`), the light-view
-//!   rasterizer, the lazily built stages every method draws on, shading,
-//!   error heat-maps and PNG files.
-//! - `method` (feature `render`): the shadow methods behind one `Method`
-//!   trait (exact, Monte Carlo, hard shadows, PCSS, SISM), listed once in
-//!   `method::registry` with their options, and `method::run`, which checks
-//!   a frame once, runs a method on it and times it.
-//! - [`kernel`]: the pure geometry kernels (silhouettes, penumbra wedges,
-//!   disk occlusion, falloff, the light's footprint on the image plane, SSOC
-//!   distortion, the linear-light kernel, the exact segment–triangle test)
-//!   and the exact orientation predicates they decide topology with.
-//!   Depends on `glam` alone.
+//! | module | feature | what |
+//! |---|---|---|
+//! | [`definitions`] | — | the quantity `V`, shading, the frames, the footprint, the receiver view, the error statistics and receiver groups, in words: what every other module refers to |
+//! | [`kernel`] | — | the pure geometry kernels: silhouettes, penumbra wedges, disk occlusion, falloffs, the light's footprint, SSOC distortion, the linear-light kernel, the exact segment–triangle test, the receiver view (exact visibility of a few triangles), and the exact orientation predicates they decide topology with. Depends on `glam` alone |
+//! | [`scene`] | — (file and built-ins: `scene-file`) | lights (validated; each receiver's [`Emitter`]), meshes, primitives, the camera and the scene, validated at construction; with `scene-file`, the JSON scene and points files and the built-in scenes |
+//! | `bvh` | `bvh` | the scene's triangles in one flat list ([`Occluders`]) and the BVH over them ([`Bvh`]): conservative occlusion rays, watertight closest hits, culling |
+//! | `reference` | `reference` | the exact and Monte Carlo visibility references and the statistics that compare them ([`reference::agree`]) |
+//! | `render` | `render` | the scalar renderer: receivers from the camera's primary rays or a points file ([`Frame`]), the light-view rasterizer, the lazily built [`Stages`] every method draws on, shading, error heat-maps and summaries ([`ErrorSummary`]), PNG files |
+//! | `method` | `render` | the shadow methods behind one [`Method`] trait (exact, Monte Carlo, hard shadows, PCSS, SISM, single-sample, SSOC and its backprojected variant, OESS), listed once in `method::registry` with their options, and [`method::run`](crate::method::run), which checks a frame once, runs a method on it and times it |
+//! | `report` | `report` | the accuracy-against-run-time report and the stability suite |
+//! | `arbitrary` | `arbitrary` | deterministic generators of near-degenerate input, shared by the property tests, the fuzz targets and the benchmarks |
+//!
+//! The main types are re-exported here: [`Scene`], [`Light`], [`Mesh`],
+//! [`Emitter`], [`Receiver`], [`Occluders`], [`Bvh`], [`Frame`],
+//! [`Stages`], [`Method`], [`ErrorSummary`], and `glam` itself
+//! ([`glam`], version 0.34, whose `DVec3` and `Vec3` every signature uses),
+//! so a dependant needs no `glam` line of its own and cannot get a second,
+//! incompatible copy.
+//!
+//! From a scene to the references in one step:
+//!
+//! ```
+//! # #[cfg(feature = "reference")] {
+//! use softshadow::glam::DVec3;
+//! use softshadow::{reference, scene::primitive, Bvh, Light, Scene};
+//!
+//! let light = Light::sphere(DVec3::new(0.0, 4.0, 0.0), 0.5)?;
+//! let plate = primitive::quad(DVec3::new(0.0, 2.0, 0.0), DVec3::X, DVec3::Z)?;
+//! let scene = Scene::new(light).with_mesh("plate", plate);
+//! let bvh = Bvh::from_scene(&scene);
+//! // Right under the plate's centre, which covers the whole light.
+//! let v = reference::exact::visibility(&bvh, scene.light(), DVec3::ZERO)?;
+//! assert_eq!(v, 0.0);
+//! # }
+//! # Ok::<(), Box<dyn std::error::Error>>(())
+//! ```
 //!
 //! ## Example
 //!
 //! The visibility of a disk light of radius ½ past one occluding triangle,
 //! already projected onto the light's plane from the receiver (the receiver
-//! view of `DESIGN.md` §2): `V = 1 − area(triangle ∩ disk) / πr²`.
+//! view of [`definitions`]): `V = 1 − area(triangle ∩ disk) / πr²`.
 //!
 //! ```
 //! use glam::DVec2;
@@ -65,7 +79,7 @@
 //! With `--no-default-features` the crate is the kernels alone, on `glam`.
 //!
 //! - `cli` (default): the `softshadow` command-line program (turns on
-//!   `render` and `scene-file`).
+//!   `render`, `scene-file` and `report`; `clap`, `indicatif`).
 //! - `bvh`: `softshadow::bvh`, the occluders and the BVH over them
 //!   (`obvhs` for the build, `rayon`).
 //! - `reference`: `softshadow::reference`, the visibility references
@@ -83,6 +97,11 @@
 
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
+pub use glam;
+
+#[doc = include_str!("../docs/definitions.md")]
+pub mod definitions {}
+
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;
 #[cfg(feature = "bvh")]
@@ -97,3 +116,12 @@ pub mod render;
 #[cfg(feature = "report")]
 pub mod report;
 pub mod scene;
+
+pub use scene::{Emitter, Light, Mesh, Receiver, Scene};
+
+#[cfg(feature = "bvh")]
+pub use bvh::{Bvh, Occluders};
+#[cfg(feature = "render")]
+pub use method::Method;
+#[cfg(feature = "render")]
+pub use render::{image::ErrorSummary, Frame, Stages};

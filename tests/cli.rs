@@ -1,7 +1,7 @@
 //! The command-line program: the default run prints the table of every
 //! method against the exact answer, `check` (kernel self-check and the
 //! references on the default scene) passes, `render` writes its three PNG
-//! files, `visibility` prints the JSON of DESIGN §8 with answers that agree
+//! files, `visibility` prints its documented JSON with answers that agree
 //! with the library for every method, and every kind of bad input ends with
 //! one line naming the file, the place and the field, exit status 2, nothing
 //! on stdout and no panic.

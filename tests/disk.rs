@@ -1,7 +1,7 @@
 //! Disk-occlusion kernels against independent answers: a 256-bit evaluation
 //! of a different formulation (quadratic line–circle intersection), closed
 //! forms, Monte Carlo with a tolerance derived from the sample count, and the
-//! algebraic properties DESIGN.md §3 lists.
+//! algebraic properties of the kernel's contract.
 //!
 //! `SOFTSHADOW_PRINT_ACCURACY=1 cargo test --release --test disk -- --nocapture`
 //! prints the accuracy rows of `docs/accuracy/kernels.md`;

@@ -1,4 +1,4 @@
-//! The scene file and the points file: round trips of DESIGN.md §8's
+//! The scene file and the points file: round trips of the documented
 //! examples, every light kind, and the example files in
 //! `examples/scenes/`.
 
@@ -15,7 +15,7 @@ use scene_file_support::{manifest, with_light, LIGHT};
 
 // -------------------------------------------------------------- round trips
 
-/// DESIGN.md §8's example, with the floor spelled out and the bunny taken
+/// The scene file's documented example, with the floor spelled out and the bunny taken
 /// from `src/scene/data`.
 #[test]
 fn design_example_round_trips() {
@@ -73,7 +73,7 @@ fn design_example_round_trips() {
     assert_eq!(scene.meshes()[2], sphere(DVec3::Y, 1.0, 32).unwrap());
 }
 
-/// Every light kind of DESIGN.md §8 and both optional parts (camera,
+/// Every light kind of the scene file and both optional parts (camera,
 /// transform) load to the values the constructors give.
 #[test]
 fn every_light_kind_round_trips() {

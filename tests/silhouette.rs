@@ -1,4 +1,4 @@
-//! Properties of `kernel::silhouette` (DESIGN.md §3 "Silhouettes"):
+//! Properties of `kernel::silhouette`:
 //! the exact silhouette set against a brute-force facing test written here
 //! with Shewchuk's `robust::orient3d`, the orientation against an
 //! independent central projection, the closed-cycle invariant and even

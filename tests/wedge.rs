@@ -1,4 +1,4 @@
-//! Properties of `kernel::wedge` (DESIGN.md §3 "Penumbra-wedge bounds"):
+//! Properties of `kernel::wedge`:
 //! the wedge and the penumbra quad never miss a partially occluded receiver,
 //! checked against an independent partial-occlusion test evaluated in
 //! 256-bit arithmetic; their tightness (wedge volume and quad area against
@@ -71,7 +71,7 @@ fn big_abs(x: &Big) -> Big {
     }
 }
 
-/// DESIGN §1: `p` is affected by the edge when the edge meets the open
+/// Visibility (docs/definitions.md): `p` is affected by the edge when the edge meets the open
 /// segment from `p` to a point of the facing disk (centre `c`, radius `r`,
 /// normal along `c − p`). With `ν = c − p`, `H² = ν·ν`, `rel(λ) = e0 + λ(e1 −
 /// e0) − p` and `s = rel·ν` (depth times `H`), the edge point projects from

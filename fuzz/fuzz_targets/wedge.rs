@@ -20,7 +20,7 @@ fn dot_abs(a: DVec3, b: DVec3) -> f64 {
     a.abs().dot(b.abs())
 }
 
-/// The independent test of DESIGN §1 in `f64`, sound in the direction it
+/// The independent test of visibility (docs/definitions.md) in `f64`, sound in the direction it
 /// is used: `true` only when the edge provably meets the open segment from
 /// `p` to an interior point of the facing disk. With `ν = c − p`,
 /// `rel(λ) = e0 + λ(e1 − e0) − p`, `s = rel·ν`, the point at `λ` qualifies

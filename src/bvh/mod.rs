@@ -16,7 +16,7 @@
 //! the true `f64` segment cannot meet. Every triangle the traversal reaches is decided
 //! exactly by [`segment_blocked`], in `f64` with the exact
 //! [`orient3d`]. The answer is therefore
-//! exactly DESIGN §1's: the light point `x` is visible from `p` iff the open
+//! exactly [visibility](crate::definitions#visibility)'s: the light point `x` is visible from `p` iff the open
 //! segment `(p, x)` meets no triangle, with an edge shared by two triangles
 //! never leaking light.
 //!
@@ -135,6 +135,14 @@ fn in_f32_range(v: DVec3) -> bool {
 }
 
 impl Bvh {
+    /// The BVH over every triangle of the scene's meshes: what the
+    /// references, the renderer and the methods need, in one call
+    /// (`Bvh::new(Occluders::from_scene(scene))`).
+    #[must_use]
+    pub fn from_scene(scene: &crate::scene::Scene) -> Bvh {
+        Bvh::new(Occluders::from_scene(scene))
+    }
+
     /// Builds the hierarchy (single-threaded; about 0.3 s per 100k
     /// triangles).
     ///

@@ -1,6 +1,6 @@
 //! Disk occlusion: how much of a disk a polygon covers.
 //!
-//! The receiver view of an area light (DESIGN.md §2) turns visibility into a
+//! The [receiver view](crate::definitions#receiver-view) of an area light turns visibility into a
 //! planar question: the light is a disk of radius `R` centred at the origin,
 //! the occluders are polygons, and `V = 1 − area(∪ polygons ∩ disk) / πR²`.
 //! This module answers it exactly, edge by edge:

@@ -11,8 +11,7 @@
 //!
 //! `dmax(z_p) = 2R = 2r·(1/z_n − 1/z_p)` ([`f64::max_distortion`]),
 //!
-//! twice the footprint radius `R` of a light of radius `r` (DESIGN.md §2, §3
-//! "Distortion to intensity"), in light-image-plane units. The paper's eq. 1
+//! twice the footprint radius `R` of a light of radius `r` ([footprint radius](crate::definitions#footprint-radius)), in light-image-plane units. The paper's eq. 1
 //! turns the ratio into an intensity,
 //!
 //! `intensity = falloff(1 − d/dmax)` ([`f64::intensity`]),
@@ -43,7 +42,7 @@ macro_rules! distortion_kernels {
         /// SSOC's maximal distortion at receiver depth `z_receiver` for a
         /// silhouette edge at depth `z_near` and a sphere light of radius
         /// `light_radius`: `dmax = 2r·(1/z_n − 1/z_p)`, in light-image-plane
-        /// units (SSOC §3.2.1; DESIGN.md §2 "Footprint radius", §3).
+        /// units (SSOC §3.2.1; [footprint radius](crate::definitions#footprint-radius)).
         ///
         /// **Domain**: `r ≥ 0`, `0 < z_n < z_p ≤ +∞`, depths along the light
         /// frame's `+z`. `z_p = +∞` gives the limit `2r/z_n`.

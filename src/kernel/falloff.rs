@@ -8,7 +8,7 @@
 //! - [`f64::disk_edge_falloff`]: the exact answer, the fraction of a uniform
 //!   disk on one side of a chord,
 //!   `F(t) = (acos(1 − 2t) − (1 − 2t)·√(4t(1 − t))) / π`
-//!   (DESIGN.md §3 "Falloff"; it is the regularised incomplete beta function
+//!   (it is the regularised incomplete beta function
 //!   `I_t(3/2, 3/2)`);
 //! - [`f64::bernstein`]: the cubic `3t² − 2t³` that SSOC (Mo, Popescu,
 //!   Wyman, §3.2.2) and the penumbra-map family use "to approximate the
@@ -198,8 +198,7 @@ macro_rules! falloff_kernels {
         }
 
         /// The exact fraction of a uniform disk on the lit side of a straight
-        /// edge, `t` the normalised position across the penumbra (DESIGN.md
-        /// §3 "Falloff"):
+        /// edge, `t` the normalised position across the penumbra:
         ///
         /// `F(t) = (acos(1 − 2t) − (1 − 2t)·√(4t(1 − t))) / π`,
         ///
@@ -235,7 +234,7 @@ macro_rules! falloff_kernels {
         /// form, from `atan2`'s error; below 0.75 ulp for `t ≤ 0.3` and
         /// `t ≥ 0.7`. Table in `docs/accuracy/kernels.md`.
         ///
-        /// **Source**: circular-segment area; DESIGN.md §3.
+        /// **Source**: circular-segment area.
         #[must_use]
         #[inline]
         pub fn disk_edge_falloff(t: $T) -> $T {

@@ -379,8 +379,7 @@ macro_rules! linear_light_kernels {
 
         /// The visible part of the segment light `[l, r]` seen from the
         /// fragment `f` past the occluding edge point `e`, the occluder lying
-        /// on `side` of the shadow line (OESS substep 4.3; DESIGN.md §3
-        /// "Linear light"). 2D coordinates in the plane through the light and
+        /// on `side` of the shadow line (OESS substep 4.3). 2D coordinates in the plane through the light and
         /// the fragment.
         ///
         /// **Domain**: finite points, `l ≠ r`, `f` off the light's line; for

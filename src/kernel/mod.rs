@@ -14,6 +14,7 @@
 //! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
 //! | [`linear_light`] | OESS: visible fraction of a segment light and its endpoint weights |
 //! | [`segment`] | exact open-segment–triangle test (`f64`): blocked or not, and where it crosses |
+//! | [`receiver_view`] | the exact receiver view: a triangle's image on the light's plane clipped to the slab between receiver and light, and the exact fraction of a light a set of triangles hides (`f64`) |
 //!
 //! Scalar kernels exist in `f32` and `f64` as submodules generated from one
 //! body (`disk::f32`, `disk::f64`, …).
@@ -26,6 +27,7 @@ pub mod falloff;
 pub mod footprint;
 pub mod linear_light;
 pub mod predicate;
+pub mod receiver_view;
 pub mod segment;
 pub mod silhouette;
 pub mod wedge;

@@ -2,7 +2,7 @@
 //! meets a closed triangle ([`segment_blocked`]), and where it crosses it
 //! ([`segment_crossing`]).
 //!
-//! This is DESIGN §1's visibility decision: the light point `x` is visible
+//! This is the [visibility](crate::definitions#visibility) decision: the light point `x` is visible
 //! from `p` iff the open segment `(p, x)` meets no triangle, with an edge
 //! shared by two triangles never leaking light. Every occlusion query of
 //! the crate ends in it: the BVH's traversals (`softshadow::bvh`), the

@@ -15,7 +15,7 @@
 //!
 //! # Definition
 //!
-//! Occluders are two-sided (DESIGN §1), so the definition does not rely on
+//! Occluders are two-sided ([visibility](crate::definitions#visibility)), so the definition does not rely on
 //! the mesh being consistently oriented. Seen from `x`, a face `f = (a, b, c)`
 //! is *front-facing* when `orient3d(a, b, c, x)` is [`Sign::Negative`] (`x`
 //! is on the side the normal `(b − a) × (c − a)` points to, and sees
@@ -47,14 +47,14 @@
 //!
 //! - **manifold edge** (two faces): `m ∈ {−2, 0, 2}`. For a consistently
 //!   oriented mesh `m ≠ 0` exactly when one face is front- and the other
-//!   back-facing (DESIGN's "faces face `x` differently"), and the returned
+//!   back-facing (the two faces face `x` differently), and the returned
 //!   orientation is the front face's own traversal (front face on the left).
 //!   For an inconsistently oriented pair it is the contour test (both faces
 //!   on the same side of the edge), which is what shadows need.
 //! - **boundary edge** (one face): always `|m| = 1`, so every boundary edge
 //!   is returned, oriented with its face on the left. An open surface casts a
 //!   shadow whichever side faces `x`, and its boundary bounds that shadow;
-//!   this is the two-sided reading of DESIGN's "boundary edges facing `x`".
+//!   this is the two-sided reading of "boundary edges facing `x`".
 //!   The boundary edges of an *edge-on* face are returned too (the
 //!   back-facing rule applies to them as to every face: they are oriented
 //!   with the face on their right). Their projections are collinear and

@@ -3,7 +3,7 @@
 //!
 //! A receiver `p` is *affected* by the edge `E = [e0, e1]` when the edge
 //! meets the open segment from `p` to some point of the light's facing disk
-//! (DESIGN §1). The facing disk lies in the ball `B` (centre `c`, radius
+//! ([visibility](crate::definitions#visibility)). The facing disk lies in the ball `B` (centre `c`, radius
 //! `r`), so every affected point lies in
 //!
 //! ```text
@@ -450,7 +450,7 @@ macro_rules! wedge_kernels {
         }
 
         /// The penumbra quad of the edge `[e0, e1]` for a sphere light of
-        /// radius `radius`, in the **light frame** (DESIGN §2: light centre
+        /// radius `radius`, in the **light frame** ([light frame](crate::definitions#light-frame): light centre
         /// at the origin, `+z` toward the scene, image plane `z = 1`,
         /// `(x, y, z) ↦ (x/z, y/z)`): a rectangle containing the projection
         /// of every receiver at depth `z_p ≤ z_max` that the edge partially
@@ -479,7 +479,7 @@ macro_rules! wedge_kernels {
         /// `q_z ≥ z_min`. `|π(q)|` is convex along the projected segment, so
         /// `K` is reached at an endpoint.
         ///
-        /// SISM's footprint radius `r (1/z_min − 1/z_max)` (DESIGN §2) is
+        /// SISM's footprint radius `r (1/z_min − 1/z_max)` ([footprint radius](crate::definitions#footprint-radius)) is
         /// exact for a light disk in the plane `z = 0`, i.e. on the light's
         /// axis; the exact facing disk tilts with `p`, and its footprint is
         /// a slightly larger ellipse off-axis. The bound here is larger than

@@ -18,7 +18,7 @@ use glam::{DVec2, DVec3};
 ///    [`blocker_samples`](Pcss::blocker_samples) points of the disk of
 ///    radius `r (1/z_min − 1/z_p)` around `s` — the light as seen from `p`,
 ///    drawn on the image plane at the least occluder depth `z_min` of the
-///    map (DESIGN §2's footprint radius; Fernando's "search width"
+///    map (the [footprint radius](crate::definitions#footprint-radius); Fernando's "search width"
 ///    `w_light (d_r − d_near)/d_r` in the same units). Texels nearer than the
 ///    receiver (see [`PcssBias`]) are blockers; `z_b` is their mean depth.
 ///    No blocker: `V = 1`.

@@ -1,4 +1,4 @@
-//! The two ground truths of DESIGN.md §4: [`exact`] visibility by the
+//! The two [ground truths](crate::definitions#exact-and-monte-carlo-references): [`exact`] visibility by the
 //! receiver view, and [`monte_carlo`] light sampling with occlusion rays.
 //! Every error the project reports is measured against [`exact`], and
 //! [`exact`] is checked against [`monte_carlo`].
@@ -40,3 +40,5 @@
 pub mod exact;
 pub mod monte_carlo;
 pub mod stats;
+
+pub use stats::{agree, Agreement};

@@ -1,4 +1,4 @@
-//! The Monte Carlo reference of DESIGN §4: `V(p)` by sampling the light's
+//! The [Monte Carlo reference](crate::definitions#exact-and-monte-carlo-references): `V(p)` by sampling the light's
 //! emitting measure ([`Light::emitter`]) and casting exact occlusion rays
 //! ([`Bvh::segment_unoccluded`]), with a standard error that is valid for
 //! stratified samples.

@@ -28,6 +28,127 @@ pub fn agreement_tolerance(estimate: &Estimate, samples: u32, q: f64) -> f64 {
     }
 }
 
+/// The outcome of [`agree`]: how many estimates were checked, at what
+/// per-check quantile, and every one outside its tolerance.
+#[derive(Clone, Debug, PartialEq)]
+pub struct Agreement {
+    /// How many estimates were compared.
+    pub checked: usize,
+    /// The two-sided Student-t quantile each check used (the Šidák-corrected
+    /// level of the family-wise rate, `REPLICATES − 1` degrees of freedom).
+    pub quantile: f64,
+    /// The checks that failed, in index order.
+    pub failures: Vec<Disagreement>,
+}
+
+impl Agreement {
+    /// Whether every estimate agreed with its exact value.
+    #[must_use]
+    pub fn passed(&self) -> bool {
+        self.failures.is_empty()
+    }
+}
+
+/// One estimate outside its tolerance ([`Agreement::failures`]).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Disagreement {
+    /// The estimate's index.
+    pub index: usize,
+    /// The estimate.
+    pub estimate: Estimate,
+    /// The exact value it was compared with.
+    pub exact: f64,
+    /// The tolerance it missed ([`agreement_tolerance`]).
+    pub allowed: f64,
+}
+
+/// Why [`agree`] could not check.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub enum AgreeError {
+    /// The estimates and the exact values differ in number.
+    LengthMismatch {
+        /// How many estimates.
+        estimates: usize,
+        /// How many exact values.
+        exact: usize,
+    },
+    /// The family-wise rate is not in `(0, 1)`.
+    Rate(f64),
+    /// An exact value is not finite.
+    NonFiniteExact(usize),
+}
+
+impl std::fmt::Display for AgreeError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match *self {
+            AgreeError::LengthMismatch { estimates, exact } => {
+                write!(f, "{estimates} estimates but {exact} exact values")
+            }
+            AgreeError::Rate(a) => {
+                write!(
+                    f,
+                    "the family-wise false-failure rate must lie in (0, 1), got {a}"
+                )
+            }
+            AgreeError::NonFiniteExact(i) => write!(f, "exact value {i} is not finite"),
+        }
+    }
+}
+
+impl std::error::Error for AgreeError {}
+
+/// Whether Monte Carlo estimates made with `samples` samples each agree with
+/// exact values, at the family-wise false-failure rate `rate` over all of
+/// them: each check is `|estimate − exact| ≤ agreement_tolerance` at the
+/// Student-t quantile of the Šidák-corrected level `sidak(rate, n)` — so
+/// when the exact values are right, all `n` checks pass with probability
+/// at least `1 − rate`. One call for what a test of a method or a GPU port
+/// against Monte Carlo needs.
+///
+/// # Errors
+/// [`AgreeError`] when the lengths differ, `rate ∉ (0, 1)` or an exact
+/// value is not finite.
+pub fn agree(
+    estimates: &[Estimate],
+    exact: &[f64],
+    samples: u32,
+    rate: f64,
+) -> Result<Agreement, AgreeError> {
+    if estimates.len() != exact.len() {
+        return Err(AgreeError::LengthMismatch {
+            estimates: estimates.len(),
+            exact: exact.len(),
+        });
+    }
+    if !(rate > 0.0 && rate < 1.0) {
+        return Err(AgreeError::Rate(rate));
+    }
+    if let Some(i) = exact.iter().position(|v| !v.is_finite()) {
+        return Err(AgreeError::NonFiniteExact(i));
+    }
+    let quantile = student_t_two_sided_quantile(sidak(rate, estimates.len()), REPLICATES - 1);
+    let failures = estimates
+        .iter()
+        .zip(exact)
+        .enumerate()
+        .filter_map(|(index, (&estimate, &exact))| {
+            let allowed = agreement_tolerance(&estimate, samples, quantile);
+            let off = (estimate.visibility - exact).abs();
+            (!(off <= allowed)).then_some(Disagreement {
+                index,
+                estimate,
+                exact,
+                allowed,
+            })
+        })
+        .collect();
+    Ok(Agreement {
+        checked: estimates.len(),
+        quantile,
+        failures,
+    })
+}
+
 /// The complementary error function `erfc(x) = 1 − erf(x)`, to about
 /// `1e-15` relative for `x ≥ 0` (Maclaurin series of `erf` below 2, Lentz's
 /// continued fraction above); `erfc(−x) = 2 − erfc(x)`. NaN gives NaN.

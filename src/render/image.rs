@@ -1,4 +1,4 @@
-//! Pictures and numbers from a visibility buffer: shading (DESIGN §1), the
+//! Pictures and numbers from a visibility buffer: [shading](crate::definitions#shading), the
 //! visibility itself, the signed error heat-map against a reference with
 //! its legend, error summaries, and PNG files.
 //!
@@ -140,7 +140,7 @@ pub fn srgb8(linear: f64) -> u8 {
     (s * 255.0).round() as u8
 }
 
-/// The unshadowed irradiance factor of DESIGN §1 at `p` with normal `n`:
+/// The unshadowed irradiance factor of [shading](crate::definitions#shading) at `p` with normal `n`:
 /// `max(0, n·l̂) · cos θ_l / |l|²`, `l` from `p` to the light's centre,
 /// with `cos θ_l` the cosine at the light (1 for a sphere, a segment and a
 /// point; `|n_light · l̂|` for a disk or rect, which emit on both sides).
@@ -160,7 +160,7 @@ pub fn irradiance_factor(light: &Light, p: DVec3, n: DVec3) -> f64 {
     }
 }
 
-/// The frame shaded by DESIGN §1 with `Φ = 1`: `E = irradiance_factor · V`,
+/// The frame shaded as in [shading](crate::definitions#shading) with `Φ = 1`: `E = irradiance_factor · V`,
 /// exposed so that the brightest unshadowed receiver is white, sRGB-encoded;
 /// background pixels [`BACKGROUND_RGB`]. Receivers without a normal are
 /// shaded as if facing the light.

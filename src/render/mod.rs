@@ -1,6 +1,6 @@
 //! The scalar renderer (feature `render`): receivers from the camera, the
 //! light-view rasterizer, the lazily built stages every method draws on, and
-//! image output. DESIGN.md §5.
+//! image output.
 //!
 //! - [`Frame`]: the receivers, one per pixel of a camera image
 //!   ([`Frame::from_camera`], primary rays through the BVH) or one per
@@ -10,7 +10,7 @@
 //! - [`Stages`]: the BVH, mesh topology, light frame and light maps, built
 //!   lazily and once, timed into [`Stats`].
 //! - [`raster`]: the light-view rasterizer every shadow-map method uses.
-//! - [`image`]: shading (DESIGN §1), the error heat-map, error summaries
+//! - [`image`]: [shading](crate::definitions#shading), the error heat-map, error summaries
 //!   and PNG files.
 //!
 //! The methods themselves are in [`crate::method`].

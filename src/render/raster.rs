@@ -1,5 +1,5 @@
 //! The scalar light-view rasterizer: the scene's triangles as seen from the
-//! light's centre, over the light frame and image plane of DESIGN.md §2.
+//! light's centre, over the light frame and [image plane](crate::definitions#light-image-plane).
 //! Every shadow-map method (PCSS, the single-sample method, SSOC, OESS)
 //! draws on it.
 //!

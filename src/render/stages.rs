@@ -26,7 +26,7 @@ impl Needs {
     pub const BVH: Needs = Needs(1);
     /// Per-mesh edge topology ([`Stages::topology`]), for silhouettes.
     pub const TOPOLOGY: Needs = Needs(2);
-    /// The light frame of DESIGN §2 ([`Stages::light_frame`]).
+    /// The [light frame](crate::definitions#light-frame) ([`Stages::light_frame`]).
     pub const LIGHT_FRAME: Needs = Needs(4);
     /// A light-view depth/object map fitted to the frame's receivers and the
     /// occluders ([`Stages::light_maps`]); the resolution is the method's.
@@ -303,7 +303,7 @@ impl<'a> Stages<'a> {
         })
     }
 
-    /// The light frame of DESIGN §2, at the light's centre. `+z` points
+    /// The [light frame](crate::definitions#light-frame), at the light's centre. `+z` points
     /// toward the centre of the scene's bounding box, except for a disk or
     /// rect light, where it is the light's normal (`u × v` for a rect) on
     /// the side of that centre — the light image plane is then parallel to

@@ -1,4 +1,4 @@
-//! The built-in scenes of DESIGN.md §5, embedded so that no file is
+//! The built-in scenes, embedded so that no file is
 //! needed: [`builtin`] builds one by name, [`BUILTIN_NAMES`] lists them.
 //!
 //! Units: the floor is the plane `y = 0` (a quad, mesh 0 in every scene,

@@ -1,4 +1,4 @@
-//! The scene file and the points file of DESIGN.md §8 (JSON), with OBJ
+//! The scene file and the points file (JSON), with OBJ
 //! meshes.
 //!
 //! # Scene file

@@ -1,4 +1,4 @@
-//! The light frame and the light image plane (DESIGN.md §2).
+//! The [light frame](crate::definitions#light-frame) and the [light image plane](crate::definitions#light-image-plane).
 //!
 //! Origin at the light's centre, `+z` toward the scene (the centre of the
 //! scene's bounding box unless the scene says otherwise), `x` and `y`

@@ -1,4 +1,4 @@
-//! Lights: the five kinds of DESIGN.md §1, validated at construction, and
+//! Lights: the five kinds of [visibility](crate::definitions#visibility), validated at construction, and
 //! the emitting measure each presents to a receiver.
 //!
 //! `V(p)` is the fraction of a light's emitting measure visible from `p`:
@@ -13,10 +13,11 @@
 //!
 //! Constructors return [`LightError`] for non-finite or degenerate input;
 //! [`Light::emitter`] returns [`ReceiverError`] for a receiver inside a
-//! sphere light or in the plane of a disk or rect light (DESIGN §1: an
+//! sphere light or in the plane of a disk or rect light ([visibility](crate::definitions#visibility): an
 //! error, not a NaN).
 
 use crate::kernel::predicate::{orient2d, Sign};
+use crate::kernel::receiver_view;
 use glam::{DVec2, DVec3};
 use std::fmt;
 
@@ -461,7 +462,28 @@ impl Light {
         }
     }
 
-    /// The emitting measure as seen from the receiver `p` (DESIGN §1).
+    /// The exact `V(p)` of this light among `triangles` (two-sided
+    /// occluders, no acceleration structure): the
+    /// [receiver view](crate::kernel::receiver_view) of every triangle,
+    /// `1 −` the fraction of the emitter they hide. For a few triangles and
+    /// the kernels alone; over a whole scene, `reference::exact` culls with
+    /// a BVH first and gives the same answer.
+    ///
+    /// # Errors
+    /// As [`Light::emitter`].
+    pub fn visibility_among(
+        &self,
+        p: DVec3,
+        triangles: &[[DVec3; 3]],
+    ) -> Result<f64, ReceiverError> {
+        let emitter = self.emitter(p)?;
+        let mut scratch = receiver_view::Scratch::default();
+        let hidden = receiver_view::occluded_fraction(&emitter, p, triangles, &mut scratch);
+        // `emitter` refused every receiver the views refuse.
+        Ok(1.0 - hidden.unwrap_or(0.0))
+    }
+
+    /// The emitting measure as seen from the receiver `p` ([visibility](crate::definitions#visibility)).
     ///
     /// # Errors
     /// [`ReceiverError`] for a non-finite receiver, one inside a sphere

@@ -2,7 +2,7 @@
 //! and (feature `scene-file`) the scene and points files and the built-in
 //! scenes. Without `scene-file` it depends on `glam` alone.
 //!
-//! - [`light`]: the five light kinds of DESIGN.md §1, validated, and the
+//! - [`light`]: the five light kinds of [visibility](crate::definitions#visibility), validated, and the
 //!   emitting measure each presents to a receiver.
 //! - [`emitter`]: that measure as one receiver sees it: uniform-by-area
 //!   sample points and the share above a plane (the horizon bound).

@@ -1,6 +1,6 @@
 //! Mesh generators: a UV sphere, an axis-aligned box, a quad, the merge of
 //! several meshes, and the similarity [`Transform`] of the scene file
-//! (DESIGN.md §8). Validated at the door: every generator returns a typed
+//! (the scene file's `primitive` meshes). Validated at the door: every generator returns a typed
 //! [`PrimitiveError`], never panics, and never yields a non-finite vertex.
 //!
 //! The sphere and the box are closed and outward: every edge is shared by
@@ -274,7 +274,7 @@ pub fn merge(meshes: &[Mesh]) -> Result<Mesh, PrimitiveError> {
 }
 
 /// A similarity transform: scale about the origin, then rotate about the y
-/// axis, then translate (DESIGN.md §8's `transform`). Validated by
+/// axis, then translate (the scene file's `transform`). Validated by
 /// [`Transform::new`]: the scale is finite and positive, so orientation and
 /// closedness are kept.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,4 +1,4 @@
-//! The `softshadow` command-line program (DESIGN.md §8).
+//! The `softshadow` command-line program (the commands are in the README).
 //!
 //! - `softshadow`: the main job — the default scene rendered with every
 //!   available method, a table of time and error against the exact answer.

@@ -150,7 +150,7 @@ fn falloff_rows(rows: &mut Vec<Row>) {
         unit: f64::EPSILON,
         budget: 2.0,
     });
-    // DESIGN's fact: max |F − Bernstein| = 0.0394, where F' = B', i.e. at
+    // The known fact: max |F − Bernstein| = 0.0394, where F' = B', i.e. at
     // t(1 − t) = 16/(9π²). Found here by a dense scan, checked against the
     // closed-form position and the stated four digits.
     let (mut worst, mut at) = (0.0f64, 0.0f64);
@@ -164,7 +164,7 @@ fn falloff_rows(rows: &mut Vec<Row>) {
     let t_star = (1.0 - (1.0 - 64.0 / (9.0 * PI * PI)).sqrt()) / 2.0;
     rows.push(Row {
         kernel: "falloff: max |exact − Bernstein|",
-        case: "dense scan, against DESIGN's 0.0394 (unit 1e-4)".into(),
+        case: "dense scan, against the known 0.0394 (unit 1e-4)".into(),
         value: worst,
         exact: 0.0394,
         unit: 1e-4,

@@ -5,7 +5,7 @@
 //! # The algorithm (the paper's §2, step by step)
 //!
 //! Everything happens on the light image plane `z = 1` of a light frame
-//! (DESIGN §2): a point at light-frame `(x, y, z)` projects to
+//! ([light image plane](crate::definitions#light-image-plane)): a point at light-frame `(x, y, z)` projects to
 //! `π = (x/z, y/z)`, from the light's centre (the paper's *single point of
 //! projection*, §5.1).
 //!
@@ -28,7 +28,7 @@
 //! 3. **Penumbra** (§2.2, §2.3; stage `sism penumbra`): for each silhouette
 //!    edge seen from the light's centre, a *penumbra quad*: the projected edge
 //!    extended on all sides by `R = r (1/z_e − 1/Z)`, `z_e` the edge's least
-//!    depth and `Z` the greatest receiver depth (DESIGN §2's footprint
+//!    depth and `Z` the greatest receiver depth (the [footprint](crate::definitions#footprint-radius)
 //!    radius). For every receiver `p` of a cell the quad covers, the light's
 //!    footprint on the image plane is the disk of radius
 //!    `R_p = r (1/z_q − 1/z_p)` around `π(p)`, `q` the point of the edge
@@ -64,7 +64,7 @@
 //!
 //! # Layers: how surfaces are counted
 //!
-//! Occluders are two-sided (DESIGN §1). The kernel's silhouette edges
+//! Occluders are two-sided ([visibility](crate::definitions#visibility)). The kernel's silhouette edges
 //! ([`MeshTopology::silhouettes_from_point`]) carry a multiplicity `m`: the
 //! jump in the number of triangles a ray from the light crosses — 2 across
 //! the contour of a closed surface (its front and back sheets), 1 across the
