@@ -19,7 +19,7 @@
 //! | `bvh` | `bvh` | the scene's triangles in one flat list ([`Occluders`]) and the BVH over them ([`Bvh`]): conservative occlusion rays, watertight closest hits, culling |
 //! | `reference` | `reference` | the exact and Monte Carlo visibility references and the statistics that compare them ([`reference::agree`]) |
 //! | `render` | `render` | the scalar renderer: receivers from the camera's primary rays or a points file ([`Frame`]), the light-view rasterizer, the lazily built [`Stages`] every method draws on, shading, error heat-maps and summaries ([`ErrorSummary`]), PNG files |
-//! | `method` | `render` | the shadow methods behind one [`Method`] trait (exact, Monte Carlo, hard shadows, PCSS, SISM, single-sample, SSOC and its backprojected variant, OESS), listed once in `method::registry` with their options, and [`method::run`](crate::method::run), which checks a frame once, runs a method on it and times it |
+//! | `method` | `render` | the shadow methods behind one [`Method`] trait (exact, Monte Carlo, hard shadows, PCSS, SISM, single-sample, SSOC and its backprojected variant, OESS), listed once in `method::registry` with their options, and [`method::run`], which checks a frame once, runs a method on it and times it |
 //! | `report` | `report` | the accuracy-against-run-time report and the stability suite |
 //! | `arbitrary` | `arbitrary` | deterministic generators of near-degenerate input, shared by the property tests, the fuzz targets and the benchmarks |
 //!
@@ -91,7 +91,7 @@
 //! - `report`: [`report`], the accuracy-against-run-time report (turns on
 //!   `render` and `scene-file`; `plotters` for the SVG plots). On by
 //!   default through `cli`.
-//! - `arbitrary`: [`arbitrary`], deterministic generators of near-degenerate
+//! - `arbitrary`: `softshadow::arbitrary`, deterministic generators of near-degenerate
 //!   inputs, shared by the property tests, the fuzz targets and the
 //!   benchmarks.
 

@@ -25,6 +25,7 @@ fn small(methods: &[&str]) -> Config {
         methods: methods.iter().map(|s| (*s).to_owned()).collect(),
         shard: None,
         picture_side: 0,
+        ..Config::default()
     }
 }
 
@@ -129,4 +130,37 @@ fn three_shards_merged_are_the_whole_sweep() {
     assert!(a.cells.iter().any(|c| c.scene == "contact"
         && c.method == "oess:map=128"
         && c.status == "n/a (sphere light)"));
+}
+
+/// A method of one's own reaches the report through `Config::own`: the
+/// registry's `hard` under another name gives the same cell as `hard`.
+#[test]
+fn a_method_of_ones_own_is_swept_like_the_registrys() {
+    #[derive(Debug)]
+    struct Mine(softshadow::method::HardShadow);
+    impl softshadow::Method for Mine {
+        fn name(&self) -> String {
+            "my-hard".into()
+        }
+        fn needs(&self) -> softshadow::render::Needs {
+            self.0.needs()
+        }
+        fn visibility(
+            &self,
+            input: &softshadow::method::Input<'_, '_>,
+        ) -> Result<softshadow::method::Output, softshadow::method::MethodError> {
+            self.0.visibility(input)
+        }
+    }
+    let config = Config {
+        own: vec![std::sync::Arc::new(Mine(Default::default()))],
+        ..small(&["hard"])
+    };
+    let results = report::finish(report::run(&cases(&["contact"]), &config, None, &quiet).unwrap());
+    let cell = |name: &str| results.cells.iter().find(|c| c.method == name).unwrap();
+    let (mine, hard) = (cell("my-hard"), cell("hard"));
+    assert_eq!(mine.status, "ok");
+    assert_eq!(mine.errors, hard.errors);
+    assert_eq!(mine.shaded, hard.shaded);
+    assert!(mine.mc_equal.is_some());
 }

@@ -133,8 +133,9 @@ pub fn agree(
         .enumerate()
         .filter_map(|(index, (&estimate, &exact))| {
             let allowed = agreement_tolerance(&estimate, samples, quantile);
-            let off = (estimate.visibility - exact).abs();
-            (!(off <= allowed)).then_some(Disagreement {
+            // A NaN estimate or tolerance fails.
+            let within = (estimate.visibility - exact).abs() <= allowed;
+            (!within).then_some(Disagreement {
                 index,
                 estimate,
                 exact,

@@ -9,6 +9,7 @@ use super::frame::{Frame, BACKGROUND};
 use super::Receiver;
 use crate::scene::{Light, Scene};
 use glam::DVec3;
+use std::fmt;
 use std::io;
 use std::path::Path;
 
@@ -418,6 +419,63 @@ impl ErrorSummary {
             mean_signed: errors.iter().sum::<f64>() / n,
             share_over_0_05: abs.iter().filter(|&&a| a > 0.05).count() as f64 / n,
         }
+    }
+}
+
+/// Whether a receiver with exact visibility `v_exact` is in the exact
+/// penumbra, `0 < V_exact < 1` (the [penumbra
+/// group](crate::definitions#receiver-groups)).
+#[must_use]
+pub fn in_penumbra(v_exact: f64) -> bool {
+    v_exact > 0.0 && v_exact < 1.0
+}
+
+/// One row of the error table the `softshadow` program prints (and the
+/// README shows): a method's errors against the exact values over every
+/// receiver and over the exact penumbra, with its time.
+#[derive(Clone, Debug, PartialEq)]
+pub struct ErrorRow {
+    /// The method's name.
+    pub method: String,
+    /// Its time, in seconds.
+    pub seconds: f64,
+    /// The errors over every receiver.
+    pub all: ErrorSummary,
+    /// The errors over the exact penumbra ([`in_penumbra`]).
+    pub penumbra: ErrorSummary,
+}
+
+impl ErrorRow {
+    /// The table's header, two Markdown lines.
+    pub const HEADER: &'static str = "| method | time (ms) | mean abs | RMSE | max | mean signed | RMSE penumbra |\n|---|---:|---:|---:|---:|---:|---:|";
+
+    /// The row of `values` against `exact` (same length and order; the
+    /// shorter bounds the comparison).
+    #[must_use]
+    pub fn new(method: impl Into<String>, seconds: f64, values: &[f64], exact: &[f64]) -> ErrorRow {
+        ErrorRow {
+            method: method.into(),
+            seconds,
+            all: ErrorSummary::new(values, exact, |_| true),
+            penumbra: ErrorSummary::new(values, exact, |i| in_penumbra(exact[i])),
+        }
+    }
+}
+
+impl fmt::Display for ErrorRow {
+    /// The Markdown row under [`ErrorRow::HEADER`].
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        write!(
+            f,
+            "| {} | {:.1} | {:.5} | {:.5} | {:.4} | {:+.5} | {:.5} |",
+            self.method,
+            self.seconds * 1e3,
+            self.all.mean_abs,
+            self.all.rmse,
+            self.all.max_abs,
+            self.all.mean_signed,
+            self.penumbra.rmse
+        )
     }
 }
 

@@ -57,11 +57,12 @@ pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
 
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
-use crate::render::image::ErrorSummary;
+use crate::render::image::{in_penumbra, ErrorSummary};
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::sync::Arc;
 use std::time::Instant;
 
 /// The format tag of `results.json`.
@@ -123,6 +124,11 @@ pub struct Config {
     /// The side of the pictures (`0`: none); the scene named `default`
     /// gets twice this, up to [`Config::side`].
     pub picture_side: u32,
+    /// Methods of one's own (outside the registry), swept after the
+    /// registry's settings like any other: tables, error-against-time plots
+    /// and pictures, named by [`Method::name`] (which must be distinct from
+    /// every other setting's name and contain no `/`).
+    pub own: Vec<Arc<dyn Method>>,
 }
 
 impl Default for Config {
@@ -134,6 +140,7 @@ impl Default for Config {
             methods: Vec::new(),
             shard: None,
             picture_side: 128,
+            own: Vec::new(),
         }
     }
 }
@@ -258,16 +265,18 @@ pub fn settings(config: &Config) -> Vec<String> {
     } else {
         out.extend(config.methods.iter().filter(|m| *m != "exact").cloned());
     }
+    out.extend(config.own.iter().map(|m| m.name()));
     out.extend(config.mc.iter().map(|n| format!("mc:{n}")));
     let mut seen = std::collections::HashSet::new();
     out.retain(|s| seen.insert(s.clone()));
     out
 }
 
-/// The settings that get a picture: `exact` and the first comparison
-/// setting of each method (its defaults).
-fn pictured(setting: &str) -> bool {
+/// The settings that get a picture: `exact`, the first comparison setting
+/// of each method (its defaults), and the methods of one's own.
+fn pictured(setting: &str, config: &Config) -> bool {
     setting == "exact"
+        || config.own.iter().any(|m| m.name() == setting)
         || REGISTRY
             .iter()
             .any(|e| e.compare.first().is_some_and(|s| *s == setting))
@@ -303,9 +312,12 @@ pub fn run(
     progress: Progress<'_>,
 ) -> Result<Results, String> {
     let settings = settings(config);
-    let methods: Vec<Box<dyn Method>> = settings
+    let methods: Vec<Arc<dyn Method>> = settings
         .iter()
-        .map(|s| registry::parse(s))
+        .map(|s| match config.own.iter().find(|m| m.name() == *s) {
+            Some(own) => Ok(Arc::clone(own)),
+            None => registry::parse(s).map(Arc::from),
+        })
         .collect::<Result<_, _>>()?;
     let machine = machine_line();
     let total = cases.len() * settings.len();
@@ -358,7 +370,7 @@ pub fn run(
             progress(done, mine.len(), &format!("{}: {setting}", case.name));
             let method = methods[k % settings.len()].as_ref();
             let mut cell = run_cell(k, case, &prepared, method, config);
-            if cell.status == "ok" && pictured(setting) && config.picture_side > 0 {
+            if cell.status == "ok" && pictured(setting, config) && config.picture_side > 0 {
                 if let Some(dir) = out {
                     cell.picture = Some(picture(case, &prepared, method, config, dir)?);
                 }
@@ -415,7 +427,7 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
         .output
         .visibility;
     let receivers = frame.receivers();
-    let penumbra: Vec<bool> = exact.iter().map(|&v| v > 0.0 && v < 1.0).collect();
+    let penumbra: Vec<bool> = exact.iter().map(|&v| in_penumbra(v)).collect();
     let ground: Vec<bool> = receivers.iter().map(|r| r.object == Some(0)).collect();
     let groups = [
         vec![true; receivers.len()],

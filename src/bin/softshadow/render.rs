@@ -5,7 +5,7 @@
 use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_method};
 use softshadow::method::{self, Exact, Method};
 use softshadow::render::image::{
-    error_heat_map, shaded, shaded_by_ends, visibility_image, ErrorSummary,
+    error_heat_map, in_penumbra, shaded, shaded_by_ends, visibility_image, ErrorRow,
 };
 use softshadow::render::{Frame, Stages, Stats};
 use softshadow::scene::Scene;
@@ -182,27 +182,16 @@ fn scene_table(name: &str, what: &str) -> Result<(), String> {
 /// penumbra (receivers whose exact `V` is strictly between 0 and 1).
 fn print_table(frame: &Frame, exact: &method::Run, runs: &[method::Run]) {
     let reference = &exact.output.visibility;
-    let penumbra = |i: usize| reference[i] > 0.0 && reference[i] < 1.0;
     println!(
         "\n{} receivers, {} in the exact penumbra; errors of V against exact\n",
         frame.receivers().len(),
-        (0..reference.len()).filter(|&i| penumbra(i)).count()
+        reference.iter().filter(|&&v| in_penumbra(v)).count()
     );
-    println!("| method | time (ms) | mean abs | RMSE | max | mean signed | RMSE penumbra |");
-    println!("|---|---:|---:|---:|---:|---:|---:|");
+    println!("{}", ErrorRow::HEADER);
     for run in runs {
-        let v = &run.output.visibility;
-        let all = ErrorSummary::new(v, reference, |_| true);
-        let pen = ErrorSummary::new(v, reference, penumbra);
         println!(
-            "| {} | {:.1} | {:.5} | {:.5} | {:.4} | {:+.5} | {:.5} |",
-            run.method,
-            run.seconds * 1e3,
-            all.mean_abs,
-            all.rmse,
-            all.max_abs,
-            all.mean_signed,
-            pen.rmse
+            "{}",
+            ErrorRow::new(&run.method, run.seconds, &run.output.visibility, reference)
         );
     }
 }

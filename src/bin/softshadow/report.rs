@@ -123,6 +123,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             methods: args.methods.clone(),
             shard: args.shard,
             picture_side: args.pictures,
+            own: Vec::new(),
         };
         let bar = bar();
         let progress = |done: usize, total: usize, what: &str| {
