@@ -82,7 +82,8 @@ fn agree_passes_true_values_and_catches_moved_ones() {
             continue;
         };
         let options = Options::new(SAMPLES).with_seed(case_index as u64);
-        estimates.push(monte_carlo::visibility(&bvh, &case.light, case.receiver, &options).unwrap());
+        estimates
+            .push(monte_carlo::visibility(&bvh, &case.light, case.receiver, &options).unwrap());
         values.push(e);
     }
     let a = agree(&estimates, &values, SAMPLES, ALPHA).unwrap();
@@ -95,7 +96,11 @@ fn agree_passes_true_values_and_catches_moved_ones() {
     assert!(moved.len() >= 10, "{} partly visible", moved.len());
     let mut wrong = values.clone();
     for &i in &moved {
-        assert!(a.quantile * estimates[i].stderr < 0.05, "{:?}", estimates[i]);
+        assert!(
+            a.quantile * estimates[i].stderr < 0.05,
+            "{:?}",
+            estimates[i]
+        );
         wrong[i] += 0.05;
     }
     let b = agree(&estimates, &wrong, SAMPLES, ALPHA).unwrap();
@@ -110,9 +115,15 @@ fn agree_passes_true_values_and_catches_moved_ones() {
         })
     );
     for rate in [0.0, 1.0, f64::NAN, -0.1] {
-        assert!(matches!(agree(&estimates, &values, SAMPLES, rate), Err(AgreeError::Rate(_))));
+        assert!(matches!(
+            agree(&estimates, &values, SAMPLES, rate),
+            Err(AgreeError::Rate(_))
+        ));
     }
     let mut nan = values.clone();
     nan[3] = f64::NAN;
-    assert_eq!(agree(&estimates, &nan, SAMPLES, ALPHA), Err(AgreeError::NonFiniteExact(3)));
+    assert_eq!(
+        agree(&estimates, &nan, SAMPLES, ALPHA),
+        Err(AgreeError::NonFiniteExact(3))
+    );
 }

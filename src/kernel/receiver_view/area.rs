@@ -182,32 +182,48 @@ impl AreaView {
     }
 
     /// The area of the union of the triangles' images within the light, in
-    /// the plane's coordinates.
+    /// the plane's coordinates. (The generic loop is kept to a call per
+    /// triangle, so that the work is compiled once, here, not in every
+    /// caller.)
     fn covered_area<'t>(
         &self,
         triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
         scratch: &mut Scratch,
     ) -> f64 {
-        let measure = self.measure;
         scratch.triangles.clear();
         for tri in triangles {
-            let first = scratch.triangles.len();
-            self.image_triangles(tri, &mut scratch.triangles);
-            // Cull what misses the measure; stop early under a full cover.
-            let mut k = first;
-            while k < scratch.triangles.len() {
-                let t = scratch.triangles[k];
-                if measure.covered_by(&t) {
-                    return self.light_area();
-                }
-                if measure.misses(&t) {
-                    scratch.triangles.swap_remove(k);
-                } else {
-                    k += 1;
-                }
+            if self.add_image(tri, &mut scratch.triangles) {
+                return self.light_area();
             }
         }
-        union_area(&scratch.triangles, measure, self.half, &mut scratch.union)
+        union_area(
+            &scratch.triangles,
+            self.measure,
+            self.half,
+            &mut scratch.union,
+        )
+    }
+
+    /// Appends the parts of the triangle's image that meet the light; true
+    /// when one covers the whole light.
+    fn add_image(&self, tri: &[DVec3; 3], out: &mut Vec<Tri>) -> bool {
+        let measure = self.measure;
+        let first = out.len();
+        self.image_triangles(tri, out);
+        // Cull what misses the measure; stop early under a full cover.
+        let mut k = first;
+        while k < out.len() {
+            let t = out[k];
+            if measure.covered_by(&t) {
+                return true;
+            }
+            if measure.misses(&t) {
+                out.swap_remove(k);
+            } else {
+                k += 1;
+            }
+        }
+        false
     }
 
     /// The image of a triangle on the light's plane: the light points it

@@ -17,9 +17,40 @@ pub struct SegmentView {
     p: DVec3,
     a: DVec3,
     b: DVec3,
-    /// The unit normal of the plane through `p`, `a`, `b`; `None` when `p`
-    /// lies on the light's line.
-    n: Option<DVec3>,
+    /// The plane through `p`, `a`, `b`; `None` when `p` lies on the
+    /// light's line.
+    plane: Option<Plane>,
+}
+
+/// The plane through the receiver and the light, with the three lines that
+/// bound the triangle `(p, a, b)` in it as dot products: with `p` at the
+/// origin and `n` the plane's unit normal, a point `q` of the plane has
+/// `f = n · (ra × q) = q · (n × ra) ≥ 0` on `b`'s side of the ray to `a`,
+/// `g = n · (q × rb) = q · (rb × n) ≥ 0` on `a`'s side of the ray to `b`,
+/// and `h = n · ((rb − ra) × (q − ra)) = (q − ra) · (n × (rb − ra)) ≥ 0` on
+/// `p`'s side of the light — one product per receiver, not per triangle.
+#[derive(Clone, Copy, Debug)]
+struct Plane {
+    ra: DVec3,
+    f: DVec3,
+    g: DVec3,
+    h: DVec3,
+}
+
+impl Plane {
+    fn new(ra: DVec3, rb: DVec3, n: DVec3) -> Plane {
+        Plane {
+            ra,
+            f: n.cross(ra),
+            g: rb.cross(n),
+            h: n.cross(rb - ra),
+        }
+    }
+
+    /// `[f, g, h]` at `q` (relative to `p`).
+    fn sides(&self, q: DVec3) -> [f64; 3] {
+        [q.dot(self.f), q.dot(self.g), (q - self.ra).dot(self.h)]
+    }
 }
 
 impl SegmentView {
@@ -47,7 +78,12 @@ impl SegmentView {
             // (every coordinate of p between the ends').
             let between = |u: f64, v: f64, w: f64| (u <= w && w <= v) || (v <= w && w <= u);
             let on = collinear && (0..3).all(|k| between(a[k], b[k], p[k]));
-            return (!on).then_some(SegmentView { p, a, b, n: None });
+            return (!on).then_some(SegmentView {
+                p,
+                a,
+                b,
+                plane: None,
+            });
         }
         // The plane's unit normal (scaled to its largest component first, so
         // that neither a light of size 1e-77 nor one of 1e77 under- or
@@ -57,7 +93,7 @@ impl SegmentView {
             p,
             a,
             b,
-            n: Some(n),
+            plane: Some(Plane::new(a - p, b - p, n)),
         })
     }
 
@@ -74,8 +110,8 @@ impl SegmentView {
     /// of positive length (or has a non-finite corner).
     #[must_use]
     pub fn blocked(&self, tri: &[DVec3; 3]) -> Option<(f64, f64)> {
-        match self.n {
-            Some(n) => blocked_interval(self.p, self.a, self.b, n, tri),
+        match self.plane {
+            Some(plane) => blocked_interval(self.p, self.a, self.b, &plane, tri),
             None => self.blocked_on_line(tri),
         }
     }
@@ -125,13 +161,13 @@ impl SegmentView {
 }
 
 /// The interval of the segment light's parameter `s ∈ [0, 1]` (the point
-/// `a + s (b − a)`) that the triangle blocks from `p`; `n` the unit normal
-/// along `(a − p) × (b − p)`.
+/// `a + s (b − a)`) that the triangle blocks from `p`, in the `plane`
+/// through `p`, `a`, `b`.
 fn blocked_interval(
     p: DVec3,
     a: DVec3,
     b: DVec3,
-    n: DVec3,
+    plane: &Plane,
     tri: &[DVec3; 3],
 ) -> Option<(f64, f64)> {
     if !tri.iter().all(|v| v.is_finite()) {
@@ -172,17 +208,11 @@ fn blocked_interval(
         return None;
     }
     let (mut e0, mut e1) = (pts[0], pts[1]);
-    let (ra, rb) = (a - p, b - p);
-    // In the plane, with p at the origin: f ≥ 0 on b's side of the ray to
-    // a, g ≥ 0 on a's side of the ray to b, h ≥ 0 on p's side of the light.
-    let f = |q: DVec3| n.dot(ra.cross(q));
-    let g = |q: DVec3| n.dot(q.cross(rb));
-    let h = |q: DVec3| n.dot((rb - ra).cross(q - ra));
     // Clip the trace to the triangle (p, a, b); each cut measured from the
     // end nearer the cutting line (a trace end 10²⁰ away must not set the
     // rounding of a cut near the light).
-    for fun in [&f as &dyn Fn(DVec3) -> f64, &g, &h] {
-        let (v0, v1) = (fun(e0), fun(e1));
+    for k in 0..3 {
+        let (v0, v1) = (plane.sides(e0)[k], plane.sides(e1)[k]);
         if v0.is_nan() || v1.is_nan() || (v0 < 0.0 && v1 < 0.0) || (v0 <= 0.0 && v1 <= 0.0) {
             // Outside, or on the line: nothing of positive length is left.
             return None;
@@ -195,7 +225,7 @@ fn blocked_interval(
     }
     // Project both ends from p onto the light: s = f / (f + g).
     let param = |q: DVec3| {
-        let (fq, gq) = (f(q), g(q));
+        let [fq, gq, _] = plane.sides(q);
         let den = fq + gq;
         (den > 0.0).then(|| (fq / den).clamp(0.0, 1.0))
     };
