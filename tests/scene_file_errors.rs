@@ -376,7 +376,7 @@ fn obj_problems_are_reported_at_the_obj_field() {
     let msg = scene_err_in(&with_meshes(r#"{"obj": "missing.obj"}"#), &dir);
     assert!(
         msg.starts_with(&format!(
-            "scene.json: meshes[0].obj: cannot read {missing:?}: "
+            "scene.json: meshes[0].obj: {missing:?}: cannot read: "
         )),
         "{msg}"
     );

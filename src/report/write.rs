@@ -51,7 +51,9 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
     }
-    std::fs::write(path, text).map_err(|e| format!("{}: {e}", path.display()))
+    // Atomically: a reader never sees half a report, a symlink is replaced.
+    crate::render::image::write_atomically(path, text.as_bytes())
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Writes `results.json`, `index.md` and `plots/` into `dir` (the

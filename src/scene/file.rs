@@ -129,6 +129,34 @@ impl FileError {
 
 /// `s` with control characters (newlines included) escaped, so that a
 /// message stays on one line whatever a file name or key holds.
+/// `s` cut to about `max` bytes at its end, with what was cut counted.
+fn clip_end(s: &str, max: usize) -> Cow<'_, str> {
+    if s.len() <= max {
+        return Cow::Borrowed(s);
+    }
+    let cut = (0..=max)
+        .rev()
+        .find(|&i| s.is_char_boundary(i))
+        .unwrap_or(0);
+    Cow::Owned(format!("{}… ({} more bytes)", &s[..cut], s.len() - cut))
+}
+
+/// `s` cut to about `max` bytes at its start (a path keeps its file name).
+fn clip_start(s: &str, max: usize) -> Cow<'_, str> {
+    if s.len() <= max {
+        return Cow::Borrowed(s);
+    }
+    let from = (s.len() - max..s.len())
+        .find(|&i| s.is_char_boundary(i))
+        .unwrap_or(s.len());
+    Cow::Owned(format!("…{}", &s[from..]))
+}
+
+/// A path for a message: its display, cut to its last 160 bytes.
+fn short_path(path: &Path) -> String {
+    clip_start(&path.display().to_string(), 160).into_owned()
+}
+
 fn one_line(s: &str) -> Cow<'_, str> {
     if s.chars().any(char::is_control) {
         Cow::Owned(
@@ -149,11 +177,15 @@ fn one_line(s: &str) -> Cow<'_, str> {
 
 impl fmt::Display for FileError {
     fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let (file, message) = (one_line(&self.file), one_line(&self.message));
+        // One line of bounded length, whatever the input quoted.
+        let file = one_line(&self.file);
+        let file = clip_start(&file, 160);
+        let message = one_line(&self.message);
+        let message = clip_end(&message, 400);
         match &self.place {
             Place::Whole => write!(f, "{file}: {message}"),
             Place::Position { line, column } => write!(f, "{file}:{line}:{column}: {message}"),
-            Place::Path(path) => write!(f, "{file}: {}: {message}", one_line(path)),
+            Place::Path(path) => write!(f, "{file}: {}: {message}", clip_end(&one_line(path), 200)),
         }
     }
 }
@@ -299,13 +331,56 @@ pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
     })
 }
 
+/// The largest scene, points or report JSON file read (256 MiB).
+pub const MAX_TEXT_BYTES: u64 = 256 << 20;
+
+/// The largest OBJ file read (1 GiB).
+pub const MAX_OBJ_BYTES: u64 = 1 << 30;
+
+/// The bytes of the regular file at `path`, at most `limit` of them.
+///
+/// Devices (`/dev/zero`), FIFOs, sockets and directories are refused before
+/// they are opened (opening a FIFO would block until a writer comes), and
+/// a file longer than `limit` — or one that grows past it while being read
+/// — is refused rather than read whole.
+///
+/// # Errors
+/// A one-line message: what the path is instead of a regular file, its
+/// size against the limit, or the I/O error.
+pub fn read_input(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
+    use std::io::Read as _;
+    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
+    let kind = meta.file_type();
+    if !kind.is_file() {
+        let what = if kind.is_dir() {
+            "a directory"
+        } else {
+            "a device, FIFO or socket"
+        };
+        return Err(format!("not a regular file ({what})"));
+    }
+    let too_big = |n: u64| format!("{n} bytes or more, over the limit of {limit} bytes");
+    if meta.len() > limit {
+        return Err(too_big(meta.len()));
+    }
+    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read: {e}"))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big(limit + 1));
+    }
+    Ok(bytes)
+}
+
 fn read_text(name: &str, path: &Path) -> Result<String, FileError> {
     let whole = |message: String| FileError {
         file: name.to_owned(),
         place: Place::Whole,
         message,
     };
-    let bytes = std::fs::read(path).map_err(|e| whole(format!("cannot read: {e}")))?;
+    let bytes = read_input(path, MAX_TEXT_BYTES).map_err(whole)?;
     String::from_utf8(bytes).map_err(|e| {
         whole(format!(
             "not valid UTF-8 (byte {})",
@@ -472,9 +547,10 @@ impl Cx<'_> {
                 let at = at.key("obj");
                 let rel = self.string(f.get("obj").unwrap_or(&Json::Null), &at)?;
                 let path = base_dir.join(rel);
-                let bytes = std::fs::read(&path)
-                    .map_err(|e| self.err(&at, format!("cannot read {path:?}: {e}")))?;
-                obj_mesh(&bytes).map_err(|m| self.err(&at, format!("{path:?}: {m}")))?
+                let shown = short_path(&path);
+                let bytes = read_input(&path, MAX_OBJ_BYTES)
+                    .map_err(|e| self.err(&at, format!("{shown:?}: {e}")))?;
+                obj_mesh(&bytes).map_err(|m| self.err(&at, format!("{shown:?}: {m}")))?
             }
             [_] => {
                 if f.get("triangles").is_some() {

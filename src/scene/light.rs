@@ -497,10 +497,17 @@ impl Light {
         }
         match *self {
             Light::Sphere(Sphere { center, radius }) => {
-                // Halved, so that the difference cannot overflow.
+                // Halved, so that the difference cannot overflow; then
+                // scaled to its largest component, so that its length
+                // cannot either (a centre 3e300 away is not "inside").
                 let half = center * 0.5 - p * 0.5;
-                let normal = half.try_normalize().ok_or(ReceiverError::InsideSphere)?;
-                if half.length() * 2.0 <= radius {
+                let scale = half.abs().max_element();
+                if scale == 0.0 {
+                    return Err(ReceiverError::InsideSphere);
+                }
+                let unit = half / scale;
+                let normal = unit.try_normalize().ok_or(ReceiverError::InsideSphere)?;
+                if unit.length() * scale * 2.0 <= radius {
                     return Err(ReceiverError::InsideSphere);
                 }
                 Ok(Emitter::Disk(Disk {

@@ -25,11 +25,11 @@ const ALPHA: f64 = 1e-3;
 
 pub fn run() -> ExitCode {
     let kernels = selfcheck::run();
-    println!();
+    say!("");
     let references = match builtin("default") {
         Some(scene) => references(&scene),
         None => {
-            println!("the default scene is missing");
+            say!("the default scene is missing");
             false
         }
     };
@@ -86,26 +86,26 @@ fn references(scene: &Scene) -> bool {
         worst = worst.max(d / allowed);
         disagree += usize::from(d > allowed);
     }
-    println!(
+    say!(
         "references on the default scene ({} triangles, sphere light): {} floor receivers, {} in the penumbra, {} receiver errors",
         scene.triangle_count(),
         grid.len(),
         points.len(),
         errors
     );
-    println!(
+    say!(
         "  exact:   {:>8.1} µs per receiver over all {} receivers, {:.1} µs in the penumbra ({} threads)",
         exact_per * 1e6,
         grid.len(),
         penumbra_per * 1e6,
         rayon::current_num_threads()
     );
-    println!(
+    say!(
         "  mc:{SAMPLES}: {:>8.1} µs per receiver in the penumbra; there exact costs {:.3} of Monte Carlo",
         mc_per * 1e6,
         penumbra_per / mc_per
     );
-    println!(
+    say!(
         "  agreement: largest |mc − exact| is {worst:.2} of its tolerance (t·stderr, t = {q:.2} for a family-wise false-failure rate {ALPHA}); {disagree} disagree"
     );
     errors == 0 && disagree == 0 && !points.is_empty()

@@ -16,6 +16,17 @@
 //! Bad input ends with one line on stderr naming the file, the place and
 //! the field, exit status 2, and nothing on stdout.
 
+/// `println!` that ends the program quietly (status 0) when stdout is
+/// closed — `softshadow … | head -1` — as a pipeline's reader expects, and
+/// with a one-line error (status 1) when it cannot be written otherwise.
+/// Every file the program writes is written to a temporary name and
+/// renamed, so stopping here leaves no partial file.
+macro_rules! say {
+    ($($arg:tt)*) => {
+        $crate::stdout_line(format_args!($($arg)*))
+    };
+}
+
 mod check;
 mod progress;
 mod render;
@@ -27,6 +38,37 @@ mod visibility;
 use clap::{Parser, Subcommand};
 
 use std::process::ExitCode;
+
+/// Makes `dir` ready for the files a command writes, before any work:
+/// created if missing, a directory, and writable (a file is created in it
+/// and removed).
+///
+/// # Errors
+/// One line naming `--out`.
+fn out_dir(dir: &std::path::Path) -> Result<(), String> {
+    let fail = |why: String| format!("--out {}: {why}", dir.display());
+    std::fs::create_dir_all(dir).map_err(|e| fail(e.to_string()))?;
+    if !dir.is_dir() {
+        return Err(fail("not a directory".into()));
+    }
+    let probe = dir.join(format!(".softshadow-probe-{}", std::process::id()));
+    std::fs::write(&probe, b"").map_err(|e| fail(format!("not writable: {e}")))?;
+    let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// Writes one line to stdout for [`say!`].
+fn stdout_line(args: std::fmt::Arguments<'_>) {
+    use std::io::Write;
+    let mut out = std::io::stdout().lock();
+    if let Err(e) = writeln!(out, "{args}").and_then(|()| out.flush()) {
+        if e.kind() == std::io::ErrorKind::BrokenPipe {
+            std::process::exit(0);
+        }
+        eprintln!("softshadow: cannot write to stdout: {e}");
+        std::process::exit(1);
+    }
+}
 
 #[derive(Parser)]
 #[command(
@@ -94,7 +136,7 @@ fn main() -> ExitCode {
             let first = text.lines().next().unwrap_or("bad arguments");
             eprintln!(
                 "softshadow: {} (see softshadow --help)",
-                first.trim_start_matches("error: ")
+                one_line(first.trim_start_matches("error: "), 600)
             );
             return ExitCode::from(BAD_INPUT);
         }
@@ -110,8 +152,32 @@ fn main() -> ExitCode {
     match result {
         Ok(()) => ExitCode::SUCCESS,
         Err(message) => {
-            eprintln!("softshadow: {message}");
+            eprintln!("softshadow: {}", one_line(&message, 600));
             ExitCode::from(BAD_INPUT)
         }
     }
+}
+
+/// A message as one line of at most about `max` bytes: control characters
+/// (a newline in a path, say) escaped, the rest cut with its length stated.
+fn one_line(message: &str, max: usize) -> String {
+    let escaped: String = message
+        .chars()
+        .flat_map(|c| {
+            let e: Vec<char> = if c.is_control() {
+                c.escape_default().collect()
+            } else {
+                vec![c]
+            };
+            e
+        })
+        .collect();
+    if escaped.len() <= max {
+        return escaped;
+    }
+    let cut = (0..=max)
+        .rev()
+        .find(|&i| escaped.is_char_boundary(i))
+        .unwrap_or(0);
+    format!("{}… ({} bytes in all)", &escaped[..cut], escaped.len())
 }

@@ -75,6 +75,7 @@ fn file_part(name: &str) -> String {
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
+    crate::out_dir(&args.out)?;
     let scene = resolve_scene(&args.scene)?;
     let method = method_with_seed(&args.method, args.seed)?;
     let stages = Stages::new(&scene);
@@ -86,7 +87,6 @@ pub fn run(args: &Args) -> Result<(), String> {
     } else {
         run_method(&Exact, &stages, &frame).map_err(|e| format!("the exact reference: {e}"))?
     };
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("--out {}: {e}", args.out.display()))?;
     let stem = format!(
         "{}-{}",
         Path::new(&args.scene)
@@ -111,11 +111,11 @@ pub fn run(args: &Args) -> Result<(), String> {
         image
             .write_png(&path)
             .map_err(|e| format!("{}: {e}", path.display()))?;
-        println!("wrote {}", path.display());
+        say!("wrote {}", path.display());
     }
     print_table(&frame, &exact, std::slice::from_ref(&run));
     if args.stats {
-        println!("\nstages:\n{}", stages.stats());
+        say!("\nstages:\n{}", stages.stats());
     }
     Ok(())
 }
@@ -138,8 +138,8 @@ pub fn default_run() -> Result<(), String> {
     ] {
         scene_table(name, what)?;
     }
-    println!("\ntotal run {:.2} s", start.elapsed().as_secs_f64());
-    println!("render one method to PNG: softshadow render --scene default --method pcss --out out");
+    say!("\ntotal run {:.2} s", start.elapsed().as_secs_f64());
+    say!("render one method to PNG: softshadow render --scene default --method pcss --out out");
     Ok(())
 }
 
@@ -152,7 +152,7 @@ fn scene_table(name: &str, what: &str) -> Result<(), String> {
     let stages = Stages::new(&scene);
     let frame = camera_frame(&scene, &stages, name, None, None)?;
     let (w, h) = frame.size();
-    println!(
+    say!(
         "softshadow: `{name}` ({what}), {w}×{h}, {} receivers, {} threads",
         frame.receivers().len(),
         rayon::current_num_threads()
@@ -170,7 +170,7 @@ fn scene_table(name: &str, what: &str) -> Result<(), String> {
     }
     print_table(&frame, &exact, &runs);
     let shared: Stats = stages.stats();
-    println!(
+    say!(
         "\nshared (not in the times above): bvh {:.1} ms, receivers {:.1} ms\n",
         shared.seconds("bvh") * 1e3,
         shared.seconds("receivers") * 1e3,
@@ -182,14 +182,14 @@ fn scene_table(name: &str, what: &str) -> Result<(), String> {
 /// penumbra (receivers whose exact `V` is strictly between 0 and 1).
 fn print_table(frame: &Frame, exact: &method::Run, runs: &[method::Run]) {
     let reference = &exact.output.visibility;
-    println!(
+    say!(
         "\n{} receivers, {} in the exact penumbra; errors of V against exact\n",
         frame.receivers().len(),
         reference.iter().filter(|&&v| in_penumbra(v)).count()
     );
-    println!("{}", ErrorRow::HEADER);
+    say!("{}", ErrorRow::HEADER);
     for run in runs {
-        println!(
+        say!(
             "{}",
             ErrorRow::new(&run.method, run.seconds, &run.output.visibility, reference)
         );

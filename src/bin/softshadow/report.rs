@@ -5,7 +5,9 @@
 use crate::visibility::resolve_scene;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
+use softshadow::render::image::write_atomically;
 use softshadow::report::{self, Case, Config, Results, Shard};
+use softshadow::scene::file::{read_input, MAX_TEXT_BYTES};
 use softshadow::scene::BUILTIN_NAMES;
 use std::io::IsTerminal;
 use std::path::{Path, PathBuf};
@@ -71,8 +73,9 @@ fn bar() -> ProgressBar {
 
 fn read_part(dir: &Path) -> Result<Results, String> {
     let path = dir.join("results.json");
-    let text = std::fs::read_to_string(&path).map_err(|e| format!("{}: {e}", path.display()))?;
-    serde_json::from_str(&text).map_err(|e| format!("{}: {e}", path.display()))
+    let bytes =
+        read_input(&path, MAX_TEXT_BYTES).map_err(|e| format!("{}: {e}", path.display()))?;
+    serde_json::from_slice(&bytes).map_err(|e| format!("{}: {e}", path.display()))
 }
 
 /// Copies the parts' pictures into `out`.
@@ -88,13 +91,15 @@ fn copy_pictures(parts: &[PathBuf], results: &Results, out: &Path) -> Result<(),
                 std::fs::create_dir_all(parent)
                     .map_err(|e| format!("{}: {e}", parent.display()))?;
             }
-            std::fs::copy(&from, &to).map_err(|e| format!("{}: {e}", from.display()))?;
+            let bytes = std::fs::read(&from).map_err(|e| format!("{}: {e}", from.display()))?;
+            write_atomically(&to, &bytes).map_err(|e| format!("{}: {e}", to.display()))?;
         }
     }
     Ok(())
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
+    crate::out_dir(&args.out)?;
     let results = if args.merge.is_empty() {
         let names: Vec<String> = if args.scenes.is_empty() {
             BUILTIN_NAMES.iter().map(|s| (*s).to_owned()).collect()
@@ -153,7 +158,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         report::write_accuracy(&results, dir, &command)?;
     }
     let missing = results.config.cells - results.cells.len();
-    println!(
+    say!(
         "wrote {} ({} cells{})",
         args.out.join("index.md").display(),
         results.cells.len(),

@@ -301,20 +301,24 @@ pub fn run() -> bool {
     angle_rows(&mut rows);
     predicate_rows(&mut rows);
 
-    println!(
+    say!(
         "softshadow {} — kernel self-check (closed forms; error in ε·scale)\n",
         env!("CARGO_PKG_VERSION")
     );
-    println!(
+    say!(
         "{:<38} {:<58} {:>24} {:>24} {:>8}",
-        "kernel", "case", "value", "closed form", "error"
+        "kernel",
+        "case",
+        "value",
+        "closed form",
+        "error"
     );
     let mut failed = 0;
     for row in &rows {
         // A NaN error (a kernel refusing the case) counts as a failure.
         let ok = row.error() <= row.budget;
         failed += (!ok) as usize;
-        println!(
+        say!(
             "{:<38} {:<58} {:>24.17e} {:>24.17e} {:>8.2}{}",
             row.kernel,
             row.case,
@@ -324,7 +328,7 @@ pub fn run() -> bool {
             if ok { "" } else { "  OVER BUDGET" }
         );
     }
-    println!(
+    say!(
         "\n{} checks, {} over budget. Measured accuracy: docs/accuracy/kernels.md",
         rows.len(),
         failed

@@ -2,6 +2,7 @@
 //! stability`), written as `stability.md`.
 
 use clap::Args as ClapArgs;
+use softshadow::render::image::write_atomically;
 use softshadow::report::{machine_line, stability};
 use std::io::IsTerminal;
 use std::path::PathBuf;
@@ -17,6 +18,7 @@ pub struct Args {
 }
 
 pub fn run(args: &Args) -> Result<(), String> {
+    crate::out_dir(&args.out)?;
     let terminal = std::io::stderr().is_terminal();
     let rows = stability::run(args.side, &|what| {
         if terminal {
@@ -28,9 +30,8 @@ pub fn run(args: &Args) -> Result<(), String> {
         .collect::<Vec<_>>()
         .join(" ");
     let text = stability::markdown(&rows, &machine_line(), &command);
-    std::fs::create_dir_all(&args.out).map_err(|e| format!("--out {}: {e}", args.out.display()))?;
     let path = args.out.join("stability.md");
-    std::fs::write(&path, text).map_err(|e| format!("{}: {e}", path.display()))?;
-    println!("wrote {} ({} rows)", path.display(), rows.len());
+    write_atomically(&path, text.as_bytes()).map_err(|e| format!("{}: {e}", path.display()))?;
+    say!("wrote {} ({} rows)", path.display(), rows.len());
     Ok(())
 }

@@ -112,6 +112,6 @@ pub fn run(args: &Args) -> Result<(), String> {
     if let Some(stderr) = &out.stderr {
         json["stderr"] = serde_json::json!(stderr);
     }
-    println!("{json}");
+    say!("{json}");
     Ok(())
 }

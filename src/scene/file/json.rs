@@ -33,7 +33,7 @@ impl Json {
             Json::Null => "null".to_owned(),
             Json::Bool(b) => b.to_string(),
             Json::UInt(_) | Json::Int(_) | Json::Float(_) => "a number".to_owned(),
-            Json::Str(s) => format!("the string {s:?}"),
+            Json::Str(s) => format!("the string {}", quoted(s)),
             Json::Array(a) => format!("an array of {}", a.len()),
             Json::Object(_) => "an object".to_owned(),
         }
@@ -108,7 +108,7 @@ impl<'de> Visitor<'de> for JsonVisitor {
                 }
             };
             if duplicate {
-                return Err(de::Error::custom(format!("duplicate key {key:?}")));
+                return Err(de::Error::custom(format!("duplicate key {}", quoted(&key))));
             }
             let value = map.next_value()?;
             entries.push((key, value));
@@ -168,7 +168,7 @@ impl<'a> At<'a> {
                     }
                     s.push_str(k);
                 }
-                Seg::Key(k) => s.push_str(&format!("[{k:?}]")),
+                Seg::Key(k) => s.push_str(&format!("[{}]", quoted(k))),
                 Seg::Index(i) => s.push_str(&format!("[{i}]")),
             }
         }
@@ -278,7 +278,7 @@ impl Cx<'_> {
         let Some(&(kind, keys)) = kinds.iter().find(|(k, _)| *k == ty) else {
             return Err(self.err(
                 &ty_at,
-                format!("unknown {what} type {ty:?} (expected {expected})"),
+                format!("unknown {what} type {} (expected {expected})", quoted(ty)),
             ));
         };
         Ok((kind, self.object(v, at, keys)?))
@@ -355,6 +355,21 @@ impl Cx<'_> {
         f.get(key)
             .map_or(Ok(default), |v| self.vec3(v, &at.key(key)))
     }
+}
+
+/// A string of the input for a message: quoted, and cut to its first 60
+/// bytes with the rest counted, so that a 200 MB key or value never makes
+/// a 200 MB message.
+pub(super) fn quoted(s: &str) -> String {
+    const MAX: usize = 60;
+    if s.len() <= MAX {
+        return format!("{s:?}");
+    }
+    let cut = (0..=MAX)
+        .rev()
+        .find(|&i| s.is_char_boundary(i))
+        .unwrap_or(0);
+    format!("{:?}… ({} bytes)", &s[..cut], s.len())
 }
 
 #[cfg(test)]

@@ -1,0 +1,405 @@
+//! Hostile input and a hostile environment, one test per case: a closed
+//! stdout ends the program quietly; files are replaced whole (a symlink is
+//! replaced, never written through); `--out` is checked before any work;
+//! special and oversized input files are refused without being read; error
+//! messages stay one short line whatever the input quoted; option values
+//! beyond their range are refused; lights at the edge of `f64` (a far
+//! sphere, a radius of 1e-170) give answers, not false errors or NaN.
+#![cfg(unix)]
+
+use softshadow::glam::DVec3;
+use softshadow::reference::exact;
+use softshadow::{Bvh, Light, Occluders};
+use std::io::Read;
+use std::path::{Path, PathBuf};
+use std::process::{Command, Output, Stdio};
+use std::time::{Duration, Instant};
+
+fn bin() -> Command {
+    Command::new(env!("CARGO_BIN_EXE_softshadow"))
+}
+
+fn softshadow(args: &[&str]) -> Output {
+    bin()
+        .args(args)
+        .output()
+        .expect("the softshadow binary runs")
+}
+
+fn dir(name: &str) -> PathBuf {
+    let d = std::env::temp_dir().join(format!("softshadow-hostile-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn write(dir: &Path, name: &str, text: &str) -> String {
+    let p = dir.join(name);
+    std::fs::write(&p, text).unwrap();
+    p.to_str().unwrap().to_owned()
+}
+
+/// Exit 2, one line on stderr of at most `max` bytes containing every
+/// needle, nothing on stdout, no panic.
+fn refused(out: &Output, max: usize, needles: &[&str]) {
+    let stderr = String::from_utf8_lossy(&out.stderr);
+    assert_eq!(out.status.code(), Some(2), "{stderr}");
+    assert!(out.stdout.is_empty());
+    assert!(!stderr.contains("panicked"), "{stderr}");
+    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
+    assert!(
+        stderr.len() <= max,
+        "{} bytes: {}",
+        stderr.len(),
+        &stderr[..200.min(stderr.len())]
+    );
+    for n in needles {
+        assert!(stderr.contains(n), "{stderr:?} lacks {n:?}");
+    }
+}
+
+const SCENE: &str = r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius": 0.5},
+ "camera": {"eye": [0, 2, 6], "target": [0, 0, 0], "fov_y_deg": 40, "width": 24, "height": 18},
+ "meshes": [{"name": "floor", "primitive": {"type": "quad", "center": [0, 0, 0], "u": [4, 0, 0], "v": [0, 0, 4]}},
+            {"name": "card", "positions": [[-1,1,-1],[1,1,-1],[0,1,1]], "triangles": [[0,1,2]]}]}"#;
+
+/// Starts `softshadow args` with its stdout closed before it writes.
+fn with_stdout_closed(args: &[&str]) -> Output {
+    let mut child = bin()
+        .args(args)
+        .stdout(Stdio::piped())
+        .stderr(Stdio::piped())
+        .spawn()
+        .unwrap();
+    // Close the reading end at once: every write the program makes fails
+    // with a broken pipe.
+    drop(child.stdout.take());
+    let mut stderr = Vec::new();
+    child
+        .stderr
+        .take()
+        .unwrap()
+        .read_to_end(&mut stderr)
+        .unwrap();
+    let status = child.wait().unwrap();
+    Output {
+        status,
+        stdout: Vec::new(),
+        stderr,
+    }
+}
+
+#[test]
+fn a_closed_stdout_ends_the_program_quietly() {
+    let d = dir("pipe");
+    let scene = write(&d, "scene.json", SCENE);
+    let points = write(&d, "points.json", r#"{"points": [{"p": [0.2, 0.0, 0.1]}]}"#);
+    for args in [
+        vec![
+            "visibility",
+            "--scene",
+            &scene,
+            "--points",
+            &points,
+            "--method",
+            "hard",
+        ],
+        vec![
+            "render",
+            "--scene",
+            &scene,
+            "--method",
+            "hard",
+            "--out",
+            d.to_str().unwrap(),
+        ],
+    ] {
+        let out = with_stdout_closed(&args);
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
+        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+    }
+    // Whatever `render` wrote before it stopped is whole: every PNG
+    // decodes, and no temporary file is left.
+    for entry in std::fs::read_dir(&d).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        assert!(!name.starts_with('.'), "left behind: {name}");
+        if name.ends_with(".png") {
+            let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
+            let mut reader = png::Decoder::new(file).read_info().unwrap();
+            let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+            reader.next_frame(&mut buf).unwrap();
+        }
+    }
+}
+
+#[test]
+fn out_is_checked_before_any_work_and_symlinks_are_replaced() {
+    let d = dir("out");
+    let scene = write(
+        &d,
+        "nocam.json",
+        r#"{"light": {"type": "point", "position": [0, 3, 0]}, "meshes": []}"#,
+    );
+    let file = write(&d, "a-file", "x");
+    // Before the scene is even looked at (it has no camera, which `render`
+    // would report): `--out` names a file.
+    refused(
+        &softshadow(&[
+            "render", "--scene", &scene, "--method", "hard", "--out", &file,
+        ]),
+        300,
+        &["--out", "a-file"],
+    );
+    refused(
+        &softshadow(&["report", "--scene", "default", "--out", &file]),
+        300,
+        &["--out"],
+    );
+    refused(&softshadow(&["stability", "--out", &file]), 300, &["--out"]);
+
+    // A symlink where a picture goes is replaced; its target is untouched.
+    let out = dir("out-link");
+    let target = write(&d, "precious.txt", "keep me");
+    let scene = write(&d, "scene.json", SCENE);
+    let link = out.join("scene-hard-visibility.png");
+    std::os::unix::fs::symlink(&target, &link).unwrap();
+    let run = softshadow(&[
+        "render",
+        "--scene",
+        &scene,
+        "--method",
+        "hard",
+        "--out",
+        out.to_str().unwrap(),
+    ]);
+    assert!(
+        run.status.success(),
+        "{}",
+        String::from_utf8_lossy(&run.stderr)
+    );
+    assert_eq!(std::fs::read_to_string(&target).unwrap(), "keep me");
+    assert!(!std::fs::symlink_metadata(&link)
+        .unwrap()
+        .file_type()
+        .is_symlink());
+}
+
+#[test]
+fn special_and_oversized_files_are_refused_without_reading_them() {
+    let d = dir("special");
+    let scene = write(&d, "scene.json", SCENE);
+    let start = Instant::now();
+    refused(
+        &softshadow(&[
+            "render",
+            "--scene",
+            "/dev/zero",
+            "--method",
+            "hard",
+            "--out",
+            d.to_str().unwrap(),
+        ]),
+        300,
+        &["/dev/zero", "not a regular file"],
+    );
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            &scene,
+            "--points",
+            "/dev/zero",
+            "--method",
+            "hard",
+        ]),
+        300,
+        &["not a regular file"],
+    );
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            &scene,
+            "--points",
+            d.to_str().unwrap(),
+            "--method",
+            "hard",
+        ]),
+        300,
+        &["a directory"],
+    );
+    let obj = write(
+        &d,
+        "obj.json",
+        r#"{"light": {"type": "point", "position": [0, 3, 0]}, "meshes": [{"obj": "/dev/zero"}]}"#,
+    );
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            &obj,
+            "--points",
+            &scene,
+            "--method",
+            "hard",
+        ]),
+        400,
+        &["obj", "not a regular file"],
+    );
+    // A FIFO would block the reader until a writer came: refused first.
+    let fifo = d.join("fifo.json");
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
+        refused(
+            &softshadow(&[
+                "visibility",
+                "--scene",
+                fifo.to_str().unwrap(),
+                "--points",
+                &scene,
+                "--method",
+                "hard",
+            ]),
+            300,
+            &["not a regular file"],
+        );
+    }
+    // A sparse file over the size limit: refused by its size, not read.
+    let big = d.join("big.json");
+    std::fs::File::create(&big)
+        .unwrap()
+        .set_len(300 << 20)
+        .unwrap();
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            big.to_str().unwrap(),
+            "--points",
+            &scene,
+            "--method",
+            "hard",
+        ]),
+        300,
+        &["over the limit"],
+    );
+    assert!(
+        start.elapsed() < Duration::from_secs(60),
+        "something was read whole"
+    );
+}
+
+#[test]
+fn messages_stay_one_short_line_whatever_the_input_quotes() {
+    let d = dir("long");
+    let long = "7".repeat(2 << 20);
+    let radius = write(
+        &d,
+        "radius.json",
+        &format!(
+            r#"{{"light": {{"type": "sphere", "center": [0, 3, 0], "radius": "{long}"}}, "meshes": []}}"#
+        ),
+    );
+    let key = write(
+        &d,
+        "key.json",
+        &format!(
+            r#"{{"light": {{"type": "point", "position": [0, 3, 0], "{long}": 1}}, "meshes": []}}"#
+        ),
+    );
+    let ty = write(
+        &d,
+        "type.json",
+        &format!(r#"{{"light": {{"type": "{long}"}}, "meshes": []}}"#),
+    );
+    for file in [&radius, &key, &ty] {
+        refused(
+            &softshadow(&[
+                "visibility",
+                "--scene",
+                file,
+                "--points",
+                file,
+                "--method",
+                "hard",
+            ]),
+            1000,
+            &["bytes"],
+        );
+    }
+    let name = "n".repeat(100_000);
+    refused(
+        &softshadow(&["render", "--scene", &name, "--method", "hard"]),
+        1000,
+        &["--scene"],
+    );
+    // A path with a newline in it, under a file: one line all the same.
+    let odd = write(&d, "odd\nname", "x");
+    let under = format!("{odd}/sub");
+    refused(
+        &softshadow(&[
+            "render", "--scene", "default", "--method", "hard", "--out", &under,
+        ]),
+        1000,
+        &["--out", "odd\\nname"],
+    );
+}
+
+#[test]
+fn option_values_beyond_their_range_are_refused() {
+    for (m, needle) in [
+        ("pcss:search=4294967295", "search"),
+        ("pcss:filter=4294967295", "filter"),
+        ("mc:4294967296", "mc"),
+    ] {
+        refused(
+            &softshadow(&["render", "--scene", "default", "--method", m]),
+            1000,
+            &[needle],
+        );
+    }
+}
+
+/// A sphere light 3e300 away is not "inside", and a radius of 1e-170 (whose
+/// square underflows) gives the point light's answer, not NaN.
+#[test]
+fn lights_at_the_edge_of_f64() {
+    let far = Light::sphere(DVec3::new(3e300, 0.0, 0.0), 5e299).unwrap();
+    assert!(far.emitter(DVec3::ZERO).is_ok());
+    let empty = Bvh::new(Occluders::from_triangles(Vec::new()));
+    assert_eq!(exact::visibility(&empty, &far, DVec3::ZERO), Ok(1.0));
+    // A wall at x = 1 hides all of it.
+    let wall = vec![[
+        DVec3::new(1.0, -10.0, -10.0),
+        DVec3::new(1.0, 10.0, -10.0),
+        DVec3::new(1.0, 0.0, 20.0),
+    ]];
+    let bvh = Bvh::new(Occluders::from_triangles(wall.clone()));
+    assert_eq!(exact::visibility(&bvh, &far, DVec3::ZERO), Ok(0.0));
+    assert_eq!(far.visibility_among(DVec3::ZERO, &wall), Ok(0.0));
+
+    let d = dir("tiny");
+    let scene = write(
+        &d,
+        "tiny.json",
+        &SCENE.replace("\"radius\": 0.5", "\"radius\": 1e-170"),
+    );
+    for method in ["exact", "hard", "mc:16"] {
+        let out = softshadow(&[
+            "render",
+            "--scene",
+            &scene,
+            "--method",
+            method,
+            "--out",
+            d.to_str().unwrap(),
+        ]);
+        assert!(
+            out.status.success(),
+            "{method}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+    }
+}
