@@ -101,5 +101,44 @@ fn growth(c: &mut Criterion) {
     g.finish();
 }
 
-criterion_group!(benches, default_scene, growth);
+/// Degenerate input: `n` exact copies of one triangle over the receiver
+/// (the BVH indexes one), and `n` nested triangles about one centre, the
+/// largest of which hides the whole light (the exact reference stops at the
+/// first image that covers it): the BVH build and one exact answer.
+fn degenerate(c: &mut Criterion) {
+    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).expect("a valid light");
+    let t = [
+        DVec3::new(-1.0, 1.0, -1.0),
+        DVec3::new(1.0, 1.0, -1.0),
+        DVec3::new(0.0, 1.0, 1.0),
+    ];
+    let centre = (t[0] + t[1] + t[2]) / 3.0;
+    let p = DVec3::new(0.9, 0.0, 0.0);
+    let mut g = c.benchmark_group("degenerate");
+    g.sample_size(10).measurement_time(Duration::from_secs(2));
+    for n in [1_000usize, 10_000, 100_000] {
+        let copies = vec![t; n];
+        let nested: Vec<[DVec3; 3]> = (0..n)
+            .map(|k| t.map(|v| centre + (v - centre) * (1.0 + k as f64 / n as f64)))
+            .collect();
+        g.bench_function(BenchmarkId::new("copies_build", n), |b| {
+            b.iter(|| black_box(Bvh::new(Occluders::from_triangles(copies.clone()))))
+        });
+        let bvh = Bvh::new(Occluders::from_triangles(copies));
+        g.bench_function(BenchmarkId::new("copies_exact", n), |b| {
+            b.iter(|| black_box(exact::visibility(&bvh, &light, p).ok()))
+        });
+        if n <= 10_000 {
+            // The build is still quadratic on nested boxes (obvhs's PLOC
+            // merges one pair per level): 10⁴ take about 3 s.
+            let bvh = Bvh::new(Occluders::from_triangles(nested));
+            g.bench_function(BenchmarkId::new("nested_exact", n), |b| {
+                b.iter(|| black_box(exact::visibility(&bvh, &light, p).ok()))
+            });
+        }
+    }
+    g.finish();
+}
+
+criterion_group!(benches, default_scene, growth, degenerate);
 criterion_main!(benches);

@@ -205,22 +205,35 @@ impl AreaView {
     }
 
     /// Appends the parts of the triangle's image that meet the light; true
-    /// when one covers the whole light.
+    /// when the image covers the whole light (checked on the convex image
+    /// before it is split, so that a covering image ends the work however
+    /// many images came before it).
     fn add_image(&self, tri: &[DVec3; 3], out: &mut Vec<Tri>) -> bool {
         let measure = self.measure;
-        let first = out.len();
-        self.image_triangles(tri, out);
-        // Cull what misses the measure; stop early under a full cover.
-        let mut k = first;
-        while k < out.len() {
-            let t = out[k];
-            if measure.covered_by(&t) {
-                return true;
+        let mut keep = |t: Tri| {
+            if !measure.misses(&t) {
+                out.push(t);
             }
-            if measure.misses(&t) {
-                out.swap_remove(k);
-            } else {
-                k += 1;
+        };
+        match self.polygon(tri) {
+            Polygon::Corners([a, b, c]) => {
+                if let Some(t) = Tri::new(a, b, c) {
+                    if measure.covered_by(&t) {
+                        return true;
+                    }
+                    keep(t);
+                }
+            }
+            Polygon::Clipped(image) => {
+                let v = image.vertices();
+                if measure.covered_by_convex(v) {
+                    return true;
+                }
+                for k in 1..v.len().saturating_sub(1) {
+                    if let Some(t) = Tri::new(v[0], v[k], v[k + 1]) {
+                        keep(t);
+                    }
+                }
             }
         }
         false
@@ -276,21 +289,6 @@ impl AreaView {
             a: m.dot(self.e[0]),
             b: m.dot(self.e[1]),
             c: m.dot(center_minus_q),
-        }
-    }
-
-    /// Appends the image of a triangle, split into a fan of triangles.
-    fn image_triangles(&self, tri: &[DVec3; 3], out: &mut Vec<Tri>) {
-        match self.polygon(tri) {
-            Polygon::Corners([a, b, c]) => out.extend(Tri::new(a, b, c)),
-            Polygon::Clipped(image) => {
-                let v = image.vertices();
-                for k in 1..v.len().saturating_sub(1) {
-                    if let Some(t) = Tri::new(v[0], v[k], v[k + 1]) {
-                        out.push(t);
-                    }
-                }
-            }
         }
     }
 

@@ -84,9 +84,20 @@ impl Measure {
 
     /// Whether the triangle alone covers the whole measure.
     pub(super) fn covered_by(self, t: &Tri) -> bool {
+        self.covered_by_convex(&t.v)
+    }
+
+    /// Whether the convex polygon `v` (counter-clockwise) alone covers the
+    /// whole measure: the disk's centre at least `r` inside every edge, or
+    /// every corner of the square on the inner side of every edge.
+    pub(super) fn covered_by_convex(self, v: &[DVec2]) -> bool {
+        let n = v.len();
+        if n < 3 {
+            return false;
+        }
+        let edges = (0..n).map(|k| (v[k], v[(k + 1) % n]));
         match self {
-            Measure::Disk(r) => (0..3).all(|k| {
-                let (a, b) = t.edge(k);
+            Measure::Disk(r) => edges.clone().all(|(a, b)| {
                 let d = b - a;
                 // Signed distance of the centre from the edge's line.
                 d.perp_dot(-a) >= r * d.length()
@@ -95,10 +106,9 @@ impl Measure {
                 .iter()
                 .all(|&(x, y)| {
                     let c = DVec2::new(x, y);
-                    (0..3).all(|k| {
-                        let (a, b) = t.edge(k);
-                        orient2d(a, b, c) != Sign::Negative
-                    })
+                    edges
+                        .clone()
+                        .all(|(a, b)| orient2d(a, b, c) != Sign::Negative)
                 }),
         }
     }
