@@ -456,3 +456,69 @@ fn copies_and_nested_triangles_are_answered_as_one() {
     assert_eq!(exact::visibility(&largest, &light, p), Ok(0.0));
     assert_eq!(exact::visibility(&all, &light, p), Ok(0.0));
 }
+
+/// A triangle spanning ±1e155 over the receiver (every reference and method
+/// answered V = 1, where it is 0: the predicates' products overflow) is
+/// refused at load, naming the field, its value and the domain; so is a
+/// transform that carries a vertex out of it.
+#[test]
+fn coordinates_beyond_the_domain_are_refused_at_load() {
+    let d = dir("domain");
+    let points = write(&d, "points.json", r#"{"points": [{"p": [0, 0, 0]}]}"#);
+    let huge = write(
+        &d,
+        "huge.json",
+        r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius": 0.5},
+            "meshes": [{"positions": [[-1e155, 1, -1e155], [1e155, 1, -1e155], [0, 1, 1e155]], "triangles": [[0, 1, 2]]}]}"#,
+    );
+    for method in ["exact", "hard", "mc:16"] {
+        refused(
+            &softshadow(&[
+                "visibility",
+                "--scene",
+                &huge,
+                "--points",
+                &points,
+                "--method",
+                method,
+            ]),
+            400,
+            &["meshes[0].positions[0][0]", "-1e155", "domain"],
+        );
+    }
+    let moved = write(
+        &d,
+        "moved.json",
+        r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius": 0.5},
+            "meshes": [{"primitive": {"type": "sphere", "center": [0, 0, 0], "radius": 1e20},
+                        "transform": {"scale": 1e20}}]}"#,
+    );
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            &moved,
+            "--points",
+            &points,
+            "--method",
+            "hard",
+        ]),
+        400,
+        &["meshes[0]", "domain"],
+    );
+    let far_point = write(&d, "far.json", r#"{"points": [{"p": [0, 2e30, 0]}]}"#);
+    let ok = write(&d, "ok.json", SCENE);
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            &ok,
+            "--points",
+            &far_point,
+            "--method",
+            "hard",
+        ]),
+        400,
+        &["points[0].p[1]", "domain"],
+    );
+}

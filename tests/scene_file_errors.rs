@@ -94,23 +94,24 @@ fn non_finite_numbers_are_rejected() {
         msg.ends_with(": number out of range (not a finite f64)"),
         "{msg}"
     );
-    // Finite inputs that overflow when combined are reported where they
-    // are combined.
+    // Numbers beyond the predicates' domain (|x| ≤ 1e30) are refused where
+    // they are written, and vertices carried beyond it by a transform (or
+    // made there by a primitive) at the mesh.
     assert_eq!(
         scene_err(&with_meshes(
             r#"{"positions": [[1e300,0,0],[0,0,0],[0,0,1]], "triangles": [[0,1,2]],
                 "transform": {"scale": 1e10}}"#
         )),
-        "scene.json: meshes[0].transform: moves a vertex out of range: \
-         vertex 0 has a non-finite coordinate"
+        "scene.json: meshes[0].positions[0][0]: 1e300 is outside the domain |x| ≤ 1e30 \
+         (where the exact predicates are exact)"
     );
     assert_eq!(
         scene_err(&with_meshes(
-            r#"{"primitive": {"type": "box", "min": [-1e308,0,0], "max": [1e308,1,1]},
-                "transform": {"translate": [1e308, 0, 0]}}"#
+            r#"{"primitive": {"type": "box", "min": [-1e20,0,0], "max": [1e20,1,1]},
+                "transform": {"scale": 1e20}}"#
         )),
-        "scene.json: meshes[0].transform: moves a vertex out of range: \
-         vertex 1 has a non-finite coordinate"
+        "scene.json: meshes[0]: vertex 0 at [-1e40, 0e0, 0e0] \
+         is outside the domain |x| ≤ 1e30 (where the exact predicates are exact)"
     );
 }
 

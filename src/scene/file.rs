@@ -331,6 +331,14 @@ pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
     })
 }
 
+/// The largest magnitude of any number in a scene or points file, and of
+/// any vertex a primitive, transform or OBJ file makes: `1e30`, the domain
+/// in which the exact orientation predicates (products of three coordinate
+/// differences) are exact, and so the exact reference and every method
+/// right to their documented accuracy. A file beyond it is refused, naming
+/// the field and the value, rather than answered wrongly.
+pub const DOMAIN: f64 = 1e30;
+
 /// The largest scene, points or report JSON file read (256 MiB).
 pub const MAX_TEXT_BYTES: u64 = 256 << 20;
 
@@ -583,6 +591,23 @@ impl Cx<'_> {
                     .map_err(|e| self.err(&at, format!("moves a vertex out of range: {e}")))?
             }
         };
+        // What a primitive, a transform or an OBJ file made must lie in the
+        // domain too.
+        if let Some((k, q)) = mesh
+            .positions()
+            .iter()
+            .enumerate()
+            .find(|(_, q)| q.abs().max_element() > DOMAIN)
+        {
+            return Err(self.err(
+                at,
+                format!(
+                    "vertex {k} at [{:e}, {:e}, {:e}] is outside the domain |x| ≤ 1e30 \
+                     (where the exact predicates are exact)",
+                    q.x, q.y, q.z
+                ),
+            ));
+        }
         Ok((name, mesh))
     }
 

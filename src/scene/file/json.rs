@@ -315,11 +315,18 @@ impl Cx<'_> {
             Json::Float(x) => x,
             _ => return Err(self.err(at, format!("expected a number, got {}", v.describe()))),
         };
-        if x.is_finite() {
-            Ok(x)
-        } else {
-            Err(self.err(at, format!("must be finite, got {x}")))
+        if !x.is_finite() {
+            return Err(self.err(at, format!("must be finite, got {x}")));
         }
+        if x.abs() > super::DOMAIN {
+            return Err(self.err(
+                at,
+                format!(
+                    "{x:e} is outside the domain |x| ≤ 1e30 (where the exact predicates are exact)"
+                ),
+            ));
+        }
+        Ok(x)
     }
 
     pub(super) fn uint(&self, v: &Json, at: &At) -> Result<u64, FileError> {
