@@ -522,3 +522,54 @@ fn coordinates_beyond_the_domain_are_refused_at_load() {
         &["points[0].p[1]", "domain"],
     );
 }
+
+/// A 1000 × 1000 ceiling one unit above a floor point, five below the
+/// light: PCSS's map, fitted to the ceiling, has texels 1.2 units wide at
+/// the receiver, and its depth margin in texels lit the point (V = 1 where
+/// exact says 0). The margin is capped at `Pcss::MAX_BIAS_SHARE` of the
+/// receiver's depth.
+#[test]
+fn pcss_finds_a_large_blocker_close_above_the_receiver() {
+    use softshadow::method::{self, Exact, Pcss, PcssBias};
+    use softshadow::scene::primitive;
+    use softshadow::{Frame, Receiver, Scene, Stages};
+    let light = Light::sphere(DVec3::new(0.0, 5.0, 0.0), 0.5).unwrap();
+    let floor = primitive::quad(DVec3::ZERO, DVec3::X * 3.0, DVec3::Z * 3.0).unwrap();
+    let ceiling = primitive::quad(
+        DVec3::new(0.0, 1.0, 0.0),
+        DVec3::X * 500.0,
+        DVec3::Z * 500.0,
+    )
+    .unwrap();
+    let scene = Scene::new(light)
+        .with_mesh("floor", floor)
+        .with_mesh("ceiling", ceiling);
+    let receivers = [
+        DVec3::ZERO,
+        DVec3::new(1.0, 0.0, 1.0),
+        DVec3::new(-2.0, 0.0, 0.5),
+    ]
+    .map(|position| Receiver {
+        position,
+        normal: Some(DVec3::Y),
+        object: Some(0),
+    })
+    .to_vec();
+    let frame = Frame::from_receivers(receivers);
+    let stages = Stages::new(&scene);
+    let exact = method::run(&Exact, &stages, &frame)
+        .unwrap()
+        .output
+        .visibility;
+    assert_eq!(exact, vec![0.0; 3]);
+    for pcss in [
+        Pcss::default(),
+        Pcss::default().with_bias(PcssBias::Constant),
+    ] {
+        let v = method::run(&pcss, &stages, &frame)
+            .unwrap()
+            .output
+            .visibility;
+        assert_eq!(v, exact, "{pcss:?}");
+    }
+}
