@@ -573,3 +573,32 @@ fn pcss_finds_a_large_blocker_close_above_the_receiver() {
         assert_eq!(v, exact, "{pcss:?}");
     }
 }
+
+/// The largest image the options allow, 16384², needs about 30 GiB: it is
+/// refused before any allocation, with the estimate, when it exceeds the
+/// memory limit (here 4 GiB); a small render under the same limit runs.
+#[test]
+fn a_render_beyond_the_memory_limit_is_refused_with_its_estimate() {
+    let d = dir("memory");
+    let out = d.to_str().unwrap();
+    let args = [
+        "render", "--scene", "default", "--method", "hard", "--out", out,
+    ];
+    let big = [
+        &args[..],
+        &["--width", "16384", "--height", "16384", "--max-memory", "4"],
+    ]
+    .concat();
+    refused(&softshadow(&big), 400, &["30.2 GiB", "--max-memory"]);
+    let small = [
+        &args[..],
+        &["--width", "32", "--height", "24", "--max-memory", "4"],
+    ]
+    .concat();
+    assert!(softshadow(&small).status.success());
+    refused(
+        &softshadow(&[&args[..], &["--max-memory=0"]].concat()),
+        400,
+        &["--max-memory"],
+    );
+}

@@ -38,6 +38,59 @@ pub struct Args {
     /// Print each stage's time and what was built.
     #[arg(long)]
     stats: bool,
+    /// Refuse a render whose estimated peak memory exceeds this many GiB
+    /// (default: half of this machine's memory).
+    #[arg(long, value_parser = parse_gib)]
+    max_memory: Option<f64>,
+}
+
+fn parse_gib(s: &str) -> Result<f64, String> {
+    match s.parse::<f64>() {
+        Ok(g) if g.is_finite() && g > 0.0 => Ok(g),
+        _ => Err(format!("expected a positive number of GiB, got {s:?}")),
+    }
+}
+
+/// Measured peak memory of `render` (`/usr/bin/time -f %M`, 1024² and
+/// 2048², hard, exact, sism, oess): 103–117 bytes per pixel over a fixed
+/// part of at most about 130 MiB (SISM's and OESS's maps).
+const BYTES_PER_PIXEL: f64 = 120.0;
+const FIXED_BYTES: f64 = 256.0 * (1u64 << 20) as f64;
+
+/// Half of the machine's memory (`/proc/meminfo`), or 8 GiB when unknown.
+fn default_memory_limit() -> f64 {
+    let total = std::fs::read_to_string("/proc/meminfo").ok().and_then(|t| {
+        t.lines()
+            .find(|l| l.starts_with("MemTotal:"))
+            .and_then(|l| l.split_whitespace().nth(1))
+            .and_then(|kb| kb.parse::<f64>().ok())
+            .map(|kb| kb * 1024.0)
+    });
+    total.map_or(8.0 * GIB, |b| 0.5 * b)
+}
+
+const GIB: f64 = (1u64 << 30) as f64;
+
+/// Refuses a frame of `w × h` whose estimated peak exceeds the limit.
+fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
+    let estimate = BYTES_PER_PIXEL * f64::from(w) * f64::from(h) + FIXED_BYTES;
+    let (limit, whence) = match max_gib {
+        Some(g) => (g * GIB, "--max-memory"),
+        None => (
+            default_memory_limit(),
+            "half this machine's memory; --max-memory to change",
+        ),
+    };
+    if estimate > limit {
+        return Err(format!(
+            "--width {w} --height {h}: about {:.1} GiB estimated ({BYTES_PER_PIXEL} bytes per pixel \
+             and {:.0} MiB of maps), over the limit of {:.1} GiB ({whence})",
+            estimate / GIB,
+            FIXED_BYTES / f64::from(1u32 << 20),
+            limit / GIB
+        ));
+    }
+    Ok(())
 }
 
 /// The scene's camera at the requested size, and the receivers it sees.
@@ -47,13 +100,16 @@ fn camera_frame(
     name: &str,
     width: Option<u32>,
     height: Option<u32>,
+    max_memory: Option<f64>,
 ) -> Result<Frame, String> {
     let camera = scene
         .camera()
         .ok_or_else(|| format!("--scene {name}: the scene has no camera; rendering needs one"))?;
     let (w, h) = camera.resolution();
+    let (w, h) = (width.unwrap_or(w), height.unwrap_or(h));
+    check_memory(w, h, max_memory)?;
     let camera = camera
-        .with_resolution(width.unwrap_or(w), height.unwrap_or(h))
+        .with_resolution(w, h)
         .map_err(|e| format!("--width/--height: {e}"))?;
     let bvh = stages.bvh();
     Ok(stages.timed("receivers", || {
@@ -79,7 +135,14 @@ pub fn run(args: &Args) -> Result<(), String> {
     let scene = resolve_scene(&args.scene)?;
     let method = method_with_seed(&args.method, args.seed)?;
     let stages = Stages::new(&scene);
-    let frame = camera_frame(&scene, &stages, &args.scene, args.width, args.height)?;
+    let frame = camera_frame(
+        &scene,
+        &stages,
+        &args.scene,
+        args.width,
+        args.height,
+        args.max_memory,
+    )?;
     let fail = |e: method::MethodError| format!("--method {}: {e}", args.method);
     let run = run_method(method.as_ref(), &stages, &frame).map_err(fail)?;
     let exact = if run.method == "exact" {
@@ -150,7 +213,7 @@ pub fn default_run() -> Result<(), String> {
 fn scene_table(name: &str, what: &str) -> Result<(), String> {
     let scene = resolve_scene(name)?;
     let stages = Stages::new(&scene);
-    let frame = camera_frame(&scene, &stages, name, None, None)?;
+    let frame = camera_frame(&scene, &stages, name, None, None, None)?;
     let (w, h) = frame.size();
     say!(
         "softshadow: `{name}` ({what}), {w}×{h}, {} receivers, {} threads",
