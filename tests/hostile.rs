@@ -602,3 +602,28 @@ fn a_render_beyond_the_memory_limit_is_refused_with_its_estimate() {
         &["--max-memory"],
     );
 }
+
+/// A full disk, simulated by a file-size limit of 2 KiB (two of the pictures of a
+/// 200 × 150 render are larger): the program stops, and no picture is
+/// left under its final name unless whole.
+#[test]
+fn a_full_disk_leaves_no_partial_picture() {
+    let d = dir("full");
+    let script = format!(
+        "ulimit -f 4 && exec '{}' render --scene default --method hard --width 200 --height 150 --out '{}'",
+        env!("CARGO_BIN_EXE_softshadow"),
+        d.display()
+    );
+    let out = Command::new("sh").arg("-c").arg(&script).output().unwrap();
+    assert!(!out.status.success(), "the limit did not bite");
+    for entry in std::fs::read_dir(&d).unwrap() {
+        let path = entry.unwrap().path();
+        let name = path.file_name().unwrap().to_string_lossy().into_owned();
+        if name.ends_with(".png") && !name.starts_with('.') {
+            let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
+            let mut reader = png::Decoder::new(file).read_info().unwrap();
+            let mut buf = vec![0; reader.output_buffer_size().unwrap()];
+            reader.next_frame(&mut buf).unwrap();
+        }
+    }
+}
