@@ -545,3 +545,49 @@ fn file_error_parts_are_accessible() {
     assert_eq!(e.message(), "required but missing");
     let _: Option<Scene> = None;
 }
+
+/// Points files of 64 KiB and more are read as a stream (never held whole,
+/// nor as a tree): the same receivers and the same messages as from text.
+#[test]
+fn large_points_files_stream_with_the_same_answers_and_messages() {
+    let dir = scratch("stream");
+    let n = 5000;
+    let file = |bad: usize| {
+        let body: Vec<String> = (0..n)
+            .map(|i| {
+                let object = if i == bad { 7 } else { i % 2 };
+                format!(r#"{{"p": [{i}.5, 0.25, -{i}], "object": {object}, "normal": [0, 2, 0]}}"#)
+            })
+            .collect();
+        format!(r#"{{"points": [{}]}}"#, body.join(", "))
+    };
+    let text = file(n);
+    assert!(text.len() >= 1 << 16);
+    let path = dir.join("many.json");
+    std::fs::write(&path, &text).unwrap();
+    let streamed = load_points(&path, 2).unwrap();
+    assert_eq!(streamed.len(), n);
+    assert_eq!(
+        Ok(streamed),
+        points_from_str(&path.display().to_string(), &text, 2)
+    );
+    // A bad point deep in the file: named by its index.
+    std::fs::write(&path, file(1999)).unwrap();
+    let msg = load_points(&path, 2).unwrap_err().to_string();
+    assert!(
+        msg.ends_with("points[1999].object: 7 is out of range (the scene has 2 meshes)"),
+        "{msg}"
+    );
+    // A syntax error: at its line and column.
+    let broken = text.replacen("0.25", "0.2.5", 1);
+    std::fs::write(&path, &broken).unwrap();
+    let msg = load_points(&path, 2).unwrap_err().to_string();
+    assert!(msg.contains("many.json:1:"), "{msg}");
+    let unknown = format!(r#"{{"pointz": [], {}"#, &text[1..]);
+    std::fs::write(&path, &unknown).unwrap();
+    let msg = load_points(&path, 2).unwrap_err().to_string();
+    assert!(
+        msg.ends_with("pointz: unknown key (expected one of: points)"),
+        "{msg}"
+    );
+}

@@ -246,9 +246,26 @@ pub fn scene_from_str(name: &str, text: &str, base_dir: &Path) -> Result<Scene, 
 /// [`FileError`] for a missing or unreadable file and for every problem of
 /// [`points_from_str`].
 pub fn load_points(path: &Path, mesh_count: usize) -> Result<Vec<Receiver>, FileError> {
+    use std::io::Read as _;
     let name = path.display().to_string();
-    let text = read_text(&name, path)?;
-    points_from_str(&name, &text, mesh_count)
+    let whole = |message: String| FileError {
+        file: name.clone(),
+        place: Place::Whole,
+        message,
+    };
+    let (file, len) = open_input(path, MAX_TEXT_BYTES).map_err(whole)?;
+    if len < 1 << 16 {
+        let text = read_text(&name, path)?;
+        return points_from_str(&name, &text, mesh_count);
+    }
+    // Streamed from the file: the text is never held whole.
+    let reader = std::io::BufReader::new(file.take(MAX_TEXT_BYTES + 1));
+    let cx = Cx { file: &name };
+    points_from(
+        &cx,
+        &mut serde_json::Deserializer::from_reader(reader),
+        mesh_count,
+    )
 }
 
 /// Parses a points file's text for a scene of `mesh_count` meshes; `name`
@@ -266,53 +283,159 @@ pub fn points_from_str(
     mesh_count: usize,
 ) -> Result<Vec<Receiver>, FileError> {
     let cx = Cx { file: name };
-    let root = cx.parse(text)?;
-    let top = At::ROOT;
-    let f = cx.object(&root, &top, &["points"])?;
-    let at = top.key("points");
-    let points = cx.array(cx.required(&f, &top, "points")?, &at)?;
-    let mut out = Vec::with_capacity(points.len());
-    for (i, v) in points.iter().enumerate() {
-        let at = at.index(i);
-        let f = cx.object(v, &at, &["p", "object", "normal"])?;
-        let p = cx.vec3(cx.required(&f, &at, "p")?, &at.key("p"))?;
-        let object = match f.get("object") {
-            None => None,
-            Some(v) => {
-                let at = at.key("object");
-                let id = cx.uint(v, &at)?;
-                match u32::try_from(id) {
-                    Ok(id) if (id as usize) < mesh_count => Some(id),
-                    _ => {
-                        return Err(cx.err(
-                            &at,
-                            format!(
-                                "{id} is out of range (the scene has {mesh_count} mesh{})",
-                                if mesh_count == 1 { "" } else { "es" }
-                            ),
-                        ))
+    if text.trim().is_empty() {
+        // The same message as a scene file's.
+        return cx.parse(text).map(|_| Vec::new());
+    }
+    points_from(
+        &cx,
+        &mut serde_json::Deserializer::from_str(text),
+        mesh_count,
+    )
+}
+
+/// The points of a points file, read as a stream: one point's JSON at a
+/// time becomes a [`Receiver`], so the peak is the receivers themselves
+/// (about 64 bytes a point) and not a tree of the whole file (10⁷ points
+/// took 5.25 GB for a 250 MB file). The messages are those of the rest of
+/// the loader: a JSON error at its line and column, a bad point at its
+/// path (`points[3].normal`).
+fn points_from<'de, R: serde_json::de::Read<'de>>(
+    cx: &Cx<'_>,
+    de: &mut serde_json::Deserializer<R>,
+    mesh_count: usize,
+) -> Result<Vec<Receiver>, FileError> {
+    use serde::de::{
+        DeserializeSeed, Deserializer as _, Error as _, MapAccess, SeqAccess, Visitor,
+    };
+    use std::cell::RefCell;
+
+    /// The first error found in a point, kept while serde unwinds.
+    type Stash = RefCell<Option<FileError>>;
+
+    struct Top<'c, 'f> {
+        cx: &'c Cx<'f>,
+        mesh_count: usize,
+        stash: &'c Stash,
+    }
+    struct List<'c, 'f> {
+        cx: &'c Cx<'f>,
+        mesh_count: usize,
+        stash: &'c Stash,
+    }
+
+    impl<'de> Visitor<'de> for Top<'_, '_> {
+        type Value = Vec<Receiver>;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("an object")
+        }
+        fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Vec<Receiver>, A::Error> {
+            let mut points = None;
+            while let Some(key) = map.next_key::<String>()? {
+                if key != "points" {
+                    let top = At::ROOT;
+                    *self.stash.borrow_mut() = Some(
+                        self.cx
+                            .err(&top.key(&key), "unknown key (expected one of: points)"),
+                    );
+                    return Err(A::Error::custom("unknown key"));
+                }
+                if points.is_some() {
+                    return Err(A::Error::custom("duplicate key \"points\""));
+                }
+                points = Some(map.next_value_seed(List {
+                    cx: self.cx,
+                    mesh_count: self.mesh_count,
+                    stash: self.stash,
+                })?);
+            }
+            points.ok_or_else(|| {
+                *self.stash.borrow_mut() =
+                    Some(self.cx.err(&At::ROOT.key("points"), "required but missing"));
+                A::Error::custom("missing")
+            })
+        }
+    }
+
+    impl<'de> DeserializeSeed<'de> for List<'_, '_> {
+        type Value = Vec<Receiver>;
+        fn deserialize<D: serde::Deserializer<'de>>(self, d: D) -> Result<Vec<Receiver>, D::Error> {
+            d.deserialize_seq(self)
+        }
+    }
+
+    impl<'de> Visitor<'de> for List<'_, '_> {
+        type Value = Vec<Receiver>;
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str("an array of points")
+        }
+        fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<Receiver>, A::Error> {
+            let top = At::ROOT;
+            let at = top.key("points");
+            let mut out = Vec::new();
+            while let Some(v) = seq.next_element::<Json>()? {
+                match point(self.cx, &v, &at.index(out.len()), self.mesh_count) {
+                    Ok(r) => out.push(r),
+                    Err(e) => {
+                        *self.stash.borrow_mut() = Some(e);
+                        return Err(A::Error::custom("bad point"));
                     }
                 }
             }
-        };
-        let normal = match f.get("normal") {
-            None => None,
-            Some(v) => {
-                let at = at.key("normal");
-                let n = cx.vec3(v, &at)?;
-                Some(
-                    n.try_normalize()
-                        .ok_or_else(|| cx.err(&at, "has zero length"))?,
-                )
-            }
-        };
-        out.push(Receiver {
-            position: p,
-            normal,
-            object,
-        });
+            out.shrink_to_fit();
+            Ok(out)
+        }
     }
-    Ok(out)
+
+    let stash = Stash::default();
+    let top = Top {
+        cx,
+        mesh_count,
+        stash: &stash,
+    };
+    let result = de.deserialize_map(top).and_then(|v| de.end().map(|()| v));
+    result.map_err(|e| stash.into_inner().unwrap_or_else(|| cx.json_error(&e)))
+}
+
+/// One point of a points file.
+fn point(cx: &Cx<'_>, v: &Json, at: &At<'_>, mesh_count: usize) -> Result<Receiver, FileError> {
+    let f = cx.object(v, at, &["p", "object", "normal"])?;
+    let p = cx.vec3(cx.required(&f, at, "p")?, &at.key("p"))?;
+    let object = match f.get("object") {
+        None => None,
+        Some(v) => {
+            let at = at.key("object");
+            let id = cx.uint(v, &at)?;
+            match u32::try_from(id) {
+                Ok(id) if (id as usize) < mesh_count => Some(id),
+                _ => {
+                    return Err(cx.err(
+                        &at,
+                        format!(
+                            "{id} is out of range (the scene has {mesh_count} mesh{})",
+                            if mesh_count == 1 { "" } else { "es" }
+                        ),
+                    ))
+                }
+            }
+        }
+    };
+    let normal = match f.get("normal") {
+        None => None,
+        Some(v) => {
+            let at = at.key("normal");
+            let n = cx.vec3(v, &at)?;
+            Some(
+                n.try_normalize()
+                    .ok_or_else(|| cx.err(&at, "has zero length"))?,
+            )
+        }
+    };
+    Ok(Receiver {
+        position: p,
+        normal,
+        object,
+    })
 }
 
 /// Parses an OBJ file's bytes into one mesh: every object and group merged,
@@ -357,6 +480,19 @@ pub const MAX_OBJ_BYTES: u64 = 1 << 30;
 /// size against the limit, or the I/O error.
 pub fn read_input(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
     use std::io::Read as _;
+    let (file, _) = open_input(path, limit)?;
+    let mut bytes = Vec::new();
+    file.take(limit + 1)
+        .read_to_end(&mut bytes)
+        .map_err(|e| format!("cannot read: {e}"))?;
+    if bytes.len() as u64 > limit {
+        return Err(too_big(limit + 1, limit));
+    }
+    Ok(bytes)
+}
+
+/// The regular file at `path`, opened, and its length (see [`read_input`]).
+fn open_input(path: &Path, limit: u64) -> Result<(std::fs::File, u64), String> {
     let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
     let kind = meta.file_type();
     if !kind.is_file() {
@@ -367,19 +503,15 @@ pub fn read_input(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
         };
         return Err(format!("not a regular file ({what})"));
     }
-    let too_big = |n: u64| format!("{n} bytes or more, over the limit of {limit} bytes");
     if meta.len() > limit {
-        return Err(too_big(meta.len()));
+        return Err(too_big(meta.len(), limit));
     }
     let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
-    let mut bytes = Vec::new();
-    file.take(limit + 1)
-        .read_to_end(&mut bytes)
-        .map_err(|e| format!("cannot read: {e}"))?;
-    if bytes.len() as u64 > limit {
-        return Err(too_big(limit + 1));
-    }
-    Ok(bytes)
+    Ok((file, meta.len()))
+}
+
+fn too_big(n: u64, limit: u64) -> String {
+    format!("{n} bytes or more, over the limit of {limit} bytes")
 }
 
 fn read_text(name: &str, path: &Path) -> Result<String, FileError> {

@@ -215,7 +215,12 @@ impl Cx<'_> {
                 message: "file is empty".to_owned(),
             });
         }
-        serde_json::from_str(text).map_err(|e| {
+        serde_json::from_str(text).map_err(|e| self.json_error(&e))
+    }
+
+    /// A JSON syntax error at its line and column.
+    pub(super) fn json_error(&self, e: &serde_json::Error) -> FileError {
+        {
             let full = e.to_string();
             let suffix = format!(" at line {} column {}", e.line(), e.column());
             let mut message = full.strip_suffix(&suffix).unwrap_or(&full).to_owned();
@@ -230,7 +235,7 @@ impl Cx<'_> {
                 },
                 message,
             }
-        })
+        }
     }
 
     pub(super) fn object<'v>(
