@@ -14,8 +14,13 @@
 //!   the same scene exactly and the closed form does not change.
 //! - **`f32` kernels**: the `f64` kernel on the same (`f32`-rounded)
 //!   input, so that the error is the `f32` arithmetic's and not the
-//!   input's rounding. The `f64` kernels' own errors against 256-bit
-//!   evaluations are measured by the tests (`docs/accuracy/kernels.md`).
+//!   input's rounding.
+//! - **`f64` kernels**: answers known independently — a circle segment's
+//!   area from its half-angle (a series for thin segments), the falloff's
+//!   exact symmetry and thin-sliver closed form, the Bernstein polynomial
+//!   where it is exact, silhouettes against a facing test per face. Their
+//!   errors against 256-bit evaluations on random stiff input are measured
+//!   by the tests (`docs/accuracy/kernels.md`).
 //! - **Methods**: the exact reference on the same stiff scene, and the
 //!   method's own answer on the scene before it was moved.
 
@@ -709,6 +714,231 @@ fn method_rows(rows: &mut Vec<Row>, side: u32) {
     }
 }
 
+/// `(x − sin x) / 2`, the area of a unit circle's segment of central angle
+/// `x`, to a few ulps for every `x ∈ [0, 2π]` (a series below 1, where the
+/// difference cancels).
+fn segment_area(x: f64) -> f64 {
+    if x < 1.0 {
+        // x³/6 − x⁵/120 + x⁷/5040 − …, halved: terms until they vanish.
+        let x2 = x * x;
+        let (mut term, mut sum, mut k) = (x * x2 / 6.0, 0.0_f64, 3.0_f64);
+        while term != 0.0 && term.abs() > 1e-18 * sum.abs() {
+            sum += term;
+            term *= -x2 / ((k + 1.0) * (k + 2.0));
+            k += 2.0;
+        }
+        0.5 * sum
+    } else {
+        0.5 * (x - x.sin())
+    }
+}
+
+/// The `f64` kernels against answers known independently: closed forms
+/// evaluated without cancellation (a circle segment's area from the
+/// half-angle `asin(√δ)`, with a series for thin segments), exact
+/// identities, and, for silhouettes, a facing test per face.
+fn f64_kernel_rows(rows: &mut Vec<Row>) {
+    use crate::kernel::falloff::f64 as falloff;
+    use crate::kernel::silhouette::MeshTopology;
+    // polygon_disk_area of a big triangle beyond the chord at distance
+    // (1 − δ)·r, its corners `far` away: the segment r² (x − sin x)/2 with
+    // x = 4 asin(√(δ/2)); relative error.
+    // Error over r², the measure of the kernel's documented bound (an
+    // absolute 3ε·r²); δ is taken from the rounded chord, so that the
+    // input's rounding is not counted.
+    let cap = |r: f64, delta: f64, far: f64| -> f64 {
+        let y = (1.0 - delta) * r;
+        let tri = [
+            DVec2::new(-far, y),
+            DVec2::new(far, y),
+            DVec2::new(0.0, y + far),
+        ];
+        let got = disk::f64::polygon_disk_area(r, &tri);
+        let delta = (r - y) / r;
+        let want = r * r * segment_area(4.0 * (0.5 * delta).sqrt().asin());
+        (got - want).abs() / (r * r)
+    };
+    let subject = "disk::polygon_disk_area (error / r²)";
+    let mut push = |family: &'static str, case: String, count: usize, max: f64, note: &str| {
+        rows.push(Row {
+            subject: subject.to_owned(),
+            family,
+            case,
+            precision: "f64",
+            count,
+            max,
+            note: note.to_owned(),
+        });
+    };
+    let deltas = [0.5, 0.25, 1.0, 1.5, 1.9];
+    let worst = |r: f64, far: f64| deltas.iter().map(|&d| cap(r, d, far)).fold(0.0, f64::max);
+    for e in [3, 5, 8] {
+        let far = 10f64.powi(e);
+        push(
+            "far offset",
+            format!("triangle corners 10^{e} away, r = 1"),
+            deltas.len(),
+            worst(1.0, far),
+            "inside (documented: 3ε·r²)",
+        );
+    }
+    for r in [1e-6, 1e-3, 1e3] {
+        push(
+            "light size",
+            format!("r = {r:e}, corners 10r away"),
+            deltas.len(),
+            worst(r, 10.0 * r),
+            "inside (documented: 3ε·r²)",
+        );
+    }
+    for e in [3, 6, 9, 12] {
+        let delta = 10f64.powi(-e);
+        push(
+            "grazing",
+            format!("chord at (1 − 1e-{e})·r"),
+            1,
+            cap(1.0, delta, 4.0),
+            "inside (documented: 3ε·r², absolute: a sliver's relative error grows as it thins)",
+        );
+    }
+
+    // The straight-edge falloff: F(t) + F(1 − t) = 1 on dyadic t (both
+    // exact), F(½) = ½, and thin slivers against the closed form
+    // F(t) = (x − sin x)/(2π), x = 4 asin(√t).
+    let f = falloff::disk_edge_falloff;
+    let symmetric = (1..1024)
+        .map(|k| {
+            let t = f64::from(k) / 1024.0;
+            (f(t) + f(1.0 - t) - 1.0).abs()
+        })
+        .fold((f(0.5) - 0.5).abs(), f64::max);
+    rows.push(Row {
+        subject: "falloff::disk_edge_falloff".to_owned(),
+        family: "symmetry",
+        case: "|F(t) + F(1 − t) − 1| at t = k/1024, and F(½) − ½".to_owned(),
+        precision: "f64",
+        count: 1024,
+        max: symmetric,
+        note: "inside (absolute)".to_owned(),
+    });
+    for e in [3, 6, 9, 12] {
+        let t = 10f64.powi(-e);
+        let want = segment_area(4.0 * t.sqrt().asin()) / std::f64::consts::PI;
+        rows.push(Row {
+            subject: "falloff::disk_edge_falloff".to_owned(),
+            family: "grazing",
+            case: format!("t = 1e-{e} (relative error)"),
+            precision: "f64",
+            count: 1,
+            max: ((f(t) - want) / want).abs(),
+            note: "inside".to_owned(),
+        });
+    }
+    // The Bernstein smoothstep 3t² − 2t³ is exact in f64 at t = k/1024
+    // (30 bits): any difference is the kernel's.
+    let b = (0..=1024)
+        .map(|k| {
+            let t = f64::from(k) / 1024.0;
+            (falloff::bernstein(t) - (3.0 * t * t - 2.0 * t * t * t)).abs()
+        })
+        .fold(0.0, f64::max);
+    rows.push(Row {
+        subject: "falloff::bernstein".to_owned(),
+        family: "exact points",
+        case: "t = k/1024 (3t² − 2t³ exact)".to_owned(),
+        precision: "f64",
+        count: 1025,
+        max: b,
+        note: "inside (absolute)".to_owned(),
+    });
+
+    // Silhouettes of a sphere mesh moved far away, seen from near and far:
+    // the kernel's edges against a facing test per face (the same exact
+    // predicate, but no shared topology): mismatched edges counted.
+    let sphere = crate::scene::primitive::sphere(DVec3::ZERO, 1.0, 24).ok();
+    if let Some(mesh) = sphere {
+        let tris = mesh.triangles();
+        if let Ok(topo) = MeshTopology::new(tris, mesh.positions().len()) {
+            for e in [0, 4, 8] {
+                let shift = DVec3::splat(2f64.powi(e * 10 / 3));
+                let positions: Vec<DVec3> = mesh.positions().iter().map(|&q| q + shift).collect();
+                let mut mismatched = 0usize;
+                let mut views = 0usize;
+                for (k, d) in [1.5, 3.0, 1e3, 1e6].iter().enumerate() {
+                    let x = shift
+                        + DVec3::new(0.3, 0.8, -0.5).normalize() * *d
+                        + DVec3::X * (k as f64 * 1e-3);
+                    let Ok(edges) = topo.silhouettes_from_point(&positions, x) else {
+                        continue;
+                    };
+                    views += 1;
+                    mismatched += silhouette_mismatch(&positions, tris, x, &edges);
+                }
+                rows.push(Row {
+                    subject: "silhouette::silhouettes_from_point (edges wrong)".to_owned(),
+                    family: "far offset",
+                    case: format!(
+                        "sphere of 24 bands moved 2^{}, seen from 1.5 to 1e6 radii",
+                        e * 10 / 3
+                    ),
+                    precision: "f64",
+                    count: views,
+                    max: mismatched as f64,
+                    note: "inside".to_owned(),
+                });
+            }
+        }
+    }
+}
+
+/// How many silhouette edges differ from a per-face facing test: an edge
+/// is a silhouette when its two faces face `x` differently (the exact
+/// `orient3d`), each face visited once, no topology shared with the kernel.
+fn silhouette_mismatch(
+    positions: &[DVec3],
+    tris: &[[u32; 3]],
+    x: DVec3,
+    edges: &[crate::kernel::silhouette::SilhouetteEdge],
+) -> usize {
+    use crate::kernel::predicate::{orient3d, Sign};
+    use std::collections::BTreeMap;
+    let mut sum: BTreeMap<(u32, u32), i64> = BTreeMap::new();
+    for t in tris {
+        let [a, b, c] = t.map(|i| positions[i as usize]);
+        let w = if orient3d(a, b, c, x) == Sign::Negative {
+            1
+        } else {
+            -1
+        };
+        for k in 0..3 {
+            let (from, to) = (t[k], t[(k + 1) % 3]);
+            let (key, sign) = if from < to {
+                ((from, to), 1)
+            } else {
+                ((to, from), -1)
+            };
+            *sum.entry(key).or_insert(0) += w * sign;
+        }
+    }
+    let brute: BTreeMap<(u32, u32), u32> = sum
+        .into_iter()
+        .filter(|&(_, v)| v != 0)
+        .map(|((a, b), v)| (if v > 0 { (a, b) } else { (b, a) }, v.unsigned_abs() as u32))
+        .collect();
+    let kernel: BTreeMap<(u32, u32), u32> = edges
+        .iter()
+        .map(|e| ((e.from, e.to), e.multiplicity))
+        .collect();
+    brute
+        .iter()
+        .filter(|(k, v)| kernel.get(k) != Some(v))
+        .count()
+        + kernel
+            .iter()
+            .filter(|(k, v)| brute.get(k) != Some(v))
+            .count()
+}
+
 /// The scene's camera frame at `side²` and the exact answer there.
 fn frame_and_exact(scene: &Scene, side: u32) -> Option<(Frame, Vec<f64>)> {
     let stages = Stages::new(scene);
@@ -727,6 +957,8 @@ pub fn run(side: u32, progress: &dyn Fn(&str)) -> Vec<Row> {
     exact_rows(&mut rows);
     progress("the kernels in f32");
     kernel_rows(&mut rows);
+    progress("the kernels in f64");
+    f64_kernel_rows(&mut rows);
     progress("the methods on stiff scenes");
     method_rows(&mut rows, side);
     rows
@@ -740,7 +972,7 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
     let _ = writeln!(
         s,
         "Written by `{command}` ({machine}). Three parts: the exact reference against closed \
-         forms, the `f32` kernels against the `f64` ones, and every method of the default set on \
+         forms, the kernels (`f32` against `f64`, `f64` against closed forms), and every method of the default set on \
          stiff versions of the default scene. Rows outside a subject's documented domain say so \
          in the last column rather than being left out.\n"
     );
@@ -756,10 +988,15 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
              `|V − V_closed|`.",
         ),
         (
-            "The kernels: f32 against f64",
+            "The kernels",
             &|r: &Row| r.subject.contains("::"),
-            "Each `f32` kernel against the `f64` kernel on the same `f32` input, so that the error \
-             is the `f32` arithmetic's. The `f64` kernels against 256-bit evaluations: \
+            "`f32` rows: each `f32` kernel against the `f64` kernel on the same `f32` input, so \
+             that the error is the `f32` arithmetic's. `f64` rows: the `f64` kernels against \
+             answers known independently — a circle segment's area from its half-angle (a series \
+             for thin segments, so the closed form itself does not cancel), the falloff's exact \
+             symmetry and its thin-sliver closed form, the Bernstein polynomial at points where \
+             it is exact in `f64`, and silhouettes against a facing test per face. The `f64` \
+             kernels against 256-bit evaluations on random stiff input: \
              `docs/accuracy/kernels.md` (the tests).",
         ),
         (
@@ -789,4 +1026,27 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
         let _ = writeln!(s);
     }
     s
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn the_segment_area_closed_form_is_continuous_and_right_at_known_angles() {
+        use std::f64::consts::PI;
+        // A half disk, a full disk.
+        assert!((segment_area(PI) - PI / 2.0).abs() < 1e-15);
+        assert!((segment_area(2.0 * PI) - PI).abs() < 1e-15);
+        // The series below 1 meets the direct form above it.
+        let below = segment_area(1.0_f64.next_down());
+        let above = segment_area(1.0);
+        assert!(
+            (below - above).abs() <= 4.0 * f64::EPSILON * above,
+            "{below} {above}"
+        );
+        // A thin sliver: x³/12 to first order.
+        let x = 1e-6;
+        assert!((segment_area(x) / (x * x * x / 12.0) - 1.0).abs() < 1e-12);
+    }
 }
