@@ -14,7 +14,7 @@
 //!    and Monte Carlo (`report::Config::own`).
 //!
 //! Run with `cargo run --release --example own_method [OUT_DIR]` (CI runs
-//! it in debug: about half a minute).
+//! it in debug: a few seconds).
 
 use softshadow::arbitrary::{scene::visibility_case, Rng};
 use softshadow::glam::DVec2;

@@ -6,42 +6,21 @@
 //! one line naming the file, the place and the field, exit status 2, nothing
 //! on stdout and no panic.
 
-use std::path::{Path, PathBuf};
-use std::process::{Command, Output};
+use std::path::PathBuf;
 
-fn softshadow(args: &[&str]) -> Output {
-    Command::new(env!("CARGO_BIN_EXE_softshadow"))
-        .args(args)
-        .output()
-        .expect("the softshadow binary runs")
-}
+#[path = "support/cli.rs"]
+mod cli_support;
 
-/// A fresh directory for one test's files.
+use cli_support::{softshadow, write};
+
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("softshadow-cli-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_owned()
+    cli_support::dir("cli", name)
 }
 
 /// Runs `visibility`, expects bad input: exit 2, one line on stderr that
 /// contains every one of `needles`, nothing on stdout.
 fn rejects(args: &[&str], needles: &[&str]) {
-    let out = softshadow(args);
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{args:?}: {stderr}");
-    assert!(out.stdout.is_empty(), "{args:?}: partial output");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{args:?}: {stderr}");
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    for n in needles {
-        assert!(stderr.contains(n), "{args:?}: {stderr:?} lacks {n:?}");
-    }
+    cli_support::refused(&softshadow(args), 1000, needles);
 }
 
 const POINTS: &str =

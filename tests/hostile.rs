@@ -11,51 +11,17 @@ use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::{Bvh, Light, Occluders};
 use std::io::Read;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 use std::process::{Command, Output, Stdio};
 use std::time::{Duration, Instant};
 
-fn bin() -> Command {
-    Command::new(env!("CARGO_BIN_EXE_softshadow"))
-}
+#[path = "support/cli.rs"]
+mod cli_support;
 
-fn softshadow(args: &[&str]) -> Output {
-    bin()
-        .args(args)
-        .output()
-        .expect("the softshadow binary runs")
-}
+use cli_support::{bin, pictures_whole, refused, softshadow, write};
 
 fn dir(name: &str) -> PathBuf {
-    let d = std::env::temp_dir().join(format!("softshadow-hostile-{}-{name}", std::process::id()));
-    let _ = std::fs::remove_dir_all(&d);
-    std::fs::create_dir_all(&d).unwrap();
-    d
-}
-
-fn write(dir: &Path, name: &str, text: &str) -> String {
-    let p = dir.join(name);
-    std::fs::write(&p, text).unwrap();
-    p.to_str().unwrap().to_owned()
-}
-
-/// Exit 2, one line on stderr of at most `max` bytes containing every
-/// needle, nothing on stdout, no panic.
-fn refused(out: &Output, max: usize, needles: &[&str]) {
-    let stderr = String::from_utf8_lossy(&out.stderr);
-    assert_eq!(out.status.code(), Some(2), "{stderr}");
-    assert!(out.stdout.is_empty());
-    assert!(!stderr.contains("panicked"), "{stderr}");
-    assert_eq!(stderr.trim_end().lines().count(), 1, "{stderr}");
-    assert!(
-        stderr.len() <= max,
-        "{} bytes: {}",
-        stderr.len(),
-        &stderr[..200.min(stderr.len())]
-    );
-    for n in needles {
-        assert!(stderr.contains(n), "{stderr:?} lacks {n:?}");
-    }
+    cli_support::dir("hostile", name)
 }
 
 const SCENE: &str = r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius": 0.5},
@@ -121,17 +87,7 @@ fn a_closed_stdout_ends_the_program_quietly() {
     }
     // Whatever `render` wrote before it stopped is whole: every PNG
     // decodes, and no temporary file is left.
-    for entry in std::fs::read_dir(&d).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        assert!(!name.starts_with('.'), "left behind: {name}");
-        if name.ends_with(".png") {
-            let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
-            let mut reader = png::Decoder::new(file).read_info().unwrap();
-            let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-            reader.next_frame(&mut buf).unwrap();
-        }
-    }
+    pictures_whole(&d, false);
 }
 
 #[test]
@@ -616,14 +572,6 @@ fn a_full_disk_leaves_no_partial_picture() {
     );
     let out = Command::new("sh").arg("-c").arg(&script).output().unwrap();
     assert!(!out.status.success(), "the limit did not bite");
-    for entry in std::fs::read_dir(&d).unwrap() {
-        let path = entry.unwrap().path();
-        let name = path.file_name().unwrap().to_string_lossy().into_owned();
-        if name.ends_with(".png") && !name.starts_with('.') {
-            let file = std::io::BufReader::new(std::fs::File::open(&path).unwrap());
-            let mut reader = png::Decoder::new(file).read_info().unwrap();
-            let mut buf = vec![0; reader.output_buffer_size().unwrap()];
-            reader.next_frame(&mut buf).unwrap();
-        }
-    }
+    // The process killed mid-write may leave its hidden temporary.
+    pictures_whole(&d, true);
 }
