@@ -485,7 +485,7 @@ fn coordinates_beyond_the_domain_are_refused_at_load() {
 /// exact says 0). The margin is capped at `Pcss::MAX_BIAS_SHARE` of the
 /// receiver's depth.
 #[test]
-fn pcss_finds_a_large_blocker_close_above_the_receiver() {
+fn shadow_maps_find_a_large_blocker_close_above_the_receiver() {
     use softshadow::method::{self, Exact, Pcss, PcssBias};
     use softshadow::scene::primitive;
     use softshadow::{Frame, Receiver, Scene, Stages};
@@ -527,6 +527,15 @@ fn pcss_finds_a_large_blocker_close_above_the_receiver() {
             .output
             .visibility;
         assert_eq!(v, exact, "{pcss:?}");
+    }
+    // The other shadow-map methods share the capped margin.
+    for name in ["single-sample", "ssoc", "backprojected-ssoc"] {
+        let m = method::parse(name).unwrap();
+        let v = method::run(m.as_ref(), &stages, &frame)
+            .unwrap()
+            .output
+            .visibility;
+        assert_eq!(v, exact, "{name}");
     }
 }
 

@@ -1,7 +1,7 @@
 //! Percentage-closer soft shadows (Fernando, "Percentage-Closer Soft
 //! Shadows", SIGGRAPH 2005 sketch): the baseline engines ship today.
 
-use super::centre::depth::DepthTest;
+use super::centre::depth::{margin as depth_margin, DepthTest};
 use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::kernel::footprint::f64::{self as footprint, project};
@@ -106,8 +106,9 @@ impl Pcss {
     /// receiver by more than 5 % of the receiver's depth is always found (a
     /// 1000 × 1000 ceiling one unit above a floor point five units from the
     /// light made texels of 1.2 units at the receiver, and the uncapped
-    /// margin lit the point).
-    pub const MAX_BIAS_SHARE: f64 = 0.05;
+    /// margin lit the point). The single-sample method and SSOC cap theirs
+    /// the same way.
+    pub const MAX_BIAS_SHARE: f64 = super::centre::depth::MAX_MARGIN_SHARE;
     /// Default [`Pcss::bias_relative`]: `1e-3` (ours).
     pub const DEFAULT_BIAS_RELATIVE: f64 = 1e-3;
     /// Default [`Pcss::bias_texels`]: one texel (ours).
@@ -272,10 +273,7 @@ impl Method for Pcss {
                     .normal
                     .filter(|_| plane)
                     .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
-                // Capped: a coarse map (a window fitted to a huge occluder)
-                // must not let its texels hide a blocker right above.
-                let margin =
-                    p.z * (self.bias_relative + self.bias_texels * texel).min(Pcss::MAX_BIAS_SHARE);
+                let margin = depth_margin(p.z, self.bias_relative, self.bias_texels, texel);
                 let lookup = Lookup {
                     maps,
                     test: DepthTest::new(p, n, margin),

@@ -69,7 +69,7 @@
 mod interpolate;
 mod search;
 
-use super::centre::depth::DepthTest;
+use super::centre::depth::{self, DepthTest};
 use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::kernel::falloff::{f64 as falloff, Falloff};
@@ -300,7 +300,12 @@ impl Context<'_> {
         let normal = r
             .normal
             .map(|n| DVec3::new(n.dot(ax), n.dot(ay), n.dot(az)));
-        let margin = p.z * (self.method.bias_relative + self.method.bias_texels * self.texel);
+        let margin = depth::margin(
+            p.z,
+            self.method.bias_relative,
+            self.method.bias_texels,
+            self.texel,
+        );
         let test = DepthTest::new(p, normal, margin);
         let own = r.object.unwrap_or(u32::MAX);
         let in_view = p.z >= self.view.near() && p.z.is_finite();

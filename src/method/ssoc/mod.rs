@@ -276,9 +276,10 @@ pub(crate) fn warp(fitted: &FittedMaps, r: &Receiver, margin: f64) -> Warped {
 }
 
 /// The depth-test margin of both variants, relative to the receiver's
-/// depth: PCSS's `1e-3` plus one texel.
+/// depth: PCSS's `1e-3` plus one texel, capped as PCSS's is
+/// ([`Pcss::MAX_BIAS_SHARE`](crate::method::Pcss::MAX_BIAS_SHARE)).
 pub(crate) fn margin(view: &LightView) -> f64 {
-    1e-3 + view.texel_size().max_element()
+    crate::method::centre::depth::margin(1.0, 1e-3, 1.0, view.texel_size().max_element())
 }
 
 /// An edge as a receiver reads it.
