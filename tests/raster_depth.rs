@@ -286,31 +286,7 @@ fn two_far_corners_keep_the_depth_near_the_third() {
             -3.4408768982998435e30,
         ),
     ];
-    let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
-    let world = q.map(|p| frame.to_world(p));
-    assert_eq!(
-        world.map(|p| frame.to_light(p)),
-        q,
-        "the frame is the identity"
-    );
-    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 9, 9, 0.071).unwrap();
-    let maps = rasterize(&view, &[world], &[0]).unwrap();
-    let mut covered = 0;
-    for row in 0..9 {
-        for col in 0..9 {
-            if !maps.is_covered(col, row) {
-                continue;
-            }
-            covered += 1;
-            let want = depth_dd(q, view.pixel_center(col, row));
-            let got = maps.depth_at(col, row);
-            assert!(
-                (got - want).abs() <= 1e-9 * want,
-                "pixel ({col}, {row}): {got} against {want}"
-            );
-        }
-    }
-    assert!(covered > 0);
+    depths_match_the_double_double_plane(q, 9, 0.071);
 }
 
 #[test]
@@ -337,6 +313,14 @@ fn corners_far_apart_in_depth_keep_the_plane_near_the_light() {
             -9.742924051465575e26,
         ),
     ];
+    depths_match_the_double_double_plane(q, 17, 0.013);
+}
+
+/// The triangle `q` (light-frame corners; the frame is the identity) in an
+/// `n × n` view of the window `[−½, ½]²` with near depth `near`: every
+/// covered pixel's depth within 1e-9 of the double-double plane's, and at
+/// least one pixel covered.
+fn depths_match_the_double_double_plane(q: [DVec3; 3], n: u32, near: f64) {
     let frame = softshadow::scene::LightFrame::toward(DVec3::ZERO, DVec3::Z).unwrap();
     let world = q.map(|p| frame.to_world(p));
     assert_eq!(
@@ -344,11 +328,11 @@ fn corners_far_apart_in_depth_keep_the_plane_near_the_light() {
         q,
         "the frame is the identity"
     );
-    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), 17, 17, 0.013).unwrap();
+    let view = LightView::new(frame, DVec2::splat(-0.5), DVec2::splat(0.5), n, n, near).unwrap();
     let maps = rasterize(&view, &[world], &[0]).unwrap();
     let mut covered = 0;
-    for row in 0..17 {
-        for col in 0..17 {
+    for row in 0..n {
+        for col in 0..n {
             if !maps.is_covered(col, row) {
                 continue;
             }

@@ -15,7 +15,7 @@ use softshadow::scene::LightFrame;
 
 #[path = "support/raster.rs"]
 mod raster_support;
-use raster_support::{axis_frame, coverage, random_frame};
+use raster_support::{coverage, lattice_view, random_frame};
 
 // ---------------------------------------------------------------------------
 // Properties.
@@ -93,15 +93,7 @@ fn an_edge_cut_by_the_near_plane_is_cut_at_the_same_point_from_both_sides() {
     let mut checked = 0;
     for _ in 0..2000 {
         let near = rng.uniform(0.3, 3.5);
-        let view = LightView::new(
-            axis_frame(),
-            DVec2::splat(-1.0),
-            DVec2::splat(1.0),
-            32,
-            32,
-            near,
-        )
-        .unwrap();
+        let view = lattice_view(near);
         let col = 8 + rng.below(16) as u32;
         let c = view.pixel_center(col, 0).x;
         let (yp, yq) = (rng.uniform(-0.9, 0.9), rng.uniform(-0.9, 0.9));
