@@ -127,18 +127,23 @@ impl FileError {
     }
 }
 
-/// `s` with control characters (newlines included) escaped, so that a
-/// message stays on one line whatever a file name or key holds.
+/// The longest prefix of `s` of at most `max` bytes that ends on a
+/// character boundary.
+fn prefix(s: &str, max: usize) -> &str {
+    let end = (0..=max.min(s.len()))
+        .rev()
+        .find(|&i| s.is_char_boundary(i))
+        .unwrap_or(0);
+    &s[..end]
+}
+
 /// `s` cut to about `max` bytes at its end, with what was cut counted.
 fn clip_end(s: &str, max: usize) -> Cow<'_, str> {
     if s.len() <= max {
         return Cow::Borrowed(s);
     }
-    let cut = (0..=max)
-        .rev()
-        .find(|&i| s.is_char_boundary(i))
-        .unwrap_or(0);
-    Cow::Owned(format!("{}… ({} more bytes)", &s[..cut], s.len() - cut))
+    let kept = prefix(s, max);
+    Cow::Owned(format!("{kept}… ({} more bytes)", s.len() - kept.len()))
 }
 
 /// `s` cut to about `max` bytes at its start (a path keeps its file name).
@@ -157,6 +162,8 @@ fn short_path(path: &Path) -> String {
     clip_start(&path.display().to_string(), 160).into_owned()
 }
 
+/// `s` with control characters (newlines included) escaped, so that a
+/// message stays on one line whatever a file name or key holds.
 fn one_line(s: &str) -> Cow<'_, str> {
     if s.chars().any(char::is_control) {
         Cow::Owned(
@@ -248,15 +255,10 @@ pub fn scene_from_str(name: &str, text: &str, base_dir: &Path) -> Result<Scene, 
 pub fn load_points(path: &Path, mesh_count: usize) -> Result<Vec<Receiver>, FileError> {
     use std::io::Read as _;
     let name = path.display().to_string();
-    let whole = |message: String| FileError {
-        file: name.clone(),
-        place: Place::Whole,
-        message,
-    };
-    let (file, len) = open_input(path, MAX_TEXT_BYTES).map_err(whole)?;
+    let (file, len) = open_input(path, MAX_TEXT_BYTES).map_err(|m| whole(&name, m))?;
     if len < 1 << 16 {
-        let text = read_text(&name, path)?;
-        return points_from_str(&name, &text, mesh_count);
+        let bytes = read_all(file, MAX_TEXT_BYTES).map_err(|m| whole(&name, m))?;
+        return points_from_str(&name, &utf8(&name, bytes)?, mesh_count);
     }
     // Streamed from the file: the text is never held whole.
     let reader = std::io::BufReader::new(file.take(MAX_TEXT_BYTES + 1));
@@ -447,11 +449,7 @@ fn point(cx: &Cx<'_>, v: &Json, at: &At<'_>, mesh_count: usize) -> Result<Receiv
 /// message: it gives no line), a vertex that is not finite, and a
 /// file without faces.
 pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
-    obj_mesh(bytes).map_err(|message| FileError {
-        file: name.to_owned(),
-        place: Place::Whole,
-        message,
-    })
+    obj_mesh(bytes).map_err(|message| whole(name, message))
 }
 
 /// The largest magnitude of any number in a scene or points file, and of
@@ -479,8 +477,12 @@ pub const MAX_OBJ_BYTES: u64 = 1 << 30;
 /// A one-line message: what the path is instead of a regular file, its
 /// size against the limit, or the I/O error.
 pub fn read_input(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
+    read_all(open_input(path, limit)?.0, limit)
+}
+
+/// The bytes of an opened input, at most `limit` of them.
+fn read_all(file: std::fs::File, limit: u64) -> Result<Vec<u8>, String> {
     use std::io::Read as _;
-    let (file, _) = open_input(path, limit)?;
     let mut bytes = Vec::new();
     file.take(limit + 1)
         .read_to_end(&mut bytes)
@@ -515,18 +517,27 @@ fn too_big(n: u64, limit: u64) -> String {
 }
 
 fn read_text(name: &str, path: &Path) -> Result<String, FileError> {
-    let whole = |message: String| FileError {
+    let bytes = read_input(path, MAX_TEXT_BYTES).map_err(|m| whole(name, m))?;
+    utf8(name, bytes)
+}
+
+/// An input's bytes as text.
+fn utf8(name: &str, bytes: Vec<u8>) -> Result<String, FileError> {
+    String::from_utf8(bytes).map_err(|e| {
+        whole(
+            name,
+            format!("not valid UTF-8 (byte {})", e.utf8_error().valid_up_to()),
+        )
+    })
+}
+
+/// An error about the whole file `name`.
+pub(super) fn whole(name: &str, message: String) -> FileError {
+    FileError {
         file: name.to_owned(),
         place: Place::Whole,
         message,
-    };
-    let bytes = read_input(path, MAX_TEXT_BYTES).map_err(whole)?;
-    String::from_utf8(bytes).map_err(|e| {
-        whole(format!(
-            "not valid UTF-8 (byte {})",
-            e.utf8_error().valid_up_to()
-        ))
-    })
+    }
 }
 
 fn obj_mesh(bytes: &[u8]) -> Result<Mesh, String> {

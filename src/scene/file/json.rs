@@ -209,11 +209,7 @@ impl Cx<'_> {
 
     pub(super) fn parse(&self, text: &str) -> Result<Json, FileError> {
         if text.trim().is_empty() {
-            return Err(FileError {
-                file: self.file.to_owned(),
-                place: Place::Whole,
-                message: "file is empty".to_owned(),
-            });
+            return Err(super::whole(self.file, "file is empty".to_owned()));
         }
         serde_json::from_str(text).map_err(|e| self.json_error(&e))
     }
@@ -377,11 +373,7 @@ pub(super) fn quoted(s: &str) -> String {
     if s.len() <= MAX {
         return format!("{s:?}");
     }
-    let cut = (0..=MAX)
-        .rev()
-        .find(|&i| s.is_char_boundary(i))
-        .unwrap_or(0);
-    format!("{:?}… ({} bytes)", &s[..cut], s.len())
+    format!("{:?}… ({} bytes)", super::prefix(s, MAX), s.len())
 }
 
 #[cfg(test)]
