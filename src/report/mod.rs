@@ -272,14 +272,21 @@ pub fn settings(config: &Config) -> Vec<String> {
     out
 }
 
-/// The settings that get a picture: `exact`, the first comparison setting
-/// of each method (its defaults), and the methods of one's own.
+/// Whether `setting` is a registered method's defaults (the first of its
+/// comparison settings): the one setting per method that gets a picture
+/// and a profile line.
+pub(crate) fn is_default_setting(setting: &str) -> bool {
+    REGISTRY
+        .iter()
+        .any(|e| e.compare.first().is_some_and(|s| *s == setting))
+}
+
+/// The settings that get a picture: `exact`, each method's defaults, and
+/// the methods of one's own.
 fn pictured(setting: &str, config: &Config) -> bool {
     setting == "exact"
         || config.own.iter().any(|m| m.name() == setting)
-        || REGISTRY
-            .iter()
-            .any(|e| e.compare.first().is_some_and(|s| *s == setting))
+        || is_default_setting(setting)
 }
 
 /// Progress: called with the cells done, the cells of this part, and what

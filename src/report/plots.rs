@@ -204,9 +204,7 @@ pub(crate) fn profile(results: &Results, scene: &SceneRecord) -> Option<String> 
                 && c.base != "exact"
                 && c.base != "mc"
                 && c.profile.len() == scene.profile_columns.len()
-                && crate::method::registry::REGISTRY
-                    .iter()
-                    .any(|e| e.compare.first() == Some(&c.method.as_str()))
+                && super::is_default_setting(&c.method)
         })
         .collect();
     let mut svg = String::new();

@@ -57,6 +57,28 @@ pub struct Row {
     pub note: String,
 }
 
+impl Row {
+    /// A row of an `f64` subject.
+    fn f64(
+        subject: &str,
+        family: &'static str,
+        case: impl Into<String>,
+        count: usize,
+        max: f64,
+        note: &str,
+    ) -> Row {
+        Row {
+            subject: subject.to_owned(),
+            family,
+            case: case.into(),
+            precision: "f64",
+            count,
+            max,
+            note: note.to_owned(),
+        }
+    }
+}
+
 /// A closed-form case: a disk light of radius `r` at height `big_h`
 /// facing down, centred above the origin; a plate at height `h` covering
 /// `x > s`; receivers at the points given.
@@ -742,10 +764,9 @@ fn f64_kernel_rows(rows: &mut Vec<Row>) {
     use crate::kernel::silhouette::MeshTopology;
     // polygon_disk_area of a big triangle beyond the chord at distance
     // (1 − δ)·r, its corners `far` away: the segment r² (x − sin x)/2 with
-    // x = 4 asin(√(δ/2)); relative error.
-    // Error over r², the measure of the kernel's documented bound (an
-    // absolute 3ε·r²); δ is taken from the rounded chord, so that the
-    // input's rounding is not counted.
+    // x = 4 asin(√(δ/2)). The error over r², the measure of the kernel's
+    // documented bound (an absolute 3ε·r²); δ is taken from the rounded
+    // chord, so that the input's rounding is not counted.
     let cap = |r: f64, delta: f64, far: f64| -> f64 {
         let y = (1.0 - delta) * r;
         let tri = [
@@ -759,16 +780,8 @@ fn f64_kernel_rows(rows: &mut Vec<Row>) {
         (got - want).abs() / (r * r)
     };
     let subject = "disk::polygon_disk_area (error / r²)";
-    let mut push = |family: &'static str, case: String, count: usize, max: f64, note: &str| {
-        rows.push(Row {
-            subject: subject.to_owned(),
-            family,
-            case,
-            precision: "f64",
-            count,
-            max,
-            note: note.to_owned(),
-        });
+    let mut push = |family, case: String, count, max, note| {
+        rows.push(Row::f64(subject, family, case, count, max, note));
     };
     let deltas = [0.5, 0.25, 1.0, 1.5, 1.9];
     let worst = |r: f64, far: f64| deltas.iter().map(|&d| cap(r, d, far)).fold(0.0, f64::max);
@@ -812,27 +825,25 @@ fn f64_kernel_rows(rows: &mut Vec<Row>) {
             (f(t) + f(1.0 - t) - 1.0).abs()
         })
         .fold((f(0.5) - 0.5).abs(), f64::max);
-    rows.push(Row {
-        subject: "falloff::disk_edge_falloff".to_owned(),
-        family: "symmetry",
-        case: "|F(t) + F(1 − t) − 1| at t = k/1024, and F(½) − ½".to_owned(),
-        precision: "f64",
-        count: 1024,
-        max: symmetric,
-        note: "inside (absolute)".to_owned(),
-    });
+    rows.push(Row::f64(
+        "falloff::disk_edge_falloff",
+        "symmetry",
+        "|F(t) + F(1 − t) − 1| at t = k/1024, and F(½) − ½",
+        1024,
+        symmetric,
+        "inside (absolute)",
+    ));
     for e in [3, 6, 9, 12] {
         let t = 10f64.powi(-e);
         let want = segment_area(4.0 * t.sqrt().asin()) / std::f64::consts::PI;
-        rows.push(Row {
-            subject: "falloff::disk_edge_falloff".to_owned(),
-            family: "grazing",
-            case: format!("t = 1e-{e} (relative error)"),
-            precision: "f64",
-            count: 1,
-            max: ((f(t) - want) / want).abs(),
-            note: "inside".to_owned(),
-        });
+        rows.push(Row::f64(
+            "falloff::disk_edge_falloff",
+            "grazing",
+            format!("t = 1e-{e} (relative error)"),
+            1,
+            ((f(t) - want) / want).abs(),
+            "inside",
+        ));
     }
     // The Bernstein smoothstep 3t² − 2t³ is exact in f64 at t = k/1024
     // (30 bits): any difference is the kernel's.
@@ -842,15 +853,14 @@ fn f64_kernel_rows(rows: &mut Vec<Row>) {
             (falloff::bernstein(t) - (3.0 * t * t - 2.0 * t * t * t)).abs()
         })
         .fold(0.0, f64::max);
-    rows.push(Row {
-        subject: "falloff::bernstein".to_owned(),
-        family: "exact points",
-        case: "t = k/1024 (3t² − 2t³ exact)".to_owned(),
-        precision: "f64",
-        count: 1025,
-        max: b,
-        note: "inside (absolute)".to_owned(),
-    });
+    rows.push(Row::f64(
+        "falloff::bernstein",
+        "exact points",
+        "t = k/1024 (3t² − 2t³ exact)",
+        1025,
+        b,
+        "inside (absolute)",
+    ));
 
     wedge_rows(rows);
 
@@ -876,26 +886,26 @@ fn f64_kernel_rows(rows: &mut Vec<Row>) {
                     views += 1;
                     mismatched += silhouette_mismatch(&positions, tris, x, &edges);
                 }
-                rows.push(Row {
-                    subject: "silhouette::silhouettes_from_point (edges wrong)".to_owned(),
-                    family: "far offset",
-                    case: format!(
+                rows.push(Row::f64(
+                    "silhouette::silhouettes_from_point (edges wrong)",
+                    "far offset",
+                    format!(
                         "sphere of 24 bands moved 2^{}, seen from 1.5 to 1e6 radii",
                         e * 10 / 3
                     ),
-                    precision: "f64",
-                    count: views,
-                    max: mismatched as f64,
-                    note: "inside".to_owned(),
-                });
+                    views,
+                    mismatched as f64,
+                    "inside",
+                ));
             }
         }
     }
 }
 
 /// Penumbra wedges (`f64` and `f32`) must contain every receiver the edge
-/// affects. An `f64` test written here (the edge point projects from `p`
-/// into the facing disk and lies between them, sampled along the edge)
+/// affects. An `f64` test written here (some edge point projects from `p`
+/// into the facing disk and lies between them: the minimum of a quadratic
+/// along the edge)
 /// finds the receivers clearly affected — through the disk shrunk by 0.1 %
 /// of its radius, so that rounding cannot make a case — among 4000 drawn around
 /// the penumbra, and the row counts those the wedge leaves out (0 is

@@ -178,30 +178,21 @@ impl AreaView {
         triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
         scratch: &mut Scratch,
     ) -> f64 {
-        (self.covered_area(triangles, scratch) / self.light_area()).clamp(0.0, 1.0)
-    }
-
-    /// The area of the union of the triangles' images within the light, in
-    /// the plane's coordinates. (The generic loop is kept to a call per
-    /// triangle, so that the work is compiled once, here, not in every
-    /// caller.)
-    fn covered_area<'t>(
-        &self,
-        triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
-        scratch: &mut Scratch,
-    ) -> f64 {
+        // The generic loop is kept to a call per triangle, so that the work
+        // is compiled once, here, not in every caller.
         scratch.triangles.clear();
         for tri in triangles {
             if self.add_image(tri, &mut scratch.triangles) {
-                return self.light_area();
+                return 1.0;
             }
         }
-        union_area(
+        let covered = union_area(
             &scratch.triangles,
             self.measure,
             self.half,
             &mut scratch.union,
-        )
+        );
+        (covered / self.light_area()).clamp(0.0, 1.0)
     }
 
     /// Appends the parts of the triangle's image that meet the light; true
