@@ -12,7 +12,7 @@
 
 use glam::DVec3;
 use softshadow::method::{self, Exact};
-use softshadow::render::image::ErrorSummary;
+use softshadow::render::image::ErrorRow;
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::primitive::{cuboid, quad, sphere, Transform};
 use softshadow::scene::{Camera, Light, Scene};
@@ -130,13 +130,11 @@ fn random_scenes(side: u32, count: u64) -> Result<(), Box<dyn std::error::Error>
         let stages = Stages::new(&scene);
         let frame = Frame::from_camera(&camera, stages.bvh());
         let exact = method::run(&Exact, &stages, &frame)?.output.visibility;
-        let penumbra = |i: usize| exact[i] > 0.0 && exact[i] < 1.0;
         for (k, name) in RANDOM.iter().enumerate() {
             let m = method::parse(name)?;
-            let v = method::run(m.as_ref(), &stages, &frame)?.output.visibility;
-            let all = ErrorSummary::new(&v, &exact, |_| true);
-            let pen = ErrorSummary::new(&v, &exact, penumbra);
-            rmse[k].push((all.rmse, pen.rmse));
+            let run = method::run(m.as_ref(), &stages, &frame)?;
+            let row = ErrorRow::new(*name, run.seconds, &run.output.visibility, &exact);
+            rmse[k].push((row.all.rmse, row.penumbra.rmse));
         }
     }
     println!("## {count} random segment-light scenes\n");

@@ -11,7 +11,7 @@
 //! report end weights (OESS) are shaded by them.
 
 use softshadow::method::{self, Exact};
-use softshadow::render::image::{error_heat_map, shaded, shaded_by_ends, ErrorSummary};
+use softshadow::render::image::{error_heat_map, shaded, shaded_by_ends, ErrorRow};
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin;
 use std::error::Error;
@@ -44,7 +44,6 @@ fn pictures(name: &str, out: &Path) -> Result<(), Box<dyn Error>> {
     let stages = Stages::new(&scene);
     let frame = Frame::from_camera(&camera, stages.bvh());
     let exact = method::run(&Exact, &stages, &frame)?.output.visibility;
-    let penumbra = |i: usize| exact[i] > 0.0 && exact[i] < 1.0;
     println!("\n`{name}`\n");
     println!("| method | RMSE | RMSE penumbra | mean signed |");
     println!("|---|---:|---:|---:|");
@@ -63,11 +62,10 @@ fn pictures(name: &str, out: &Path) -> Result<(), Box<dyn Error>> {
         picture.write_png(&out.join(format!("{name}-{part}-shaded.png")))?;
         error_heat_map(&frame, v, &exact)
             .write_png(&out.join(format!("{name}-{part}-error.png")))?;
-        let all = ErrorSummary::new(v, &exact, |_| true);
-        let pen = ErrorSummary::new(v, &exact, penumbra);
+        let row = ErrorRow::new(&run.method, run.seconds, v, &exact);
         println!(
             "| {} | {:.5} | {:.5} | {:+.5} |",
-            run.method, all.rmse, pen.rmse, all.mean_signed
+            row.method, row.all.rmse, row.penumbra.rmse, row.all.mean_signed
         );
     }
     Ok(())
