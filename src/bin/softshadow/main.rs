@@ -161,17 +161,14 @@ fn main() -> ExitCode {
 /// A message as one line of at most about `max` bytes: control characters
 /// (a newline in a path, say) escaped, the rest cut with its length stated.
 fn one_line(message: &str, max: usize) -> String {
-    let escaped: String = message
-        .chars()
-        .flat_map(|c| {
-            let e: Vec<char> = if c.is_control() {
-                c.escape_default().collect()
-            } else {
-                vec![c]
-            };
-            e
-        })
-        .collect();
+    let mut escaped = String::with_capacity(message.len().min(max + 16));
+    for c in message.chars() {
+        if c.is_control() {
+            escaped.extend(c.escape_default());
+        } else {
+            escaped.push(c);
+        }
+    }
     if escaped.len() <= max {
         return escaped;
     }

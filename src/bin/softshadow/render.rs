@@ -55,7 +55,9 @@ fn parse_gib(s: &str) -> Result<f64, String> {
 /// 2048², hard, exact, sism, oess): 103–117 bytes per pixel over a fixed
 /// part of at most about 130 MiB (SISM's and OESS's maps).
 const BYTES_PER_PIXEL: f64 = 120.0;
-const FIXED_BYTES: f64 = 256.0 * (1u64 << 20) as f64;
+const FIXED_BYTES: f64 = 256.0 * MIB;
+const MIB: f64 = (1u64 << 20) as f64;
+const GIB: f64 = (1u64 << 30) as f64;
 
 /// Half of the machine's memory (`/proc/meminfo`), or 8 GiB when unknown.
 fn default_memory_limit() -> f64 {
@@ -68,8 +70,6 @@ fn default_memory_limit() -> f64 {
     });
     total.map_or(8.0 * GIB, |b| 0.5 * b)
 }
-
-const GIB: f64 = (1u64 << 30) as f64;
 
 /// Refuses a frame of `w × h` whose estimated peak exceeds the limit.
 fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
@@ -86,7 +86,7 @@ fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
             "--width {w} --height {h}: about {:.1} GiB estimated ({BYTES_PER_PIXEL} bytes per pixel \
              and {:.0} MiB of maps), over the limit of {:.1} GiB ({whence})",
             estimate / GIB,
-            FIXED_BYTES / f64::from(1u32 << 20),
+            FIXED_BYTES / MIB,
             limit / GIB
         ));
     }
