@@ -170,6 +170,12 @@ proptest! {
             out.clear();
             topo.silhouettes_from_point_into(&mesh.positions, x, &mut out).unwrap();
             prop_assert_eq!(as_map(&out), brute_force(&mesh, x), "x = {:?}", x);
+            // One edge at a time: the same edges, orientations and
+            // multiplicities, `None` for the others.
+            let one: Vec<_> = (0..topo.edges().len() as u32)
+                .filter_map(|e| topo.silhouette_edge_from_point(e, &mesh.positions, x).unwrap())
+                .collect();
+            prop_assert_eq!(&one, &out);
             let p32 = mesh.positions_f32();
             let promoted = Mesh {
                 positions: p32.iter().map(|&p| DVec3::from(p)).collect(),
@@ -588,6 +594,22 @@ fn errors() {
         .silhouettes_from_point_into(&mesh.positions[1..], DVec3::ZERO, &mut reused)
         .is_err());
     assert!(reused.is_empty());
+    let edges = topo.edges().len();
+    assert_eq!(
+        topo.silhouette_edge_from_point(edges as u32, &mesh.positions, DVec3::ZERO),
+        Err(SilhouetteError::EdgeIndex {
+            edge: edges as u32,
+            edges
+        })
+    );
+    assert_eq!(
+        topo.silhouette_edge_from_point(0, &mesh.positions, DVec3::NAN),
+        Err(SilhouetteError::NonFinitePoint)
+    );
+    assert!(matches!(
+        topo.silhouette_edge_from_point(0, &mesh.positions[1..], DVec3::ZERO),
+        Err(SilhouetteError::PositionCount { .. })
+    ));
     let mut degenerate = vec![];
     assert!(topo
         .degenerate_faces_into(&mesh.positions[1..], &mut degenerate)

@@ -50,6 +50,8 @@ const METHODS: &[&str] = &[
     "ssoc:map=24,lookups=1,bilinear,falloff=exact,horizon",
     "backprojected-ssoc:map=32",
     "backprojected-ssoc:map=16,search=2,walk,horizon",
+    "backprojected-ssoc:map=24,search=1,walk,horizon,potential",
+    "backprojected-ssoc:map=32,potential",
     "oess:map=32",
     "oess:map=24,no-tilt,depth-check,law-of-sines,bias=0",
     "oess:map=16,no-corr,bias=1",

@@ -169,6 +169,13 @@ pub enum SilhouetteError {
     /// The sphere's centre is not finite, or its radius is negative or not
     /// finite.
     InvalidSphere,
+    /// An edge index is not below the topology's edge count.
+    EdgeIndex {
+        /// The index given.
+        edge: u32,
+        /// The topology's edge count.
+        edges: usize,
+    },
 }
 
 impl fmt::Display for SilhouetteError {
@@ -183,6 +190,9 @@ impl fmt::Display for SilhouetteError {
                     f,
                     "the sphere needs a finite centre and a finite radius ≥ 0"
                 )
+            }
+            SilhouetteError::EdgeIndex { edge, edges } => {
+                write!(f, "edge {edge} given for a topology of {edges} edges")
             }
         }
     }
@@ -461,27 +471,78 @@ impl MeshTopology {
         if !x.is_finite() {
             return Err(SilhouetteError::NonFinitePoint);
         }
-        for (edge, &[v0, v1]) in self.edges.iter().enumerate() {
-            let m = self
-                .multiplicity(edge, positions, |[a, b, c]| {
-                    Some(if orient3d(a, b, c, x) == Sign::Negative {
-                        1
-                    } else {
-                        -1
-                    })
-                })
-                .unwrap_or(0);
-            if m != 0 {
-                let (from, to) = if m > 0 { (v0, v1) } else { (v1, v0) };
-                out.push(SilhouetteEdge {
-                    edge: edge as u32,
-                    from,
-                    to,
-                    multiplicity: m.unsigned_abs() as u32,
-                });
-            }
-        }
+        out.extend(
+            (0..self.edges.len()).filter_map(|edge| self.silhouette_from(edge, positions, x)),
+        );
         Ok(())
+    }
+
+    /// Edge `edge` of the topology as a silhouette edge from `x`, oriented
+    /// and with its multiplicity as in
+    /// [`silhouettes_from_point_into`](Self::silhouettes_from_point_into),
+    /// or `None` when it is not one (multiplicity 0): the same answer for
+    /// one edge, in `O(faces of the edge)` — for a caller that keeps a
+    /// superset of the silhouettes (say
+    /// [`potential_silhouettes`](Self::potential_silhouettes)) and asks
+    /// which of them a given point sees.
+    ///
+    /// # Errors
+    ///
+    /// [`SilhouetteError::PositionCount`] when `positions.len()` is not the
+    /// vertex count, [`SilhouetteError::NonFinitePoint`] when `x` is not
+    /// finite, [`SilhouetteError::EdgeIndex`] when `edge` is not below
+    /// [`edges`](Self::edges)`().len()`.
+    pub fn silhouette_edge_from_point<P, X>(
+        &self,
+        edge: u32,
+        positions: &[P],
+        x: X,
+    ) -> Result<Option<SilhouetteEdge>, SilhouetteError>
+    where
+        P: Copy + Into<DVec3>,
+        X: Into<DVec3>,
+    {
+        self.check_positions(positions)?;
+        let x: DVec3 = x.into();
+        if !x.is_finite() {
+            return Err(SilhouetteError::NonFinitePoint);
+        }
+        if edge as usize >= self.edges.len() {
+            return Err(SilhouetteError::EdgeIndex {
+                edge,
+                edges: self.edges.len(),
+            });
+        }
+        Ok(self.silhouette_from(edge as usize, positions, x))
+    }
+
+    /// The silhouette test of one edge from `x` (checked arguments).
+    fn silhouette_from<P: Copy + Into<DVec3>>(
+        &self,
+        edge: usize,
+        positions: &[P],
+        x: DVec3,
+    ) -> Option<SilhouetteEdge> {
+        let [v0, v1] = self.edges[edge];
+        let m = self
+            .multiplicity(edge, positions, |[a, b, c]| {
+                Some(if orient3d(a, b, c, x) == Sign::Negative {
+                    1
+                } else {
+                    -1
+                })
+            })
+            .unwrap_or(0);
+        if m == 0 {
+            return None;
+        }
+        let (from, to) = if m > 0 { (v0, v1) } else { (v1, v0) };
+        Some(SilhouetteEdge {
+            edge: edge as u32,
+            from,
+            to,
+            multiplicity: m.unsigned_abs() as u32,
+        })
     }
 
     /// [`silhouettes_from_point_into`](Self::silhouettes_from_point_into)

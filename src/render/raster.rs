@@ -236,27 +236,33 @@ impl LightMaps {
     /// Empty maps: every depth `f64::INFINITY`, every id `u32::MAX`.
     #[must_use]
     pub fn empty(width: u32, height: u32) -> LightMaps {
-        let n = width as usize * height as usize;
-        LightMaps {
+        let mut maps = LightMaps {
             width,
             height,
-            depth: vec![f64::INFINITY; n],
-            object: vec![u32::MAX; n],
-            triangle: vec![u32::MAX; n],
-        }
+            depth: Vec::new(),
+            object: Vec::new(),
+            triangle: Vec::new(),
+        };
+        maps.reset(width, height);
+        maps
     }
 
     /// Resizes to `width × height` and clears to the empty state, keeping
     /// the storage.
     pub fn reset(&mut self, width: u32, height: u32) {
+        use rayon::prelude::*;
         let n = width as usize * height as usize;
         (self.width, self.height) = (width, height);
-        for (v, x) in [(&mut self.object, u32::MAX), (&mut self.triangle, u32::MAX)] {
+        // Filled in parallel: fresh storage is first touched, and its page
+        // faults taken, by both threads (measured: a sixth of a 1024² SSOC
+        // frame's time was the serial fill of new maps).
+        fn fill<T: Copy + Send + Sync>(v: &mut Vec<T>, n: usize, x: T) {
             v.clear();
-            v.resize(n, x);
+            v.par_extend(rayon::iter::repeat_n(x, n));
         }
-        self.depth.clear();
-        self.depth.resize(n, f64::INFINITY);
+        fill(&mut self.object, n, u32::MAX);
+        fill(&mut self.triangle, n, u32::MAX);
+        fill(&mut self.depth, n, f64::INFINITY);
     }
 
     /// The number of columns.

@@ -451,6 +451,17 @@ impl Light {
         }
     }
 
+    /// The radius of the smallest ball about [`center`](Light::center)
+    /// that holds the whole light: a sphere's or disk's radius, a rect's
+    /// longer half-diagonal, half a segment's length, `0` for a point.
+    #[must_use]
+    pub fn bounding_radius(&self) -> f64 {
+        match self {
+            Light::Rect(r) => (r.u + r.v).length().max((r.u - r.v).length()),
+            _ => self.equivalent_radius(),
+        }
+    }
+
     /// The unit normal of a disk or rect light's plane, `None` for the
     /// other kinds.
     #[must_use]

@@ -36,6 +36,29 @@ pub enum EdgeSource {
     AllEdges,
 }
 
+/// Which edges [`projected_edges`] builds: those of an [`EdgeSource`], or
+/// every edge that may be a silhouette from some point of the light's
+/// bounding ball (`MeshTopology::potential_silhouettes`; backprojected
+/// SSOC's `potential`). A potential edge is stored from its topology's
+/// `v0` to `v1` (before the frame's handedness swap), with its layer weight
+/// alone: which way round it runs, and its multiplicity, depend on the
+/// point it is seen from, and are the caller's to recompute per receiver.
+/// A mesh without a topology gives its triangles' sides, as
+/// [`EdgeSource::AllEdges`] does (with [`NO_EDGE`]: nothing to recompute).
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub(crate) enum Selection {
+    /// The edges of an [`EdgeSource`].
+    Source(EdgeSource),
+    /// The potential silhouettes of the light's ball.
+    Potential,
+}
+
+impl From<EdgeSource> for Selection {
+    fn from(source: EdgeSource) -> Selection {
+        Selection::Source(source)
+    }
+}
+
 /// A silhouette edge seen from the light's centre, clipped to the part in
 /// front of the near depth and projected, oriented with the occluder on
 /// its **left** on the image plane.
@@ -60,7 +83,15 @@ pub struct ProjectedEdge {
     /// left: the silhouette's multiplicity times its component's layer
     /// weight ([`layer_weights`]).
     pub weight: f64,
+    /// The mesh the edge belongs to.
+    pub mesh: u32,
+    /// Its index in the mesh's topology, [`NO_EDGE`] for an edge of
+    /// [`EdgeSource::AllEdges`] (a triangle's side).
+    pub edge: u32,
 }
+
+/// [`ProjectedEdge::edge`] of an edge that is not one of the topology's.
+pub const NO_EDGE: u32 = u32::MAX;
 
 /// The point of segment `[a, b]` nearest `p`, and its parameter.
 pub(crate) fn nearest_on(a: DVec2, b: DVec2, p: DVec2) -> (DVec2, f64) {
@@ -180,7 +211,7 @@ fn component_weights(topo: &MeshTopology) -> LayerWeights {
 /// projection is a point or not finite, are left out.
 pub(crate) fn projected_edges(
     stages: &Stages,
-    source: EdgeSource,
+    source: Selection,
     near: f64,
 ) -> Arc<Vec<ProjectedEdge>> {
     let key = format!("{source:?} near {:x}", near.to_bits());
@@ -191,10 +222,11 @@ pub(crate) fn projected_edges(
     })
 }
 
-fn build_edges(stages: &Stages, source: EdgeSource, near: f64) -> Vec<ProjectedEdge> {
+fn build_edges(stages: &Stages, source: Selection, near: f64) -> Vec<ProjectedEdge> {
     let scene = stages.scene();
     let light_frame = stages.light_frame();
     let center = scene.light().center();
+    let ball = scene.light().bounding_radius();
     let topology = stages.topology();
     let weights = layer_weights(stages);
     // Which way round the light frame's image plane is seen: an edge with
@@ -209,12 +241,13 @@ fn build_edges(stages: &Stages, source: EdgeSource, near: f64) -> Vec<ProjectedE
     ) == Sign::Negative;
     let mut edges = Vec::new();
     let mut sil = Vec::new();
+    let mut potential = Vec::new();
     for (mesh_index, mesh) in scene.meshes().iter().enumerate() {
         let pos = mesh.positions();
         let lf: Vec<DVec3> = pos.iter().map(|&p| light_frame.to_light(p)).collect();
         let topo = topology.get(mesh_index).and_then(Option::as_ref);
         let w = &weights[mesh_index];
-        let mut push = |from: u32, to: u32, weight: f64| {
+        let mut push = |from: u32, to: u32, edge: u32, weight: f64| {
             let (from, to) = if cover_left { (from, to) } else { (to, from) };
             let Some((la, lb)) = clip_near(lf[from as usize], lf[to as usize], near) else {
                 return;
@@ -232,10 +265,25 @@ fn build_edges(stages: &Stages, source: EdgeSource, near: f64) -> Vec<ProjectedE
                 wb: pos[to as usize],
                 z_min: la.z.min(lb.z),
                 weight,
+                mesh: mesh_index as u32,
+                edge,
             });
         };
         match (source, topo) {
-            (EdgeSource::Silhouettes, Some(topo)) => {
+            (Selection::Potential, Some(topo)) => {
+                potential.clear();
+                if topo
+                    .potential_silhouettes_into(pos, center, ball, &mut potential)
+                    .is_ok()
+                {
+                    for &e in &potential {
+                        let [v0, v1] = topo.edges()[e as usize];
+                        let weight = w.edges.get(e as usize).copied().unwrap_or(1.0);
+                        push(v0, v1, e, weight);
+                    }
+                }
+            }
+            (Selection::Source(EdgeSource::Silhouettes), Some(topo)) => {
                 sil.clear();
                 if topo
                     .silhouettes_from_point_into(pos, center, &mut sil)
@@ -243,7 +291,7 @@ fn build_edges(stages: &Stages, source: EdgeSource, near: f64) -> Vec<ProjectedE
                 {
                     for e in &sil {
                         let weight = w.edges.get(e.edge as usize).copied().unwrap_or(1.0);
-                        push(e.from, e.to, weight * f64::from(e.multiplicity));
+                        push(e.from, e.to, e.edge, weight * f64::from(e.multiplicity));
                     }
                 }
             }
@@ -258,9 +306,9 @@ fn build_edges(stages: &Stages, source: EdgeSource, near: f64) -> Vec<ProjectedE
                     for k in 0..3 {
                         let (u, v) = (t[k], t[(k + 1) % 3]);
                         if front {
-                            push(u, v, weight);
+                            push(u, v, NO_EDGE, weight);
                         } else {
-                            push(v, u, weight);
+                            push(v, u, NO_EDGE, weight);
                         }
                     }
                 }

@@ -39,7 +39,7 @@ pub(super) fn edges(
     r: f64,
 ) -> Vec<PenEdge> {
     let center = stages.scene().light().center();
-    projected_edges(stages, sism.edges, z_near)
+    projected_edges(stages, sism.edges.into(), z_near)
         .iter()
         .filter(|e| e.z_min < grid.z_max)
         .map(|&edge| PenEdge {

@@ -5,13 +5,14 @@
 use super::maps::NONE;
 use super::{margin, prepare, warp, Prepared};
 use crate::kernel::footprint::f64 as footprint;
+use crate::kernel::silhouette::MeshTopology;
 use crate::method::centre::union::{self, MappedEdge};
-use crate::method::centre::{horizon_edge, ProjectedEdge};
+use crate::method::centre::{horizon_edge, EdgeSource, ProjectedEdge, Selection, NO_EDGE};
 use crate::method::options::{builders, field, Configurable, Field};
 use crate::method::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::render::raster::MAX_RESOLUTION;
 use crate::render::{FittedMaps, Needs, Receiver};
-use crate::scene::LightKind;
+use crate::scene::{LightKind, Mesh};
 use glam::DVec3;
 use std::collections::HashMap;
 
@@ -36,6 +37,13 @@ pub struct BackprojectedSsoc {
     /// The [horizon bound](Horizon): the receiver's tangent plane as one
     /// more edge of the union; default off (ours).
     pub horizon: bool,
+    /// The maps hold the potential silhouettes of the light's bounding
+    /// ball (every edge that is a silhouette from some light point) instead
+    /// of the silhouettes from its centre, and each edge a receiver finds
+    /// is oriented and weighted by its multiplicity seen from that receiver
+    /// (the sketch: extra edges are harmless; an edge that is no silhouette
+    /// from the receiver weighs 0); default off.
+    pub potential: bool,
 }
 
 impl Default for BackprojectedSsoc {
@@ -45,6 +53,7 @@ impl Default for BackprojectedSsoc {
             search: 1,
             walk: false,
             horizon: false,
+            potential: false,
         }
     }
 }
@@ -58,6 +67,8 @@ builders!(BackprojectedSsoc {
     with_walk => walk: bool,
     /// With or without the horizon bound.
     with_horizon => horizon: bool,
+    /// With or without the potential silhouettes.
+    with_potential => potential: bool,
 });
 
 impl Configurable for BackprojectedSsoc {
@@ -72,6 +83,8 @@ impl Configurable for BackprojectedSsoc {
         "backprojected-ssoc:search=2",
         "backprojected-ssoc:walk",
         "backprojected-ssoc:walk,horizon",
+        "backprojected-ssoc:potential",
+        "backprojected-ssoc:walk,potential",
     ];
     #[rustfmt::skip]
     const FIELDS: &'static [Field<BackprojectedSsoc>] = &[
@@ -79,22 +92,27 @@ impl Configurable for BackprojectedSsoc {
         field!(int "search", search: u32, (0, 16), "texels around the receiver's searched for edges (ours: 1, 3×3)"),
         field!(flag "walk", walk, "complete the edges found along the silhouette, within the footprint (ours)"),
         field!(flag "horizon", horizon, "the tangent plane as one more edge of the union (ours)"),
+        field!(flag "potential", potential, "potential silhouettes of the light's ball, each weighed from the receiver"),
     ];
 }
 
 impl BackprojectedSsoc {
     /// `V` of one receiver: the union of the edges found around it.
-    #[allow(clippy::too_many_arguments)]
     fn shade(
         &self,
-        prep: &Prepared,
-        fitted: &FittedMaps,
-        chains: Option<&Chains>,
+        pass: &Pass<'_>,
         r: &Receiver,
         found: &mut Vec<u32>,
         mapped: &mut Vec<MappedEdge>,
         scratch: &mut union::Scratch,
     ) -> f64 {
+        let Pass {
+            prep,
+            fitted,
+            chains,
+            topology,
+            meshes,
+        } = *pass;
         let w = warp(fitted, r, margin(&fitted.view));
         if !w.in_view {
             return 1.0;
@@ -106,7 +124,7 @@ impl BackprojectedSsoc {
         for dr in -k..=k {
             for dc in -k..=k {
                 for inside in [true, false] {
-                    let e = prep.distortion.at(inside, c + dc, row + dr).edge;
+                    let e = prep.distortion.at(inside, c + dc, row + dr);
                     if e != NONE && !found.contains(&e) {
                         found.push(e);
                     }
@@ -115,21 +133,47 @@ impl BackprojectedSsoc {
         }
         let map = |e: u32| -> Option<MappedEdge> {
             let e: &ProjectedEdge = prep.edges.get(e as usize)?;
-            let (a, b) = footprint::map_edge(e.a, e.b, e.la, e.lb, w.u, w.p.z, prep.r)?;
-            Some(MappedEdge {
-                a,
-                b,
-                weight: e.weight,
-            })
+            let (flip, weight) = match (self.potential, e.edge) {
+                (true, edge) if edge != NO_EDGE => {
+                    let topo = topology.get(e.mesh as usize)?.as_ref()?;
+                    let positions = meshes.get(e.mesh as usize)?.positions();
+                    let seen = topo
+                        .silhouette_edge_from_point(edge, positions, r.position)
+                        .ok()??;
+                    // Seen from a light point beyond the edge (the receiver
+                    // on one side of each face's plane, the light point on
+                    // the other), its faces lie on the other side: that
+                    // orientation runs `to → from`, stored is `v0 → v1`.
+                    let v1 = topo.edges()[edge as usize][1];
+                    (seen.from != v1, e.weight * f64::from(seen.multiplicity))
+                }
+                _ => (false, e.weight),
+            };
+            let (a, b, la, lb) = if flip {
+                (e.b, e.a, e.lb, e.la)
+            } else {
+                (e.a, e.b, e.la, e.lb)
+            };
+            let (a, b) = footprint::map_edge(a, b, la, lb, w.u, w.p.z, prep.r)?;
+            Some(MappedEdge { a, b, weight })
         };
         if let (true, Some(chains)) = (self.walk, chains) {
             // Breadth first from the edges found, through every edge that
-            // meets the footprint.
+            // meets the footprint — whatever its multiplicity from the
+            // receiver: with `potential`, the receiver's silhouette is a
+            // loop inside a band of potential edges, and the edges a texel
+            // names may all be of the band.
+            let meets = |e: u32| {
+                prep.edges.get(e as usize).is_some_and(|e| {
+                    footprint::map_edge(e.a, e.b, e.la, e.lb, w.u, w.p.z, prep.r)
+                        .is_some_and(|(a, b)| union::meets_disk(a, b))
+                })
+            };
             let mut k = 0;
             while k < found.len() {
                 let e = found[k];
                 k += 1;
-                if map(e).is_some_and(|m| union::meets_disk(m.a, m.b)) {
+                if meets(e) {
                     for &n in chains.neighbours(e) {
                         if !found.contains(&n) {
                             found.push(n);
@@ -190,25 +234,48 @@ impl Method for BackprojectedSsoc {
         if input.receivers().is_empty() {
             return Ok(Output::default());
         }
-        let prep = prepare(input, self.resolution)?;
+        let selection = if self.potential {
+            Selection::Potential
+        } else {
+            EdgeSource::Silhouettes.into()
+        };
+        let prep = prepare(input, self.resolution, selection)?;
         let fitted = prep.fitted()?;
         let chains = self.walk.then(|| {
-            // The edges are the silhouettes clipped at the view's near depth.
-            let key = format!("near {:x}", fitted.view.near().to_bits());
+            // The edges are those of `selection`, clipped at the view's
+            // near depth.
+            let key = format!("{selection:?} near {:x}", fitted.view.near().to_bits());
             input.stages().cached("ssoc silhouette chains", key, || {
                 let c = Chains::new(&prep.edges);
                 (c, format!("{} edges", prep.edges.len()))
             })
         });
+        let pass = Pass {
+            prep: &prep,
+            fitted,
+            chains: chains.as_deref(),
+            topology: input.stages().topology(),
+            meshes: input.stages().scene().meshes(),
+        };
         let v = per_receiver(
             input,
             || (Vec::new(), Vec::new(), union::Scratch::default()),
-            |(found, mapped, scratch), _, r| {
-                Ok(self.shade(&prep, fitted, chains.as_deref(), r, found, mapped, scratch))
-            },
+            |(found, mapped, scratch), _, r| Ok(self.shade(&pass, r, found, mapped, scratch)),
         )?;
         Ok(Output::values(v))
     }
+}
+
+/// What every receiver of a frame reads.
+#[derive(Clone, Copy)]
+struct Pass<'a> {
+    prep: &'a Prepared,
+    fitted: &'a FittedMaps,
+    /// The silhouette chains, with `walk`.
+    chains: Option<&'a Chains>,
+    /// Each mesh's topology and mesh, for `potential`'s multiplicities.
+    topology: &'a [Option<MeshTopology>],
+    meshes: &'a [Mesh],
 }
 
 /// Which silhouette edges share an end: the edges of `edges` whose world

@@ -16,11 +16,15 @@
 //! on the image plane (§3.2.1's depth test "based upon the distance to the
 //! silhouette", not on light depth), ties to the lower edge index.
 //!
-//! A texel stores only the edge's index and its distance; the nearest
-//! silhouette point `s`, the outward normal `n̂` (the right-hand side of
-//! the oriented edge, away from the occluder), `z_near` and `z_far` are
-//! taken from the edge when a receiver reads it (`Edge`), so that 1024²
-//! maps cost 16 MB rather than the paper's six floats per texel.
+//! A texel stores only the edge's index (its distance is kept per row while
+//! the row is built); the nearest silhouette point `s`, the outward normal
+//! `n̂` (the right-hand side of the oriented edge, away from the occluder),
+//! `z_near` and `z_far` are taken from the edge when a receiver reads it,
+//! so that two 1024² maps cost 8 MB rather than the paper's six floats per
+//! texel. The maps are allocated zeroed (index `0` is "no edge", an edge is
+//! stored plus one), so their pages are first touched by the rows that
+//! write them, in parallel: measured, the fresh memory's page faults were
+//! a third of this stage's time with 8-byte cells filled on one thread.
 
 use crate::kernel::footprint::f64 as footprint;
 use crate::method::centre::{left, ProjectedEdge};
@@ -31,27 +35,16 @@ use rayon::prelude::*;
 /// No edge covers the texel.
 pub(crate) const NONE: u32 = u32::MAX;
 
-/// One texel of a distortion map: the covering edge and its distance.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub(crate) struct Cell {
-    pub edge: u32,
-    pub distance: f32,
-}
-
-const EMPTY: Cell = Cell {
-    edge: NONE,
-    distance: f32::INFINITY,
-};
-
 /// The two distortion maps of a light view.
 #[derive(Clone, Debug)]
 pub(crate) struct DistortionMaps {
     width: u32,
     height: u32,
-    /// Texels on the occluder's side of their edge (inside the hard shadow).
-    pub inside: Vec<Cell>,
-    /// Texels on the other side.
-    pub outside: Vec<Cell>,
+    /// Texels on the occluder's side of their edge (inside the hard
+    /// shadow): the covering edge's index plus one, `0` for none.
+    inside: Vec<u32>,
+    /// Texels on the other side, stored as `inside`.
+    outside: Vec<u32>,
 }
 
 impl DistortionMaps {
@@ -84,74 +77,81 @@ impl DistortionMaps {
                 Some((half, r0, r1))
             })
             .collect();
-        let mut inside = vec![EMPTY; (w * h) as usize];
-        let mut outside = vec![EMPTY; (w * h) as usize];
+        let n = w as usize * h as usize;
+        // Zeroed: pages the rows below never write are never touched.
+        let (mut inside, mut outside) = (vec![0u32; n], vec![0u32; n]);
         inside
             .par_chunks_mut(w as usize)
             .zip(outside.par_chunks_mut(w as usize))
             .enumerate()
-            .for_each(|(row, (inside, outside))| {
-                let row = row as u32;
-                for (k, (e, reach)) in edges.iter().zip(&reach).enumerate() {
-                    let Some((half, r0, r1)) = *reach else {
-                        continue;
-                    };
-                    if row < r0 || row > r1 {
-                        continue;
+            .for_each_init(
+                || (Vec::new(), Vec::new()),
+                |(near_in, near_out), (row, (inside, outside))| {
+                    // The distance of each texel's edge so far, this row only.
+                    for near in [&mut *near_in, &mut *near_out] {
+                        near.clear();
+                        near.resize(w as usize, f32::INFINITY);
                     }
-                    // The columns the capsule spans on this row's centre line.
-                    let y = view.pixel_center(0, row).y;
-                    let (x0, x1) = row_span(e.a, e.b, half, y);
-                    if x0 > x1 {
-                        continue;
-                    }
-                    let c0 = view.to_pixel(DVec2::new(x0, y)).x.floor().max(0.0);
-                    let c1 = view
-                        .to_pixel(DVec2::new(x1, y))
-                        .x
-                        .ceil()
-                        .min(f64::from(w - 1));
-                    if c0 > c1 {
-                        continue;
-                    }
-                    let (inv_a, inv_b) = (1.0 / e.la.z, 1.0 / e.lb.z);
-                    let seg = e.b - e.a;
-                    let seg2 = seg.length_squared();
-                    let inv_far = 1.0 / z_max;
-                    for col in c0 as u32..=c1 as u32 {
-                        let c = view.pixel_center(col, row);
-                        let t = if seg2 > 0.0 {
-                            ((c - e.a).dot(seg) / seg2).clamp(0.0, 1.0)
-                        } else {
-                            0.0
+                    let row = row as u32;
+                    for (k, (e, reach)) in edges.iter().zip(&reach).enumerate() {
+                        let Some((half, r0, r1)) = *reach else {
+                            continue;
                         };
-                        let dist2 = (e.a + seg * t - c).length_squared();
-                        if dist2 > half * half {
+                        if row < r0 || row > r1 {
                             continue;
                         }
-                        // The region's half-width at the nearest point: the
-                        // footprint radius there of the deepest receiver
-                        // (`1/z` interpolated along the edge).
-                        let width = r * (((1.0 - t) * inv_a + t * inv_b) - inv_far);
-                        if width.is_nan() || dist2 > width * width {
+                        // The columns the capsule spans on this row's centre line.
+                        let y = view.pixel_center(0, row).y;
+                        let (x0, x1) = row_span(e.a, e.b, half, y);
+                        if x0 > x1 {
                             continue;
                         }
-                        let dist = dist2.sqrt();
-                        let d = dist as f32;
-                        let slot = if left(e.a, e.b, c) {
-                            &mut inside[col as usize]
-                        } else {
-                            &mut outside[col as usize]
-                        };
-                        if d < slot.distance {
-                            *slot = Cell {
-                                edge: k as u32,
-                                distance: d,
+                        let c0 = view.to_pixel(DVec2::new(x0, y)).x.floor().max(0.0);
+                        let c1 = view
+                            .to_pixel(DVec2::new(x1, y))
+                            .x
+                            .ceil()
+                            .min(f64::from(w - 1));
+                        if c0 > c1 {
+                            continue;
+                        }
+                        let (inv_a, inv_b) = (1.0 / e.la.z, 1.0 / e.lb.z);
+                        let seg = e.b - e.a;
+                        let seg2 = seg.length_squared();
+                        let inv_far = 1.0 / z_max;
+                        for col in c0 as u32..=c1 as u32 {
+                            let c = view.pixel_center(col, row);
+                            let t = if seg2 > 0.0 {
+                                ((c - e.a).dot(seg) / seg2).clamp(0.0, 1.0)
+                            } else {
+                                0.0
                             };
+                            let dist2 = (e.a + seg * t - c).length_squared();
+                            if dist2 > half * half {
+                                continue;
+                            }
+                            // The region's half-width at the nearest point: the
+                            // footprint radius there of the deepest receiver
+                            // (`1/z` interpolated along the edge).
+                            let width = r * (((1.0 - t) * inv_a + t * inv_b) - inv_far);
+                            if width.is_nan() || dist2 > width * width {
+                                continue;
+                            }
+                            let d = dist2.sqrt() as f32;
+                            let (map, near) = if left(e.a, e.b, c) {
+                                (&mut *inside, &mut *near_in)
+                            } else {
+                                (&mut *outside, &mut *near_out)
+                            };
+                            let col = col as usize;
+                            if d < near[col] {
+                                near[col] = d;
+                                map[col] = k as u32 + 1;
+                            }
                         }
                     }
-                }
-            });
+                },
+            );
         DistortionMaps {
             width: w,
             height: h,
@@ -160,23 +160,24 @@ impl DistortionMaps {
         }
     }
 
-    /// The cell of map `inside`/outside at texel `(col, row)`; an empty cell
-    /// off the map.
-    pub(crate) fn at(&self, inside: bool, col: i64, row: i64) -> Cell {
+    /// The edge index map `inside`/outside names at texel `(col, row)`;
+    /// [`NONE`] where no edge covers it or off the map.
+    pub(crate) fn at(&self, inside: bool, col: i64, row: i64) -> u32 {
         if col < 0 || row < 0 || col >= i64::from(self.width) || row >= i64::from(self.height) {
-            return EMPTY;
+            return NONE;
         }
         let i = (row as usize) * self.width as usize + col as usize;
-        if inside {
+        let stored = if inside {
             self.inside[i]
         } else {
             self.outside[i]
-        }
+        };
+        stored.wrapping_sub(1)
     }
 
     /// How many texels of each map an edge covers (inside, outside).
     pub(crate) fn coverage(&self) -> (usize, usize) {
-        let n = |m: &[Cell]| m.iter().filter(|c| c.edge != NONE).count();
+        let n = |m: &[u32]| m.iter().filter(|&&e| e != 0).count();
         (n(&self.inside), n(&self.outside))
     }
 }

@@ -55,6 +55,26 @@
 //! reads that edge's far side as lit (measured on `depth-complexity` in
 //! `docs/accuracy/ssoc.md`). With `horizon` the receiver's tangent plane
 //! is one more edge of the union.
+//!
+//! With `potential` the maps are built from the potential silhouettes of
+//! the light's bounding ball instead (every edge that is a silhouette from
+//! some light point; stored in an arbitrary direction, so the two maps
+//! hold the two sides of each edge), and each edge a receiver finds is
+//! oriented and weighed by its multiplicity seen from the receiver
+//! (`MeshTopology::silhouette_edge_from_point`): seen from the receiver
+//! `p`, an edge with multiplicity `m` runs `from → to` with its faces on
+//! the left; from a light point `x` whose segment to `p` crosses the edge,
+//! `p` and `x` lie on opposite sides of each face's plane, so the faces
+//! are on the right — the union takes the edge as `to → from`, with weight
+//! `m` times the layer weight. An edge that is no silhouette from `p`
+//! weighs nothing, as the sketch says; but it still takes a texel of the
+//! map from an edge that would have counted, so without the walk more edges
+//! find fewer of the ones that matter (measured in `docs/accuracy/ssoc.md`).
+//! The walk crosses every edge whose image meets the footprint, whatever
+//! its weight from the receiver, since the receiver's silhouette is a loop
+//! inside the band of potential edges. Where the walk finds every edge and
+//! the shadow map's centre test is right, the union is exact
+//! (`tests/ssoc.rs`).
 
 pub(crate) mod maps;
 
@@ -64,7 +84,7 @@ pub use backprojected::BackprojectedSsoc;
 
 use super::centre::depth::DepthTest;
 use super::centre::nearest_on;
-use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge};
+use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge, Selection};
 use super::options::{builders, field, Configurable, Field};
 use super::{per_receiver, Horizon, Input, MethodError, Output, Requires};
 use crate::kernel::falloff::{f64 as falloff, Falloff};
@@ -193,7 +213,11 @@ impl Prepared {
 }
 
 /// Builds (or fetches) the stages both variants read, at `resolution`.
-pub(crate) fn prepare(input: &Input<'_, '_>, resolution: u32) -> Result<Prepared, MethodError> {
+pub(crate) fn prepare(
+    input: &Input<'_, '_>,
+    resolution: u32,
+    selection: Selection,
+) -> Result<Prepared, MethodError> {
     let (stages, frame) = (input.stages(), input.frame());
     let r = input.light().equivalent_radius();
     let maps = stages.light_maps(frame, resolution, resolution);
@@ -202,7 +226,7 @@ pub(crate) fn prepare(input: &Input<'_, '_>, resolution: u32) -> Result<Prepared
         .as_ref()
         .map_err(|e| MethodError::LightView(*e))?;
     let view = &fitted.view;
-    let edges = projected_edges(stages, EdgeSource::Silhouettes, view.near());
+    let edges = projected_edges(stages, selection, view.near());
     let lf = view.frame();
     let z_max = frame
         .receivers()
@@ -210,7 +234,7 @@ pub(crate) fn prepare(input: &Input<'_, '_>, resolution: u32) -> Result<Prepared
         .map(|rec| lf.to_light(rec.position).z)
         .filter(|z| z.is_finite())
         .fold(0.0, f64::max);
-    let key = format!("frame {} {resolution}", frame.id());
+    let key = format!("frame {} {resolution} {selection:?}", frame.id());
     let distortion = stages.cached("ssoc distortion maps", key, || {
         let m = DistortionMaps::new(view, &edges, r, z_max);
         let (i, o) = m.coverage();
@@ -351,13 +375,13 @@ impl Ssoc {
     /// `V` of one receiver from the distortion-map texel `(col, row)`.
     fn shade_at(&self, prep: &Prepared, fitted: &FittedMaps, w: &Warped, texel: (i64, i64)) -> f64 {
         let hard = if w.shadowed { 0.0 } else { 1.0 };
-        let cell = prep.distortion.at(w.shadowed, texel.0, texel.1);
-        if cell.edge == NONE {
+        let edge = prep.distortion.at(w.shadowed, texel.0, texel.1);
+        if edge == NONE {
             return hard;
         }
         let Some(first) = prep
             .edges
-            .get(cell.edge as usize)
+            .get(edge as usize)
             .and_then(|e| self.read(e, w.u, w.p.z, prep.r, fitted))
         else {
             return hard;
@@ -365,7 +389,7 @@ impl Ssoc {
         let view = &fitted.view;
         let test = DepthTest::new(w.p, None, w.p.z * self.bias);
         let mut v = 1.0;
-        let mut seen = [cell.edge; 8];
+        let mut seen = [edge; 8];
         let mut reading = first;
         let mut count = 1;
         loop {
@@ -394,7 +418,7 @@ impl Ssoc {
             // The first edge the distorted point names that is not seen.
             let Some(other) = next
                 .iter()
-                .map(|c| c.edge)
+                .copied()
                 .find(|&e| e != NONE && !seen[..count].contains(&e))
             else {
                 return v;
@@ -500,7 +524,7 @@ impl super::Method for Ssoc {
         if input.receivers().is_empty() {
             return Ok(Output::default());
         }
-        let prep = prepare(input, self.resolution)?;
+        let prep = prepare(input, self.resolution, EdgeSource::Silhouettes.into())?;
         let fitted = prep.fitted()?;
         let m = margin(&fitted.view);
         let v = per_receiver(
