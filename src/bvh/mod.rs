@@ -9,7 +9,9 @@
 //! # How it decides
 //!
 //! The tree is built by `obvhs` (PLOC with reinsertion, `Bvh2`) over boxes
-//! computed in `f64` and rounded *outward* to `f32`, then collapsed into a
+//! computed in `f64` and rounded *outward* to `f32` (a run of nested boxes,
+//! on which PLOC is quadratic, given to it as one box and split in halves
+//! by us: `nested.rs`), then collapsed into a
 //! 4-wide tree of our own — one 64-byte node per four children, boxes
 //! quantised outward to 8 bits per plane — whose traversal is conservative
 //! (see [`Bvh::segment_unoccluded`]): the `f32` tree only ever prunes boxes
@@ -36,7 +38,8 @@
 //!
 //! # Layout
 //!
-//! This file holds the tree and its build; `node.rs` the quantised 4-wide
+//! This file holds the tree and its build; `nested.rs` the runs of nested
+//! boxes the build groups; `node.rs` the quantised 4-wide
 //! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
 //! traversal ([`Bvh::segment_unoccluded`]); `closest.rs` the closest hit
 //! ([`Bvh::closest_hit`], [`Hit`]); `hull.rs` the culling query of the exact
@@ -49,6 +52,7 @@
 
 mod closest;
 mod hull;
+mod nested;
 mod node;
 mod occluders;
 mod ray;
@@ -68,12 +72,14 @@ use obvhs::BvhBuildParams;
 use std::fmt;
 use std::time::Duration;
 
-/// An entry of a node under construction: an obvhs node, or a run of
-/// `primitive_indices` (a leaf of more than one triangle, split in halves).
+/// An entry of a node under construction: an obvhs node; a run of its
+/// `primitive_indices` (a leaf of more than one box, split in halves); or
+/// a run of [`nested::Groups::order`] (one box's members, split in halves).
 #[derive(Clone, Copy)]
 enum Item {
     Node(usize),
-    Prims(usize, usize),
+    Leaf(usize, usize),
+    Members(usize, usize),
 }
 
 /// A BVH over a scene's occluders (owns them). Immutable once built, `Sync`:
@@ -229,7 +235,9 @@ impl Bvh {
             reinsertion_batch_ratio: 0.0,
             ..preset
         };
-        let mut tree = build_bvh2(&boxes, params, &mut Duration::default());
+        let groups = nested::Groups::find(&boxes);
+        let ploc_boxes = groups.as_ref().map_or(&boxes[..], |g| &g.boxes[..]);
+        let mut tree = build_bvh2(ploc_boxes, params, &mut Duration::default());
         let mut reinsertion = ReinsertionOptimizer::default();
         let ratio = preset.reinsertion_batch_ratio;
         reinsertion.run(&mut tree, ratio, None);
@@ -238,7 +246,8 @@ impl Bvh {
             ratio * preset.post_collapse_reinsertion_batch_ratio_multiplier,
             None,
         );
-        bvh.collapse(&tree, &boxes, &kept);
+        let groups = groups.unwrap_or_else(|| nested::Groups::identity(&boxes));
+        bvh.collapse(&tree, &boxes, &kept, &groups);
         bvh
     }
 
@@ -246,38 +255,55 @@ impl Bvh {
     /// descendants (repeatedly opening the entry of largest area), every
     /// leaf lane holds one triangle, and the triangles are copied in leaf
     /// order.
-    fn collapse(&mut self, tree: &Bvh2, boxes: &[Aabb], kept: &[u32]) {
+    fn collapse(&mut self, tree: &Bvh2, boxes: &[Aabb], kept: &[u32], groups: &nested::Groups) {
         let prims = &tree.primitive_indices;
+        let order = &groups.order;
         let aabb = |item: Item| -> Aabb {
             match item {
                 Item::Node(n) => *tree.nodes[n].aabb(),
-                Item::Prims(first, count) => prims[first..first + count]
+                Item::Leaf(first, count) => prims[first..first + count]
+                    .iter()
+                    .fold(Aabb::empty(), |b, &i| b.union(&groups.boxes[i as usize])),
+                Item::Members(first, count) => order[first..first + count]
                     .iter()
                     .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize])),
             }
         };
-        // An obvhs leaf is the run of its primitives.
-        let normal = |item: Item| match item {
-            Item::Node(n) if tree.nodes[n].is_leaf() => {
-                let node = &tree.nodes[n];
-                Item::Prims(node.first_index as usize, node.prim_count as usize)
+        // An obvhs leaf is the run of its primitives; one primitive, the
+        // run of its members.
+        let normal = |item: Item| {
+            let item = match item {
+                Item::Node(n) if tree.nodes[n].is_leaf() => {
+                    let node = &tree.nodes[n];
+                    Item::Leaf(node.first_index as usize, node.prim_count as usize)
+                }
+                other => other,
+            };
+            match item {
+                Item::Leaf(first, 1) => {
+                    let (at, count) = groups.ranges[prims[first] as usize];
+                    Item::Members(at as usize, count as usize)
+                }
+                other => other,
             }
-            other => other,
         };
+        let halves =
+            |first: usize, count: usize| (first, count / 2, first + count / 2, count - count / 2);
         let children = |item: Item| -> Option<[Item; 2]> {
             match item {
                 Item::Node(n) => {
                     let first = tree.nodes[n].first_index as usize;
                     Some([normal(Item::Node(first)), normal(Item::Node(first + 1))])
                 }
-                Item::Prims(first, count) if count > 1 => {
-                    let half = count / 2;
-                    Some([
-                        Item::Prims(first, half),
-                        Item::Prims(first + half, count - half),
-                    ])
+                Item::Leaf(first, count) if count > 1 => {
+                    let (a, na, b, nb) = halves(first, count);
+                    Some([normal(Item::Leaf(a, na)), normal(Item::Leaf(b, nb))])
                 }
-                Item::Prims(..) => None,
+                Item::Members(first, count) if count > 1 => {
+                    let (a, na, b, nb) = halves(first, count);
+                    Some([Item::Members(a, na), Item::Members(b, nb)])
+                }
+                Item::Leaf(..) | Item::Members(..) => None,
             }
         };
         // (entry, our node, depth of our node)
@@ -299,8 +325,9 @@ impl Bvh {
                 lanes[k] = left;
                 lanes.push(right);
             }
-            // (obvhs leaves are never empty; an empty run would not end.)
-            lanes.retain(|item| !matches!(item, Item::Prims(_, 0)));
+            // (obvhs leaves and groups are never empty; an empty run would
+            // not end.)
+            lanes.retain(|item| !matches!(item, Item::Leaf(_, 0) | Item::Members(_, 0)));
             let lane_boxes: Vec<([f32; 3], [f32; 3])> = lanes
                 .iter()
                 .map(|&item| {
@@ -311,8 +338,8 @@ impl Bvh {
             let mut node = Node::quantised(&lane_boxes);
             for (lane, &item) in lanes.iter().enumerate() {
                 node.child[lane] = match item {
-                    Item::Prims(first, 1) => {
-                        let id = kept[prims[first] as usize];
+                    Item::Members(first, 1) => {
+                        let id = kept[order[first] as usize];
                         self.ids.push(id);
                         self.triangles.push(self.occluders.triangles()[id as usize]);
                         LEAF | (self.triangles.len() - 1) as u32

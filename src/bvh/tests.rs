@@ -158,3 +158,43 @@ fn quantisation_is_tight_on_its_grid() {
         }
     }
 }
+
+/// Nested triangles about one centre (the case PLOC chains, one pair per
+/// pass): the tree holds each triangle once, its boxes contain their
+/// triangles, it is balanced (`nested.rs` gives the run to PLOC as one box
+/// and splits it in halves by area), and rays through it answer as the
+/// triangles themselves do.
+#[test]
+fn nested_triangles_make_a_balanced_tree() {
+    let n = 4096;
+    let t = [
+        DVec3::new(-1.0, 1.0, -1.0),
+        DVec3::new(1.0, 1.0, -1.0),
+        DVec3::new(0.0, 1.0, 1.0),
+    ];
+    let centre = (t[0] + t[1] + t[2]) / 3.0;
+    // Shuffled sizes, so that the input order is not the nesting order.
+    let tris: Vec<[DVec3; 3]> = (0..n)
+        .map(|k| {
+            let s = 1.0 + ((k * 1237) % n) as f64 / n as f64;
+            t.map(|v| centre + (v - centre) * s)
+        })
+        .collect();
+    let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
+    let mut ids = bvh.ids.clone();
+    ids.sort_unstable();
+    assert_eq!(ids, (0..n as u32).collect::<Vec<_>>());
+    check_subtree(&bvh, 0, 0);
+    // A chain would need a stack of about n·3/4 entries; halving 4096
+    // boxes needs 6 levels of 4-wide nodes under PLOC's root.
+    assert!(bvh.stack_need < 64, "stack {}", bvh.stack_need);
+    let mut rng = Rng::new(5);
+    for _ in 0..200 {
+        let p = DVec3::new(rng.uniform(-2.5, 2.5), 0.0, rng.uniform(-2.5, 2.5));
+        let x = DVec3::new(rng.uniform(-0.5, 0.5), 3.0, rng.uniform(-0.5, 0.5));
+        let brute = tris
+            .iter()
+            .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
+        assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
+    }
+}
