@@ -105,7 +105,9 @@ fn growth(c: &mut Criterion) {
 /// (the BVH indexes one), and `n` nested triangles about one centre, the
 /// largest of which hides the whole light (the exact reference stops at the
 /// first image that covers it; the BVH indexes the nested run as one box
-/// for PLOC and splits it in halves): the BVH builds and one exact answer.
+/// for PLOC and splits it in halves): the BVH builds and one exact answer;
+/// and nested triangles none of which covers a larger light, whose images
+/// cross one side of the clip square (swept, not searched).
 fn degenerate(c: &mut Criterion) {
     let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).expect("a valid light");
     let t = [
@@ -136,6 +138,19 @@ fn degenerate(c: &mut Criterion) {
         g.bench_function(BenchmarkId::new("nested_exact", n), |b| {
             b.iter(|| black_box(exact::visibility(&bvh, &light, p).ok()))
         });
+        if n <= 10_000 {
+            // Smaller nested triangles under a larger light: none covers it,
+            // and their images all cross one side of the clip square.
+            let open = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 1.0).expect("a valid light");
+            let small: Vec<[DVec3; 3]> = (0..n)
+                .map(|k| t.map(|v| centre + (v - centre) * 0.2 * (1.0 + k as f64 / n as f64)))
+                .collect();
+            let bvh = Bvh::new(Occluders::from_triangles(small));
+            let q = DVec3::new(0.3, 0.0, 0.1);
+            g.bench_function(BenchmarkId::new("nested_open_exact", n), |b| {
+                b.iter(|| black_box(exact::visibility(&bvh, &open, q).ok()))
+            });
+        }
     }
     g.finish();
 }
