@@ -20,6 +20,8 @@ fn default_frame(c: &mut Criterion) {
         "ssoc:lookups=1",
         "backprojected-ssoc",
         "backprojected-ssoc:walk",
+        "backprojected-ssoc:potential",
+        "backprojected-ssoc:walk,potential",
         "sism",
         "hard",
     ]
