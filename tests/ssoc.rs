@@ -16,15 +16,18 @@ use softshadow::scene::{builtin, Light, Scene, BUILTIN_NAMES};
 /// A disk light of radius 0.6 at height 4 facing down, a plate at height 1
 /// covering `x < 0` (its edge along z, at x = 0), a floor.
 fn edge_scene() -> Scene {
-    Scene::new(Light::disk(DVec3::new(0.0, 4.0, 0.0), -DVec3::Y, 0.6).unwrap())
-        .with_mesh(
-            "floor",
-            quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0).unwrap(),
-        )
-        .with_mesh(
-            "plate",
-            quad(DVec3::new(-1.5, 1.0, 0.0), DVec3::X * 1.5, -DVec3::Z * 3.0).unwrap(),
-        )
+    disk_over_floor(0.6).with_mesh(
+        "plate",
+        quad(DVec3::new(-1.5, 1.0, 0.0), DVec3::X * 1.5, -DVec3::Z * 3.0).unwrap(),
+    )
+}
+
+/// A disk light of radius `r` at height 4 facing down over a 6 × 6 floor.
+fn disk_over_floor(r: f64) -> Scene {
+    Scene::new(Light::disk(DVec3::new(0.0, 4.0, 0.0), -DVec3::Y, r).unwrap()).with_mesh(
+        "floor",
+        quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0).unwrap(),
+    )
 }
 
 fn floor_points(xs: impl Iterator<Item = f64>) -> Frame {
@@ -119,11 +122,7 @@ fn a_straight_edge_over_a_disk_light_is_the_model_s_exact_case() {
 /// to the exact answer than the first edge alone.
 #[test]
 fn more_lookups_bring_crossing_penumbrae_closer() {
-    let scene = Scene::new(Light::disk(DVec3::new(0.0, 4.0, 0.0), -DVec3::Y, 0.6).unwrap())
-        .with_mesh(
-            "floor",
-            quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0).unwrap(),
-        )
+    let scene = disk_over_floor(0.6)
         .with_mesh(
             "low",
             quad(DVec3::new(-1.5, 1.0, 0.0), DVec3::X * 1.5, -DVec3::Z * 3.0).unwrap(),
@@ -198,15 +197,10 @@ fn both_run_on_every_builtin_scene_they_handle_and_refuse_the_others() {
 #[test]
 fn potential_silhouettes_weighed_from_the_receiver_give_the_exact_outline() {
     use softshadow::scene::primitive::cuboid;
-    let scene = Scene::new(Light::disk(DVec3::new(0.0, 4.0, 0.0), -DVec3::Y, 0.3).unwrap())
-        .with_mesh(
-            "floor",
-            quad(DVec3::ZERO, DVec3::X * 3.0, -DVec3::Z * 3.0).unwrap(),
-        )
-        .with_mesh(
-            "box",
-            cuboid(DVec3::new(0.1, 1.5, -0.1), DVec3::new(0.3, 1.7, 0.1)).unwrap(),
-        );
+    let scene = disk_over_floor(0.3).with_mesh(
+        "box",
+        cuboid(DVec3::new(0.1, 1.5, -0.1), DVec3::new(0.3, 1.7, 0.1)).unwrap(),
+    );
     let stages = Stages::new(&scene);
     let at = |dx: f64, dz: f64| {
         let mut receivers = Vec::new();

@@ -466,11 +466,7 @@ impl MeshTopology {
         P: Copy + Into<DVec3>,
         X: Into<DVec3>,
     {
-        self.check_positions(positions)?;
-        let x: DVec3 = x.into();
-        if !x.is_finite() {
-            return Err(SilhouetteError::NonFinitePoint);
-        }
+        let x = self.check_viewpoint(positions, x)?;
         out.extend(
             (0..self.edges.len()).filter_map(|edge| self.silhouette_from(edge, positions, x)),
         );
@@ -502,11 +498,7 @@ impl MeshTopology {
         P: Copy + Into<DVec3>,
         X: Into<DVec3>,
     {
-        self.check_positions(positions)?;
-        let x: DVec3 = x.into();
-        if !x.is_finite() {
-            return Err(SilhouetteError::NonFinitePoint);
-        }
+        let x = self.check_viewpoint(positions, x)?;
         if edge as usize >= self.edges.len() {
             return Err(SilhouetteError::EdgeIndex {
                 edge,
@@ -514,6 +506,21 @@ impl MeshTopology {
             });
         }
         Ok(self.silhouette_from(edge as usize, positions, x))
+    }
+
+    /// The positions' count and the viewpoint checked; the viewpoint.
+    fn check_viewpoint<P>(
+        &self,
+        positions: &[P],
+        x: impl Into<DVec3>,
+    ) -> Result<DVec3, SilhouetteError> {
+        self.check_positions(positions)?;
+        let x: DVec3 = x.into();
+        if x.is_finite() {
+            Ok(x)
+        } else {
+            Err(SilhouetteError::NonFinitePoint)
+        }
     }
 
     /// The silhouette test of one edge from `x` (checked arguments).
