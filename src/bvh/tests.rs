@@ -198,3 +198,74 @@ fn nested_triangles_make_a_balanced_tree() {
         assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
     }
 }
+
+/// Random soups mixing runs of nested triangles (about shared centres, in
+/// shuffled order) with scattered ones: every triangle is in the tree
+/// once, every box contains its triangles, and rays answer as brute force
+/// does — whichever runs the build groups.
+#[test]
+fn soups_with_nested_runs_answer_as_brute_force() {
+    let mut rng = Rng::new(23);
+    for case in 0..20 {
+        let mut tris: Vec<[DVec3; 3]> = Vec::new();
+        for _ in 0..(1 + rng.below(4)) {
+            let c = DVec3::new(
+                rng.uniform(-2.0, 2.0),
+                rng.uniform(0.5, 1.5),
+                rng.uniform(-2.0, 2.0),
+            );
+            let shape = [0, 1, 2].map(|_| {
+                DVec3::new(
+                    rng.uniform(-1.0, 1.0),
+                    rng.uniform(-0.2, 0.2),
+                    rng.uniform(-1.0, 1.0),
+                )
+            });
+            let mean = (shape[0] + shape[1] + shape[2]) / 3.0;
+            let count = 10 + rng.below(60) as usize;
+            for _ in 0..count {
+                let s = rng.uniform(0.05, 1.0);
+                tris.push(shape.map(|v| c + (v - mean) * s));
+            }
+        }
+        for _ in 0..rng.below(200) {
+            let c = DVec3::new(
+                rng.uniform(-3.0, 3.0),
+                rng.uniform(0.2, 2.0),
+                rng.uniform(-3.0, 3.0),
+            );
+            tris.push([0, 1, 2].map(|_| {
+                c + DVec3::new(
+                    rng.uniform(-0.2, 0.2),
+                    rng.uniform(-0.2, 0.2),
+                    rng.uniform(-0.2, 0.2),
+                )
+            }));
+        }
+        // Shuffle, so that runs are not contiguous in the input.
+        for i in (1..tris.len()).rev() {
+            tris.swap(i, rng.below(i as u64 + 1) as usize);
+        }
+        let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
+        let mut ids = bvh.ids.clone();
+        ids.sort_unstable();
+        assert_eq!(
+            ids,
+            (0..tris.len() as u32).collect::<Vec<_>>(),
+            "case {case}"
+        );
+        check_subtree(&bvh, 0, 0);
+        for _ in 0..100 {
+            let p = DVec3::new(rng.uniform(-4.0, 4.0), 0.0, rng.uniform(-4.0, 4.0));
+            let x = DVec3::new(rng.uniform(-1.0, 1.0), 3.0, rng.uniform(-1.0, 1.0));
+            let brute = tris
+                .iter()
+                .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
+            assert_eq!(
+                bvh.segment_unoccluded(p, x),
+                !brute,
+                "case {case}: {p:?} → {x:?}"
+            );
+        }
+    }
+}
