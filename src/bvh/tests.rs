@@ -181,22 +181,10 @@ fn nested_triangles_make_a_balanced_tree() {
         })
         .collect();
     let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
-    let mut ids = bvh.ids.clone();
-    ids.sort_unstable();
-    assert_eq!(ids, (0..n as u32).collect::<Vec<_>>());
-    check_subtree(&bvh, 0, 0);
     // A chain would need a stack of about n·3/4 entries; halving 4096
     // boxes needs 6 levels of 4-wide nodes under PLOC's root.
     assert!(bvh.stack_need < 64, "stack {}", bvh.stack_need);
-    let mut rng = Rng::new(5);
-    for _ in 0..200 {
-        let p = DVec3::new(rng.uniform(-2.5, 2.5), 0.0, rng.uniform(-2.5, 2.5));
-        let x = DVec3::new(rng.uniform(-0.5, 0.5), 3.0, rng.uniform(-0.5, 0.5));
-        let brute = tris
-            .iter()
-            .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
-        assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
-    }
+    holds_each_once_and_agrees(&bvh, &tris, &mut Rng::new(5), 2.5, 0.5);
 }
 
 /// Random soups mixing runs of nested triangles (about shared centres, in
@@ -206,7 +194,7 @@ fn nested_triangles_make_a_balanced_tree() {
 #[test]
 fn soups_with_nested_runs_answer_as_brute_force() {
     let mut rng = Rng::new(23);
-    for case in 0..20 {
+    for _ in 0..20 {
         let mut tris: Vec<[DVec3; 3]> = Vec::new();
         for _ in 0..(1 + rng.below(4)) {
             let c = DVec3::new(
@@ -247,25 +235,30 @@ fn soups_with_nested_runs_answer_as_brute_force() {
             tris.swap(i, rng.below(i as u64 + 1) as usize);
         }
         let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
-        let mut ids = bvh.ids.clone();
-        ids.sort_unstable();
-        assert_eq!(
-            ids,
-            (0..tris.len() as u32).collect::<Vec<_>>(),
-            "case {case}"
-        );
-        check_subtree(&bvh, 0, 0);
-        for _ in 0..100 {
-            let p = DVec3::new(rng.uniform(-4.0, 4.0), 0.0, rng.uniform(-4.0, 4.0));
-            let x = DVec3::new(rng.uniform(-1.0, 1.0), 3.0, rng.uniform(-1.0, 1.0));
-            let brute = tris
-                .iter()
-                .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
-            assert_eq!(
-                bvh.segment_unoccluded(p, x),
-                !brute,
-                "case {case}: {p:?} → {x:?}"
-            );
-        }
+        holds_each_once_and_agrees(&bvh, &tris, &mut rng, 4.0, 1.0);
+    }
+}
+
+/// `bvh` holds every triangle of `tris` once, its boxes contain their
+/// triangles, and 100 rays from the floor (`|x|, |z| ≤ floor`) to a light
+/// square (`≤ light`) at height 3 answer as the triangles themselves do.
+fn holds_each_once_and_agrees(
+    bvh: &Bvh,
+    tris: &[[DVec3; 3]],
+    rng: &mut Rng,
+    floor: f64,
+    light: f64,
+) {
+    let mut ids = bvh.ids.clone();
+    ids.sort_unstable();
+    assert_eq!(ids, (0..tris.len() as u32).collect::<Vec<_>>());
+    check_subtree(bvh, 0, 0);
+    for _ in 0..100 {
+        let p = DVec3::new(rng.uniform(-floor, floor), 0.0, rng.uniform(-floor, floor));
+        let x = DVec3::new(rng.uniform(-light, light), 3.0, rng.uniform(-light, light));
+        let brute = tris
+            .iter()
+            .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
+        assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
     }
 }
