@@ -98,6 +98,7 @@ const O3D_ERR_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
 /// assert_eq!(orient2d(p, b, c), Sign::Positive);
 /// ```
 #[must_use]
+#[inline]
 pub fn orient2d(a: DVec2, b: DVec2, c: DVec2) -> Sign {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return Sign::Zero;

@@ -109,6 +109,7 @@ pub(crate) fn nearest_on(a: DVec2, b: DVec2, p: DVec2) -> (DVec2, f64) {
 /// by the edge's direction so that the two directions of an edge disagree:
 /// a point on an edge shared by two triangles is inside exactly one.
 #[must_use]
+#[inline]
 pub(crate) fn left(a: DVec2, b: DVec2, s: DVec2) -> bool {
     match orient2d(a, b, s) {
         Sign::Positive => true,
