@@ -81,10 +81,13 @@ impl Groups {
                 end += 1;
             }
             if end - start >= MIN_RUN {
+                // By area, smallest first; equal areas (a stack of
+                // parallel layers) in Morton order, so that the halves are
+                // the stack's halves.
                 let mut members: Vec<u32> = sorted[start..end].iter().map(|&(_, i)| i).collect();
-                members.sort_unstable_by(|&a, &b| {
+                members.sort_by(|&a, &b| {
                     let area = |i: u32| boxes[i as usize].half_area();
-                    area(a).total_cmp(&area(b)).then(a.cmp(&b))
+                    area(a).total_cmp(&area(b))
                 });
                 for &m in &members {
                     group_of[m as usize] = runs.len() as u32;
@@ -135,11 +138,23 @@ impl Groups {
     }
 }
 
-/// One of `a`, `b` contains the other (closed boxes).
+/// One of `a`, `b` contains the other (closed boxes), or nearly: their
+/// union's area exceeds the larger one's by at most [`NEARLY`] of it
+/// (near-coincident boxes, and the flat boxes of parallel layers stacked
+/// closely, on which PLOC chains as on nested ones).
 fn nested(a: &Aabb, b: &Aabb) -> bool {
     let within = |x: &Aabb, y: &Aabb| x.min.cmpge(y.min).all() && x.max.cmple(y.max).all();
-    within(a, b) || within(b, a)
+    if within(a, b) || within(b, a) {
+        return true;
+    }
+    let larger = a.half_area().max(b.half_area());
+    a.union(b).half_area() - larger <= NEARLY * larger
 }
+
+/// How much a run's next box may grow the larger one's area and still be
+/// taken as nested with it (ours: ordinary meshes' neighbours in Morton
+/// order grow it by about their own size).
+const NEARLY: f32 = 1e-3;
 
 /// The Morton code of a cell with 21-bit coordinates.
 fn morton(x: u32, y: u32, z: u32) -> u64 {
@@ -201,6 +216,35 @@ mod tests {
         // The disjoint boxes stand for themselves, in input order.
         assert!(g.ranges[1..].iter().all(|&(_, c)| c == 1));
         assert_eq!(g.order[40..], (40..50).collect::<Vec<u32>>()[..]);
+    }
+
+    #[test]
+    fn stacked_flat_layers_are_one_group_in_stack_order() {
+        // 64 flat boxes 1e-4 apart in y, shuffled, and 10 apart.
+        let n = 64;
+        let layer = |k: usize| {
+            let y = 1.0 + 1e-4 * k as f32;
+            Aabb::new(Vec3A::new(-1.0, y, -1.0), Vec3A::new(1.0, y, 1.0))
+        };
+        let mut boxes: Vec<Aabb> = (0..n).map(|k| layer(k * 37 % n)).collect();
+        boxes.extend((0..10).map(|k| {
+            let c = Vec3A::new(100.0 + 3.0 * k as f32, 0.0, 0.0);
+            Aabb::new(c - 0.5, c + 0.5)
+        }));
+        let g = Groups::find(&boxes).expect("a group");
+        assert_eq!(g.ranges.len(), 11);
+        let (first, count) = g.ranges[0];
+        assert_eq!(count as usize, n);
+        // Equal areas: bottom to top, so that halves are the stack's.
+        let members = &g.order[first as usize..(first + count) as usize];
+        assert!(members
+            .windows(2)
+            .all(|w| boxes[w[0] as usize].min.y < boxes[w[1] as usize].min.y));
+        // Boxes merely near each other are not nested.
+        assert!(!nested(
+            &layer(0),
+            &Aabb::new(Vec3A::new(-1.0, 1.0, -0.9), Vec3A::new(1.0, 1.0, 1.1))
+        ));
     }
 
     #[test]
