@@ -106,8 +106,10 @@ fn growth(c: &mut Criterion) {
 /// largest of which hides the whole light (the exact reference stops at the
 /// first image that covers it; the BVH indexes the nested run as one box
 /// for PLOC and splits it in halves): the BVH builds and one exact answer;
-/// and nested triangles none of which covers a larger light, whose images
-/// cross one side of the clip square (swept, not searched).
+/// copies shifted by 1e-9 and layers stacked 1e-4 apart (near-coincident
+/// and nearly nested boxes); and nested triangles none of which covers a
+/// larger light, whose images cross one side of the clip square (swept,
+/// not searched).
 fn degenerate(c: &mut Criterion) {
     let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).expect("a valid light");
     let t = [
@@ -138,6 +140,32 @@ fn degenerate(c: &mut Criterion) {
         g.bench_function(BenchmarkId::new("nested_exact", n), |b| {
             b.iter(|| black_box(exact::visibility(&bvh, &light, p).ok()))
         });
+        // Copies shifted by 1e-9 a copy (near-coincident: every image's
+        // edges nearly on every other's) and layers stacked 1e-4 apart
+        // (flat boxes PLOC chained on; their images are homothets about a
+        // point outside them, which no one image covers).
+        let shifted: Vec<[DVec3; 3]> = (0..n)
+            .map(|k| t.map(|v| v + DVec3::new(1e-9 * k as f64, 0.0, 0.0)))
+            .collect();
+        let stacked: Vec<[DVec3; 3]> = (0..n)
+            .map(|k| t.map(|v| v + DVec3::new(0.0, 1e-4 * k as f64, 0.0)))
+            .collect();
+        g.bench_function(BenchmarkId::new("shifted_build", n), |b| {
+            b.iter(|| black_box(Bvh::new(Occluders::from_triangles(shifted.clone()))))
+        });
+        g.bench_function(BenchmarkId::new("stacked_build", n), |b| {
+            b.iter(|| black_box(Bvh::new(Occluders::from_triangles(stacked.clone()))))
+        });
+        let bvh = Bvh::new(Occluders::from_triangles(shifted));
+        g.bench_function(BenchmarkId::new("shifted_exact", n), |b| {
+            b.iter(|| black_box(exact::visibility(&bvh, &light, p).ok()))
+        });
+        if n <= 1_000 {
+            let bvh = Bvh::new(Occluders::from_triangles(stacked));
+            g.bench_function(BenchmarkId::new("stacked_exact", n), |b| {
+                b.iter(|| black_box(exact::visibility(&bvh, &light, p).ok()))
+            });
+        }
         if n <= 10_000 {
             // Smaller nested triangles under a larger light: none covers it,
             // and their images all cross one side of the clip square.

@@ -11,11 +11,15 @@
 //!
 //! So before PLOC, the boxes are put in Morton order of their centres and
 //! every run of at least [`MIN_RUN`] consecutive boxes each of which
-//! contains, or lies in, the one before it becomes a *group*: PLOC sees the
-//! group as one box (their union), and the collapse into our 4-wide tree
-//! splits the group's members — sorted by area, smallest first — in
-//! halves, a balanced subtree whose smaller half has the smaller box. Every
-//! triangle is still in the tree exactly once; only the shape changes.
+//! contains, or lies in, the one before it — or nearly: their union is
+//! within [`NEARLY`] of the larger one's area, as for parallel layers
+//! stacked closely, on which PLOC chains the same way (10⁴ layers 10⁻⁴
+//! apart: 2.9 s) — becomes a *group*: PLOC sees the group as one box
+//! (their union), and the collapse into our 4-wide tree splits the group's
+//! members — sorted by area, smallest first, equal areas in Morton order —
+//! in halves, a balanced subtree whose smaller half has the smaller box.
+//! Every triangle is still in the tree exactly once; only the shape
+//! changes.
 //! Where no run is that long (every built-in scene, and ordinary meshes,
 //! where two triangles of one quad share a box but a third does not), the
 //! boxes PLOC sees are the input's, in the input's order: the same tree as

@@ -117,8 +117,12 @@ impl Measure {
 /// The area of `∪ triangles ∩ measure`, by Green's theorem over the
 /// union's boundary (see the [module documentation](super)). `half` bounds
 /// every coordinate (the clip square's half-width): the triangles are
-/// binned in a uniform grid over it so that an edge is tested only against
-/// triangles sharing a cell with its bounds.
+/// binned in grids over it (a fine grid, and coarse levels for the large
+/// triangles) so that an edge is tested only against triangles sharing a
+/// cell with its bounds. The order of the search decides only how soon an
+/// edge is found covered whole; an edge that is not collects the span of
+/// every triangle it meets, the same set in any order, so the area does
+/// not depend on it.
 ///
 /// An edge lying on a side of the clip square can be covered only by the
 /// edges of other triangles on that side (every triangle lies in the closed
