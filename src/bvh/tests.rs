@@ -159,6 +159,13 @@ fn quantisation_is_tight_on_its_grid() {
     }
 }
 
+/// A flat triangle at height 1 (the degenerate tests' shape).
+const FLAT: [DVec3; 3] = [
+    DVec3::new(-1.0, 1.0, -1.0),
+    DVec3::new(1.0, 1.0, -1.0),
+    DVec3::new(0.0, 1.0, 1.0),
+];
+
 /// Nested triangles about one centre (the case PLOC chains, one pair per
 /// pass): the tree holds each triangle once, its boxes contain their
 /// triangles, it is balanced (`nested.rs` gives the run to PLOC as one box
@@ -167,11 +174,7 @@ fn quantisation_is_tight_on_its_grid() {
 #[test]
 fn nested_triangles_make_a_balanced_tree() {
     let n = 4096;
-    let t = [
-        DVec3::new(-1.0, 1.0, -1.0),
-        DVec3::new(1.0, 1.0, -1.0),
-        DVec3::new(0.0, 1.0, 1.0),
-    ];
+    let t = FLAT;
     let centre = (t[0] + t[1] + t[2]) / 3.0;
     // Shuffled sizes, so that the input order is not the nesting order.
     let tris: Vec<[DVec3; 3]> = (0..n)
@@ -189,17 +192,13 @@ fn nested_triangles_make_a_balanced_tree() {
 
 /// Parallel layers stacked closely (one triangle lifted by 10⁻⁴ a layer,
 /// shuffled), which `nested.rs` takes as one run (PLOC chained on them as
-/// on nested ones: 10⁴ layers took 2.1 s): the tree holds each once, its
+/// on nested ones: 10⁴ layers took 2.9 s): the tree holds each once, its
 /// boxes contain their triangles, it is shallow, and rays answer as the
 /// triangles do.
 #[test]
 fn stacked_layers_make_a_balanced_tree() {
     let n = 4096;
-    let t = [
-        DVec3::new(-1.0, 1.0, -1.0),
-        DVec3::new(1.0, 1.0, -1.0),
-        DVec3::new(0.0, 1.0, 1.0),
-    ];
+    let t = FLAT;
     let tris: Vec<[DVec3; 3]> = (0..n)
         .map(|k| {
             let y = 1e-4 * ((k * 1237) % n) as f64;
