@@ -19,7 +19,7 @@ echo "== machine: $(grep -m1 'model name' /proc/cpuinfo | cut -d: -f2 | sed 's/^
 
 # run_both EXAMPLE FEATURES PYSCRIPT OUTDIR [EXAMPLE ARGS...]: builds and runs
 # our example (output in $LOG/ours.txt), then the Embree half on the same
-# corpus (2 worker processes, $REPS repetitions; output in
+# corpus (with the words of EMBREE_ARGS after its own) (2 worker processes, $REPS repetitions; output in
 # $LOG/embree.txt), then prints the table's heading lines.
 run_both() {
     local example=$1 features=$2 script=$3 outdir=$4
@@ -28,8 +28,10 @@ run_both() {
     cargo build --quiet --release --example "$example" --features "$features"
     cargo run --quiet --release --example "$example" --features "$features" -- "$outdir" "$@" |
         tee "$LOG/ours.txt"
-    echo "== Embree: $VENV/bin/python $script $outdir --reps $REPS --threads 2"
-    "$VENV/bin/python" "$script" "$outdir" --reps "$REPS" --threads 2 | tee "$LOG/embree.txt"
+    # shellcheck disable=SC2086  # EMBREE_ARGS: further words for the script
+    echo "== Embree: $VENV/bin/python $script $outdir --reps $REPS --threads 2 ${EMBREE_ARGS:-}"
+    "$VENV/bin/python" "$script" "$outdir" --reps "$REPS" --threads 2 ${EMBREE_ARGS:-} |
+        tee "$LOG/embree.txt"
     echo "== load after: $(cut -d' ' -f1-3 /proc/loadavg)"
     echo
     echo "Embree $(awk '/^EMBREE_VERSION/ {print $2}' "$LOG/embree.txt"); 2 threads (ours) / 2 processes (Embree);"

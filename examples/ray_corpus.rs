@@ -62,13 +62,12 @@ use rayon::prelude::*;
 use softshadow::arbitrary::mesh::icosphere;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
-use std::fs::{self, File};
-use std::io::{BufWriter, Write};
-use std::path::{Path, PathBuf};
+use std::fs;
+use std::path::PathBuf;
 
 #[path = "support/corpus.rs"]
 mod corpus;
-use corpus::{time_runs, to_f32, write_label_and_points, REPETITIONS, THREADS, WARMUPS};
+use corpus::{time_runs, to_f32, write_rays, REPETITIONS, THREADS, WARMUPS};
 use std::time::Instant;
 
 const SOUP_TRIANGLES: usize = 100_000;
@@ -81,8 +80,6 @@ const FLOOR_Z: f64 = -0.5;
 const LIGHT_HALF: f64 = 0.5;
 const LIGHT_Z: f64 = 1.5;
 const CHUNK: usize = 4096;
-const MAGIC: &[u8; 8] = b"SSRAYC1\0";
-const VERSION: u32 = 1;
 
 fn soup(rng: &mut Rng) -> Vec<[DVec3; 3]> {
     (0..SOUP_TRIANGLES)
@@ -162,25 +159,6 @@ fn rays(rng: &mut Rng, count: usize) -> (Vec<DVec3>, Vec<DVec3>) {
     (origins, ends)
 }
 
-fn write_corpus(
-    path: &Path,
-    name: &str,
-    seed: u64,
-    triangles: &[[DVec3; 3]],
-    origins: &[DVec3],
-    ends: &[DVec3],
-) -> std::io::Result<()> {
-    let mut w = BufWriter::new(File::create(path)?);
-    w.write_all(MAGIC)?;
-    w.write_all(&VERSION.to_le_bytes())?;
-    w.write_all(&0u32.to_le_bytes())?;
-    w.write_all(&seed.to_le_bytes())?;
-    w.write_all(&(triangles.len() as u64).to_le_bytes())?;
-    w.write_all(&(origins.len() as u64).to_le_bytes())?;
-    w.write_all(&[0u8; 8])?;
-    write_label_and_points(&mut w, name, triangles, origins.iter().chain(ends))
-}
-
 fn main() {
     let mut args = std::env::args().skip(1);
     let outdir = PathBuf::from(args.next().unwrap_or_else(|| "target/ray_corpus".into()));
@@ -203,7 +181,7 @@ fn main() {
         };
         let (origins, ends) = rays(&mut rng, count);
         let corpus = outdir.join(format!("{name}.rays"));
-        write_corpus(&corpus, name, seed, &triangles, &origins, &ends).expect("write corpus");
+        write_rays(&corpus, name, seed, &triangles, &origins, &ends).expect("write corpus");
         println!(
             "{name}: {} triangles, {} rays -> {}",
             triangles.len(),

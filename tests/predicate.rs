@@ -108,6 +108,42 @@ proptest! {
     }
 
     #[test]
+    fn orient3d_on_and_near_axis_planes_agrees_with_shewchuk(seed in any::<u64>()) {
+        // Four points in a plane `x_k = h` (a receiver on a floor against
+        // the floor's triangles: the exact path's zero-column shortcut),
+        // or with one of them nudged off it by a few ulps, or with a
+        // repeated corner — differences exact or not.
+        let mut rng = Rng::new(seed);
+        let scale = rng.log_uniform(-30.0, 30.0);
+        let k = rng.below(3) as usize;
+        let h = if rng.chance(0.3) { 0.0 } else { rng.uniform(-2.0, 2.0) * scale };
+        let mut pts = [0, 1, 2, 3].map(|_| {
+            let mut v = point3(&mut rng, scale).to_array();
+            v[k] = h;
+            v
+        });
+        if rng.chance(0.5) {
+            let i = rng.below(4) as usize;
+            let ulps = 1 + rng.below(4);
+            // Off the plane by a few ulps of `h`, or by a tiny in-domain
+            // offset when `h = 0` (an ulp of 0 is subnormal: outside the
+            // predicates' exact domain).
+            pts[i][k] = if h == 0.0 {
+                rng.sign() * scale * 2f64.powi(-60 - ulps as i32)
+            } else {
+                rng.nudge(h, ulps)
+            };
+        }
+        if rng.chance(0.2) {
+            pts[3] = pts[rng.below(3) as usize];
+        }
+        let [a, b, c, d] = pts.map(DVec3::from_array);
+        let s = orient3d(a, b, c, d);
+        prop_assert_eq!(s, shewchuk3(a, b, c, d), "{:?} {:?} {:?} {:?}", a, b, c, d);
+        prop_assert_eq!(orient3d(a, c, b, d), s.flip());
+    }
+
+    #[test]
     fn total_on_any_bits(bits in proptest::collection::vec(any::<u64>(), 12)) {
         let f = |i: usize| f64::from_bits(bits[i]);
         let v2 = |i: usize| DVec2::new(f(i), f(i + 1));

@@ -1,5 +1,5 @@
-//! What the ray-corpus examples (`ray_corpus.rs`, `primary_corpus.rs`)
-//! share, included with `#[path]`: the rounding of the corpus to `f32`, and
+//! What the ray-corpus examples (`ray_corpus.rs`, `primary_corpus.rs`,
+//! `mc_corpus.rs`) share, included with `#[path]`: the rounding of the corpus to `f32`, and
 //! the timing — warm-up runs, then the median wall and CPU time of repeated
 //! runs on the same thread count, and the two report lines the comparison
 //! scripts read.
@@ -136,4 +136,26 @@ pub fn write_label_and_points<'a>(
         }
     }
     w.flush()
+}
+
+/// Writes an occlusion-ray corpus (the format in `ray_corpus.rs`): the
+/// header, the triangles, then the ray origins and the ray ends.
+#[allow(dead_code)] // primary_corpus.rs writes its own format
+pub fn write_rays(
+    path: &std::path::Path,
+    name: &str,
+    seed: u64,
+    triangles: &[[DVec3; 3]],
+    origins: &[DVec3],
+    ends: &[DVec3],
+) -> std::io::Result<()> {
+    let mut w = std::io::BufWriter::new(std::fs::File::create(path)?);
+    w.write_all(b"SSRAYC1\0")?;
+    w.write_all(&1u32.to_le_bytes())?;
+    w.write_all(&0u32.to_le_bytes())?;
+    w.write_all(&seed.to_le_bytes())?;
+    w.write_all(&(triangles.len() as u64).to_le_bytes())?;
+    w.write_all(&(origins.len() as u64).to_le_bytes())?;
+    w.write_all(&[0u8; 8])?;
+    write_label_and_points(&mut w, name, triangles, origins.iter().chain(ends))
 }

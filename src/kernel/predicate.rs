@@ -318,33 +318,72 @@ fn orient2d_expansion(a: DVec2, b: DVec2, c: DVec2) -> Expansion<16> {
     sum
 }
 
+/// The sign of [`orient3d`]'s determinant, exactly. Two shortcuts, each
+/// exact: an axis on which the three differences all vanish is a zero
+/// column, so the determinant is zero (four points in one axis-aligned
+/// plane: a receiver on a floor, tested against the floor's triangles by
+/// every ray it casts); and the zero parts of the exact differences add
+/// nothing, so their products are skipped (the differences of nearby
+/// coordinates are exact, their low parts zero: 6 products instead of 48).
+/// The sign of an exact sum does not depend on how it was accumulated.
 #[cold]
 fn orient3d_exact(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Sign {
-    orient3d_expansion(a, b, c, d).sign()
+    let (ad, bd, cd) = differences(a, b, c, d);
+    let zero = |r: &[[f64; 2]; 3], k: usize| r[k] == [0.0, 0.0];
+    if (0..3).any(|k| zero(&ad, k) && zero(&bd, k) && zero(&cd, k)) {
+        return Sign::Zero;
+    }
+    triple_products(&ad, &bd, &cd, true).sign()
+}
+
+/// The exact differences `a − d`, `b − d`, `c − d`, each coordinate a
+/// `(hi, lo)` pair.
+type Differences = ([[f64; 2]; 3], [[f64; 2]; 3], [[f64; 2]; 3]);
+
+fn differences(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Differences {
+    (
+        [diff(a.x, d.x), diff(a.y, d.y), diff(a.z, d.z)],
+        [diff(b.x, d.x), diff(b.y, d.y), diff(b.z, d.z)],
+        [diff(c.x, d.x), diff(c.y, d.y), diff(c.z, d.z)],
+    )
 }
 
 /// The determinant of [`orient3d`] as an exact expansion.
 fn orient3d_expansion(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> Expansion<192> {
-    let ad = [diff(a.x, d.x), diff(a.y, d.y), diff(a.z, d.z)];
-    let bd = [diff(b.x, d.x), diff(b.y, d.y), diff(b.z, d.z)];
-    let cd = [diff(c.x, d.x), diff(c.y, d.y), diff(c.z, d.z)];
+    let (ad, bd, cd) = differences(a, b, c, d);
+    triple_products(&ad, &bd, &cd, false)
+}
+
+/// The determinant of the exact differences as an expansion; with
+/// `skip_zeros` the zero parts' products are left out (the same exact
+/// value, accumulated differently: for its sign only, since the rounded
+/// sum of the components may then differ in its last bits).
+fn triple_products(
+    ad: &[[f64; 2]; 3],
+    bd: &[[f64; 2]; 3],
+    cd: &[[f64; 2]; 3],
+    skip_zeros: bool,
+) -> Expansion<192> {
     // det = Σ over the 6 permutations of sign · u_x · v_y · w_z, each factor a
     // 2-term difference: 6 · 8 triple products, 4 doubles each.
     // Rows of exact differences, each coordinate a (hi, lo) pair.
     type Row<'a> = &'a [[f64; 2]; 3];
     let terms: [(Row, Row, Row, bool); 6] = [
-        (&ad, &bd, &cd, false), // ad.z · bd.x · cd.y
-        (&ad, &cd, &bd, true),  // − ad.z · cd.x · bd.y
-        (&bd, &cd, &ad, false), // bd.z · cd.x · ad.y
-        (&bd, &ad, &cd, true),  // − bd.z · ad.x · cd.y
-        (&cd, &ad, &bd, false), // cd.z · ad.x · bd.y
-        (&cd, &bd, &ad, true),  // − cd.z · bd.x · ad.y
+        (ad, bd, cd, false), // ad.z · bd.x · cd.y
+        (ad, cd, bd, true),  // − ad.z · cd.x · bd.y
+        (bd, cd, ad, false), // bd.z · cd.x · ad.y
+        (bd, ad, cd, true),  // − bd.z · ad.x · cd.y
+        (cd, ad, bd, false), // cd.z · ad.x · bd.y
+        (cd, bd, ad, true),  // − cd.z · bd.x · ad.y
     ];
     let mut sum = Expansion::<192>::new();
     for (z_row, x_row, y_row, negate) in terms {
         for z in z_row[2] {
             for x in x_row[0] {
                 for y in y_row[1] {
+                    if skip_zeros && (z == 0.0 || x == 0.0 || y == 0.0) {
+                        continue;
+                    }
                     sum.add_product3(z, x, y, negate);
                 }
             }

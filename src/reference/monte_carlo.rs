@@ -171,13 +171,9 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Opti
             stderr: 0.0,
         };
     }
-    let samples = options.samples.max(MIN_SAMPLES);
-    let k = REPLICATES.min(samples);
-    let m = samples.div_ceil(k);
-    let mut rng = SplitMix64(receiver_key(options.seed, p));
+    let (k, m, replicates) = replicates(p, options);
     let mut means = [0.0f64; REPLICATES as usize];
-    for mean in means.iter_mut().take(k as usize) {
-        let replicate = Replicate::new(&mut rng);
+    for (mean, replicate) in means.iter_mut().zip(replicates) {
         let visible = (0..m)
             .filter(|&i| bvh.segment_unoccluded(p, emitter.point_at(replicate.point(i))))
             .count();
@@ -191,6 +187,39 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Opti
         visibility: v.clamp(0.0, 1.0),
         stderr: (ss / (kf - 1.0) / kf).sqrt(),
     }
+}
+
+/// The light points [`emitter_visibility`] tests for receiver `p`, in the
+/// order it tests them (replicate by replicate): the segments from `p` to
+/// these are its rays. For a point light, its one point. A sample count
+/// below [`MIN_SAMPLES`] is raised to it, as there. For tracing the same
+/// rays elsewhere (another ray tracer, a GPU) and comparing answers or
+/// speed ray for ray (`examples/mc_corpus.rs` writes them for Embree).
+pub fn sample_points<'a>(
+    emitter: &'a Emitter,
+    p: DVec3,
+    options: &Options,
+) -> impl Iterator<Item = DVec3> + 'a {
+    let (_, m, replicates) = replicates(p, options);
+    let area = !matches!(emitter, Emitter::Point(_));
+    let points = replicates
+        .filter(move |_| area)
+        .flat_map(move |replicate| (0..m).map(move |i| emitter.point_at(replicate.point(i))));
+    let point = match emitter {
+        Emitter::Point(x) => Some(x.position()),
+        _ => None,
+    };
+    point.into_iter().chain(points)
+}
+
+/// The replicate count `K`, the samples per replicate `m`, and the
+/// replicates of receiver `p` (see the module docs).
+fn replicates(p: DVec3, options: &Options) -> (u32, u32, impl Iterator<Item = Replicate>) {
+    let samples = options.samples.max(MIN_SAMPLES);
+    let k = REPLICATES.min(samples);
+    let m = samples.div_ceil(k);
+    let mut rng = SplitMix64(receiver_key(options.seed, p));
+    (k, m, (0..k).map(move |_| Replicate::new(&mut rng)))
 }
 
 /// [`visibility`] for every point, in parallel over receivers (rayon's
@@ -293,6 +322,49 @@ fn owen_scramble(x: u32, seed: u32) -> u32 {
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// The points `sample_points` lists are the rays the estimate casts:
+    /// counting the unoccluded ones, replicate by replicate, gives the
+    /// same estimate bit for bit.
+    #[test]
+    fn sample_points_are_the_estimates_rays() {
+        let light = crate::scene::Light::sphere(DVec3::new(0.2, 0.1, 3.0), 0.6).expect("light");
+        let tris = vec![
+            [
+                DVec3::new(-0.5, -0.5, 1.0),
+                DVec3::new(0.6, -0.4, 1.2),
+                DVec3::new(0.0, 0.7, 1.1),
+            ],
+            [
+                DVec3::new(0.3, 0.2, 2.0),
+                DVec3::new(0.9, 0.3, 2.1),
+                DVec3::new(0.5, 0.8, 1.9),
+            ],
+        ];
+        let bvh = Bvh::new(crate::bvh::Occluders::from_triangles(tris));
+        for (p, samples) in [
+            (DVec3::new(0.1, 0.0, 0.0), 4096),
+            (DVec3::new(-0.4, 0.3, 0.0), 100),
+        ] {
+            let options = Options::new(samples);
+            let emitter = light.emitter(p).expect("emitter");
+            let points: Vec<DVec3> = sample_points(&emitter, p, &options).collect();
+            let k = REPLICATES.min(samples) as usize;
+            let m = points.len() / k;
+            assert_eq!(m * k, points.len());
+            assert_eq!(m, samples.div_ceil(k as u32) as usize);
+            let means: Vec<f64> = points
+                .chunks(m)
+                .map(|c| {
+                    c.iter().filter(|&&x| bvh.segment_unoccluded(p, x)).count() as f64 / m as f64
+                })
+                .collect();
+            let v = means.iter().sum::<f64>() / k as f64;
+            let estimate = emitter_visibility(&bvh, &emitter, p, &options);
+            assert_eq!(v.clamp(0.0, 1.0).to_bits(), estimate.visibility.to_bits());
+            assert!(estimate.visibility > 0.0 && estimate.visibility < 1.0);
+        }
+    }
 
     #[test]
     fn first_points_form_a_net() {
