@@ -37,7 +37,6 @@
 //!   estimate included): the reference as users run it, per ray cast.
 
 use glam::DVec3;
-use rayon::prelude::*;
 use softshadow::bvh::{Bvh, Occluders};
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options};
@@ -47,11 +46,10 @@ use std::path::PathBuf;
 
 #[path = "support/corpus.rs"]
 mod corpus;
-use corpus::{time_runs, to_f32, write_rays, REPETITIONS, THREADS, WARMUPS};
+use corpus::{time_occlusion, time_runs, to_f32, write_rays, REPETITIONS, THREADS, WARMUPS};
 
 const NAME: &str = "mc-default";
 const GRID: usize = 64;
-const CHUNK: usize = 4096;
 
 fn main() {
     let mut args = std::env::args().skip(1);
@@ -112,23 +110,7 @@ fn main() {
         path.display()
     );
 
-    let segments: Vec<(DVec3, DVec3)> = origins.into_iter().zip(ends).collect();
-    let mut occluded = vec![0u8; count];
-    let timing = time_runs(WARMUPS, REPETITIONS, || {
-        pool.install(|| {
-            occluded
-                .par_chunks_mut(CHUNK)
-                .zip(segments.par_chunks(CHUNK))
-                .for_each(|(out, segs)| {
-                    for (o, &(p, x)) in out.iter_mut().zip(segs) {
-                        *o = u8::from(!bvh.segment_unoccluded(p, x));
-                    }
-                });
-        });
-    });
-    let hits = occluded.iter().filter(|&&o| o == 1).count();
-    fs::write(outdir.join(format!("{NAME}.ours.occluded")), &occluded).expect("write results");
-    timing.report(NAME, "occluded", count, hits, THREADS, triangles.len());
+    time_occlusion(&pool, &bvh, &origins, &ends, &outdir, NAME);
 
     let mut estimates = Vec::new();
     let timing = time_runs(WARMUPS, REPETITIONS, || {

@@ -58,7 +58,6 @@
 //! One line per scene starting with `RESULT` is meant for scripts.
 
 use glam::DVec3;
-use rayon::prelude::*;
 use softshadow::arbitrary::mesh::icosphere;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
@@ -67,7 +66,7 @@ use std::path::PathBuf;
 
 #[path = "support/corpus.rs"]
 mod corpus;
-use corpus::{time_runs, to_f32, write_rays, REPETITIONS, THREADS, WARMUPS};
+use corpus::{time_occlusion, to_f32, write_rays, THREADS};
 use std::time::Instant;
 
 const SOUP_TRIANGLES: usize = 100_000;
@@ -79,7 +78,6 @@ const FLOOR_HALF: f64 = 1.5;
 const FLOOR_Z: f64 = -0.5;
 const LIGHT_HALF: f64 = 0.5;
 const LIGHT_Z: f64 = 1.5;
-const CHUNK: usize = 4096;
 
 fn soup(rng: &mut Rng) -> Vec<[DVec3; 3]> {
     (0..SOUP_TRIANGLES)
@@ -199,23 +197,6 @@ fn main() {
             start.elapsed().as_secs_f64() * 1e3
         );
 
-        let segments: Vec<(DVec3, DVec3)> = origins.into_iter().zip(ends).collect();
-        let mut occluded = vec![0u8; count];
-        let timing = time_runs(WARMUPS, REPETITIONS, || {
-            pool.install(|| {
-                occluded
-                    .par_chunks_mut(CHUNK)
-                    .zip(segments.par_chunks(CHUNK))
-                    .for_each(|(out, segs)| {
-                        for (o, &(p, x)) in out.iter_mut().zip(segs) {
-                            *o = u8::from(!bvh.segment_unoccluded(p, x));
-                        }
-                    });
-            });
-        });
-        let hits = occluded.iter().filter(|&&o| o == 1).count();
-        fs::write(outdir.join(format!("{name}.ours.occluded")), &occluded).expect("write results");
-        let triangles = bvh.occluders().len();
-        timing.report(name, "occluded", count, hits, THREADS, triangles);
+        time_occlusion(&pool, &bvh, &origins, &ends, &outdir, name);
     }
 }

@@ -159,3 +159,38 @@ pub fn write_rays(
     w.write_all(&[0u8; 8])?;
     write_label_and_points(&mut w, name, triangles, origins.iter().chain(ends))
 }
+
+/// Times `Bvh::segment_unoccluded` over the segments `origins[i] → ends[i]`
+/// on `pool` (chunks of 4096), writes the answers to
+/// `outdir/<name>.ours.occluded` (one byte per ray, 1 where occluded) and
+/// prints the report lines.
+#[allow(dead_code)] // primary_corpus.rs times closest hits
+pub fn time_occlusion(
+    pool: &rayon::ThreadPool,
+    bvh: &softshadow::bvh::Bvh,
+    origins: &[DVec3],
+    ends: &[DVec3],
+    outdir: &std::path::Path,
+    name: &str,
+) {
+    use rayon::prelude::*;
+    const CHUNK: usize = 4096;
+    let segments: Vec<(DVec3, DVec3)> = origins.iter().copied().zip(ends.iter().copied()).collect();
+    let mut occluded = vec![0u8; segments.len()];
+    let timing = time_runs(WARMUPS, REPETITIONS, || {
+        pool.install(|| {
+            occluded
+                .par_chunks_mut(CHUNK)
+                .zip(segments.par_chunks(CHUNK))
+                .for_each(|(out, segs)| {
+                    for (o, &(p, x)) in out.iter_mut().zip(segs) {
+                        *o = u8::from(!bvh.segment_unoccluded(p, x));
+                    }
+                });
+        });
+    });
+    let hits = occluded.iter().filter(|&&o| o == 1).count();
+    std::fs::write(outdir.join(format!("{name}.ours.occluded")), &occluded).expect("write results");
+    let triangles = bvh.occluders().len();
+    timing.report(name, "occluded", segments.len(), hits, THREADS, triangles);
+}
