@@ -411,9 +411,9 @@ impl Grid {
     const MAX_SIDE: usize = 64;
 
     /// A triangle whose bounds span more than this many fine cells along
-    /// an axis goes to a coarse level (ours: measured on the built-in
-    /// scenes, where few triangles are that large, and on nested and
-    /// near-coincident images, where most are).
+    /// an axis goes to a coarse level (ours: an ordinary image stays in the
+    /// fine grid, as before; the nested and near-coincident images that
+    /// made building it quadratic, each many fine cells wide, go up).
     const LARGE: f64 = 4.0;
 
     fn build(&mut self, tris: &[Tri], half: f64) {
@@ -727,8 +727,7 @@ mod tests {
 
     /// The grid's search lists every triangle whose bounds overlap the
     /// query box (brute force), with small and large triangles mixed so
-    /// that the coarse levels are used, and none twice from one level's
-    /// cell (a triangle is listed once per cell).
+    /// that the coarse levels are used.
     #[test]
     fn the_grid_finds_every_overlapping_triangle() {
         let mut rng = Rng::new(31);
