@@ -31,10 +31,13 @@ fn sector(eps: f64, alpha: f64, beta: f64) -> [DVec3; 3] {
 /// covers every direction whose azimuth lies between α and β and whose
 /// elevation exceeds `atan(eps / 10 cos((β−α)/2))`: on a light plane at
 /// height 4 its image is the sector of angle `β − α` about the point above
-/// the receiver, reaching `4 · 10 cos(…) / eps` far — past any light here.
+/// the receiver, reaching `4 · 10 cos(…) / eps` far.
 /// So a disk (or sphere) light centred above the receiver loses exactly
-/// `(β − α) / 2π` of its area, whatever `eps`. With `eps < 0` the triangle
-/// lies below the receiver and hides nothing.
+/// `(β − α) / 2π` of its area, whatever `eps`, as long as that reach
+/// exceeds the light's radius (for a sector angle near π and a corner high
+/// enough, `cos(…)` is small and the image is a thin triangle across the
+/// light instead: no longer the sector). With `eps < 0` the triangle lies
+/// below the receiver and hides nothing.
 #[test]
 fn contact_closed_form_at_a_corner_1e_12_above_the_receiver() {
     let theta = 0.115 * 2.0 * PI;
@@ -63,6 +66,11 @@ proptest! {
         radius in 0.05f64..3.0,
     ) {
         let eps = 10f64.powf(exponent);
+        // The closed form's premise: the image reaches past the light (by
+        // a factor of 2; a sphere's facing disk is no wider than its
+        // radius). Fails only for θ within about 10⁻³ of π at the highest
+        // corners.
+        prop_assume!(40.0 * (theta / 2.0).cos() / eps > 2.0 * radius);
         let above = [sector(eps, alpha, alpha + theta)];
         let below = [sector(-eps, alpha, alpha + theta)];
         let center = DVec3::new(0.0, 0.0, 4.0);
