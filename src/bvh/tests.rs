@@ -173,21 +173,23 @@ const FLAT: [DVec3; 3] = [
 /// triangles themselves do.
 #[test]
 fn nested_triangles_make_a_balanced_tree() {
-    let n = 4096;
-    let t = FLAT;
-    let centre = (t[0] + t[1] + t[2]) / 3.0;
+    let centre = (FLAT[0] + FLAT[1] + FLAT[2]) / 3.0;
     // Shuffled sizes, so that the input order is not the nesting order.
+    shallow_and_agrees(5, |s| FLAT.map(|v| centre + (v - centre) * (1.0 + s)));
+}
+
+/// 4096 copies of [`FLAT`] changed by `change(s)`, `s` the copy's place
+/// in `[0, 1)`, shuffled: the tree is shallow — a chain would need a stack
+/// of about n·3/4 entries; halving 4096 boxes needs 6 levels of 4-wide
+/// nodes under PLOC's root — and holds each triangle once and agrees.
+fn shallow_and_agrees(seed: u64, change: impl Fn(f64) -> [DVec3; 3]) {
+    let n = 4096;
     let tris: Vec<[DVec3; 3]> = (0..n)
-        .map(|k| {
-            let s = 1.0 + ((k * 1237) % n) as f64 / n as f64;
-            t.map(|v| centre + (v - centre) * s)
-        })
+        .map(|k| change(((k * 1237) % n) as f64 / n as f64))
         .collect();
     let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
-    // A chain would need a stack of about n·3/4 entries; halving 4096
-    // boxes needs 6 levels of 4-wide nodes under PLOC's root.
     assert!(bvh.stack_need < 64, "stack {}", bvh.stack_need);
-    holds_each_once_and_agrees(&bvh, &tris, &mut Rng::new(5), 2.5, 0.5);
+    holds_each_once_and_agrees(&bvh, &tris, &mut Rng::new(seed), 2.5, 0.5);
 }
 
 /// Parallel layers stacked closely (one triangle lifted by 10⁻⁴ a layer,
@@ -197,17 +199,8 @@ fn nested_triangles_make_a_balanced_tree() {
 /// triangles do.
 #[test]
 fn stacked_layers_make_a_balanced_tree() {
-    let n = 4096;
-    let t = FLAT;
-    let tris: Vec<[DVec3; 3]> = (0..n)
-        .map(|k| {
-            let y = 1e-4 * ((k * 1237) % n) as f64;
-            t.map(|v| v + DVec3::new(0.0, y, 0.0))
-        })
-        .collect();
-    let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
-    assert!(bvh.stack_need < 64, "stack {}", bvh.stack_need);
-    holds_each_once_and_agrees(&bvh, &tris, &mut Rng::new(9), 2.5, 0.5);
+    // 1e-4 apart: 4096 layers over 0.4096.
+    shallow_and_agrees(9, |s| FLAT.map(|v| v + DVec3::new(0.0, 0.4096 * s, 0.0)));
 }
 
 /// Random soups mixing runs of nested triangles (about shared centres, in

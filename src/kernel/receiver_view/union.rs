@@ -286,6 +286,8 @@ struct SideSet {
     intervals: std::collections::BTreeMap<u64, (f64, f64)>,
     /// Scratch for the uncovered pieces of one edge.
     pieces: Vec<(f64, f64)>,
+    /// Scratch for the keys of the intervals one edge meets.
+    met: Vec<u64>,
 }
 
 /// An order-preserving key of a finite `f64`.
@@ -325,14 +327,12 @@ impl SideSet {
             .filter(|(_, &(_, e))| e >= lo)
             .map(|(&k, _)| k);
         let from = first.unwrap_or_else(|| key(lo));
-        let met: Vec<u64> = self
-            .intervals
-            .range(from..=key(hi))
-            .map(|(&k, _)| k)
-            .collect();
+        self.met.clear();
+        self.met
+            .extend(self.intervals.range(from..=key(hi)).map(|(&k, _)| k));
         self.pieces.clear();
         let (mut t, mut new_lo, mut new_hi) = (lo, lo, hi);
-        for k in &met {
+        for k in &self.met {
             let (s, e) = self.intervals.remove(k).expect("listed");
             if s > t {
                 self.pieces.push((t, s));
@@ -388,9 +388,9 @@ struct Grid {
     coarse: Vec<Level>,
     /// The coarse levels that hold a triangle, coarsest first.
     occupied: Vec<usize>,
-    /// The coarse levels' triangles: a key (decreasing area of the bounds),
-    /// the index and the level.
-    large: Vec<(u64, u32, u8)>,
+    /// The coarse levels' triangles: the level, a key (decreasing area of
+    /// the bounds) and the index; sorted, each level's a run, larger first.
+    large: Vec<(u8, u64, u32)>,
     /// Where each cell's next item goes, while filling a level.
     fill: Vec<u32>,
 }
@@ -439,7 +439,7 @@ impl Grid {
             match large(t) {
                 Some(k) => {
                     let d = t.hi - t.lo;
-                    self.large.push((!(d.x * d.y).to_bits(), i, k));
+                    self.large.push((k, !(d.x * d.y).to_bits(), i));
                 }
                 None => self.fine.count(t, half),
             }
@@ -458,18 +458,15 @@ impl Grid {
         if self.coarse.len() < levels {
             self.coarse.resize_with(levels, Level::default);
         }
-        for k in 0..levels {
-            if !self.large.iter().any(|e| e.2 as usize == k) {
-                continue;
-            }
+        for run in self.large.chunk_by(|a, b| a.0 == b.0) {
+            let k = usize::from(run[0].0);
             let level = &mut self.coarse[k];
             level.reset(1 << k, half);
-            let mine = self.large.iter().filter(|e| e.2 as usize == k);
-            for &(_, i, _) in mine.clone() {
+            for &(_, _, i) in run {
                 level.count(&tris[i as usize], half);
             }
             level.prefix(&mut self.fill);
-            for &(_, i, _) in mine {
+            for &(_, _, i) in run {
                 level.put(&tris[i as usize], i, half, &mut self.fill);
             }
             self.occupied.push(k);
