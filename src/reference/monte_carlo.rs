@@ -42,6 +42,8 @@
 //! A segment light uses only `s.x`: a scrambled van der Corput sequence,
 //! stratified in 1D. A point light casts one ray: `V ∈ {0, 1}`, `stderr = 0`.
 
+mod binned;
+
 use crate::bvh::Bvh;
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::{DVec2, DVec3};
@@ -173,12 +175,19 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Opti
     }
     let (k, m, replicates) = replicates(p, options);
     let mut means = [0.0f64; REPLICATES as usize];
-    for (mean, replicate) in means.iter_mut().zip(replicates) {
-        let visible = (0..m)
-            .filter(|&i| bvh.segment_unoccluded(p, emitter.point_at(replicate.point(i))))
-            .count();
-        *mean = visible as f64 / f64::from(m);
-    }
+    let samples = k * m;
+    BINNED.with_borrow_mut(|binned| {
+        let decided = samples >= BINNED_FROM && binned.build(bvh, emitter, p, grid_cells(samples));
+        if !decided {
+            binned.clear();
+        }
+        for (mean, replicate) in means.iter_mut().zip(replicates) {
+            let visible = binned.count_unoccluded(&replicate, m, |s| {
+                bvh.segment_unoccluded(p, emitter.point_at(s))
+            });
+            *mean = f64::from(visible) / f64::from(m);
+        }
+    });
     let means = &means[..k as usize];
     let kf = f64::from(k);
     let v = means.iter().sum::<f64>() / kf;
@@ -237,6 +246,22 @@ pub fn visibility_many(
         .collect()
 }
 
+/// The fewest samples per receiver decided on the light's plane (module
+/// [`binned`]); fewer cast every ray, as the plane's set-up costs about as
+/// much as this many rays.
+const BINNED_FROM: u32 = 256;
+
+/// Cells per axis of the light's grid for `samples` samples: about four
+/// samples per cell, 4 to 64 per axis.
+fn grid_cells(samples: u32) -> usize {
+    ((f64::from(samples).sqrt() / 2.0) as usize).clamp(4, 64)
+}
+
+std::thread_local! {
+    /// Each thread's decision structure, reused from receiver to receiver.
+    static BINNED: std::cell::RefCell<binned::Binned> = std::cell::RefCell::default();
+}
+
 /// SplitMix64 (Steele, Lea, Flood 2014).
 struct SplitMix64(u64);
 
@@ -280,10 +305,12 @@ impl Replicate {
 
     /// Point `i` in `[0, 1)²`.
     fn point(&self, i: u32) -> DVec2 {
-        let digits = [i.reverse_bits(), sobol_second(i)];
+        // The digits bit-reversed, as `owen_scramble` hashes them: van der
+        // Corput's are `i` itself.
+        let reversed = [i, sobol_second_reversed(i)];
         let h = mix64(self.jitter ^ u64::from(i));
         let coordinate = |d: usize| {
-            let x = owen_scramble(digits[d], self.scramble[d]) ^ self.shift[d];
+            let x = owen_scramble_reversed(reversed[d], self.scramble[d]) ^ self.shift[d];
             // 20 jitter bits below the 32-bit grid: the sum is exact and < 1.
             let jitter = ((h >> (32 * d)) & 0xF_FFFF) as f64 / f64::from(1u32 << 20);
             (f64::from(x) + jitter) / 4_294_967_296.0
@@ -292,9 +319,35 @@ impl Replicate {
     }
 }
 
-/// Sobol's second dimension as 32 bits: direction numbers `v₁ = 2³¹`,
-/// `v_{k+1} = v_k ⊕ (v_k ≫ 1)` (the Pascal matrix mod 2).
-fn sobol_second(mut i: u32) -> u32 {
+/// Sobol's second dimension as 32 bits, bit-reversed: direction numbers
+/// `v₁ = 2³¹`, `v_{k+1} = v_k ⊕ (v_k ≫ 1)` (the Pascal matrix mod 2). Linear
+/// over GF(2) in the bits of `i`: the XOR of one table entry per byte.
+fn sobol_second_reversed(i: u32) -> u32 {
+    let b = i.to_le_bytes();
+    SOBOL_SECOND_REVERSED[0][usize::from(b[0])]
+        ^ SOBOL_SECOND_REVERSED[1][usize::from(b[1])]
+        ^ SOBOL_SECOND_REVERSED[2][usize::from(b[2])]
+        ^ SOBOL_SECOND_REVERSED[3][usize::from(b[3])]
+}
+
+/// `SOBOL_SECOND_REVERSED[k][b]`: [`sobol_second`] of `b << 8k`,
+/// bit-reversed.
+static SOBOL_SECOND_REVERSED: [[u32; 256]; 4] = {
+    let mut table = [[0u32; 256]; 4];
+    let mut k = 0;
+    while k < 4 {
+        let mut b = 0;
+        while b < 256 {
+            table[k][b] = sobol_second((b as u32) << (8 * k)).reverse_bits();
+            b += 1;
+        }
+        k += 1;
+    }
+    table
+};
+
+/// Sobol's second dimension as 32 bits (see [`sobol_second_reversed`]).
+const fn sobol_second(mut i: u32) -> u32 {
     let (mut v, mut x) = (1u32 << 31, 0u32);
     while i != 0 {
         if i & 1 != 0 {
@@ -306,11 +359,20 @@ fn sobol_second(mut i: u32) -> u32 {
     x
 }
 
-/// Burley's hashed nested uniform scramble of the 32-bit fraction `x`:
-/// each output bit depends on `x`'s higher bits only, so nets stay nets.
-/// Hash of Vegdahl ("Building a Better LK Hash", 2021).
+/// Burley's scramble of the 32-bit fraction `x` as the papers write it
+/// (reverse, hash, reverse): the tests' statement of what
+/// [`owen_scramble_reversed`] computes.
+#[cfg(test)]
 fn owen_scramble(x: u32, seed: u32) -> u32 {
-    let mut x = x.reverse_bits();
+    owen_scramble_reversed(x.reverse_bits(), seed)
+}
+
+/// Burley's hashed nested uniform scramble of the 32-bit fraction whose
+/// bit reversal is `r` (each output bit depends on the fraction's higher
+/// bits only, so nets stay nets), returned as a fraction. Hash of Vegdahl
+/// ("Building a Better LK Hash", 2021).
+fn owen_scramble_reversed(r: u32, seed: u32) -> u32 {
+    let mut x = r;
     x ^= x.wrapping_mul(0x3d20_adea);
     x = x.wrapping_add(seed);
     x = x.wrapping_mul((seed >> 16) | 1);
@@ -383,6 +445,36 @@ mod tests {
                     assert!(!seen[cell], "k {k} a {a}");
                     seen[cell] = true;
                 }
+            }
+        }
+    }
+
+    /// The points are the published construction stated literally: van der
+    /// Corput's digits `reverse(i)` and Sobol's second dimension bit by
+    /// bit, each scrambled as reverse–hash–reverse, shifted and jittered
+    /// (the tables and the cancelled reversals change no bit).
+    #[test]
+    fn points_follow_the_construction() {
+        let mut rng = SplitMix64(0xDEC0DE);
+        for _ in 0..8 {
+            let replicate = Replicate::new(&mut rng);
+            let mut indices: Vec<u32> = (0..4096).collect();
+            indices.extend((0..4096).map(|_| rng.next() as u32));
+            indices.extend([u32::MAX, 1 << 31, 0xFFFF, 0x0100_0000]);
+            for i in indices {
+                let digits = [i.reverse_bits(), sobol_second(i)];
+                let h = mix64(replicate.jitter ^ u64::from(i));
+                let expected: [f64; 2] = std::array::from_fn(|d| {
+                    let x = owen_scramble(digits[d], replicate.scramble[d]) ^ replicate.shift[d];
+                    let jitter = ((h >> (32 * d)) & 0xF_FFFF) as f64 / f64::from(1u32 << 20);
+                    (f64::from(x) + jitter) / 4_294_967_296.0
+                });
+                let s = replicate.point(i);
+                assert_eq!(
+                    [s.x.to_bits(), s.y.to_bits()],
+                    expected.map(f64::to_bits),
+                    "i {i}"
+                );
             }
         }
     }

@@ -1,0 +1,648 @@
+//! Monte Carlo's samples decided on the light's plane, without a ray where
+//! the answer is certain: the same answers, bit for bit, as casting every
+//! ray ([`Bvh::segment_unoccluded`]), at a fraction of the cost when many
+//! samples share one receiver.
+//!
+//! # Construction
+//!
+//! For a receiver `p` and a disk or rect emitter, the light's points are
+//! `center + e₀ q.x + e₁ q.y` for plane coordinates `q` ([`PlaneMap`]). The
+//! triangles whose boxes meet the pyramid from `p` over (a square a quarter
+//! wider than) the light are found once ([`Bvh::triangles_meeting_hull`]);
+//! every other triangle misses every sample's segment. For a candidate
+//! `v₀v₁v₂` not coplanar with `p` (a coplanar one blocks nothing by
+//! [`segment_blocked`]'s convention: the receiver is not strictly on one
+//! side of it), the points `y` whose ray from `p` meets the closed triangle
+//! form the cone `σ det[vᵢ − p, vⱼ − p, y − p] ≥ 0` over its three edges
+//! (`σ` the exact sign of `det[v₀ − p, v₁ − p, v₂ − p]`). On the light's
+//! plane each of the three is a linear function of `q`, `F(q) = a + b q.x +
+//! c q.y`, evaluated in `f64` within a margin `m` that bounds, with a
+//! factor of more than 2 to spare, every rounding between it and the exact
+//! determinant at the sample point `point_at` returns: the rounded
+//! differences and cross product (`γ₅`), the three dot products, the
+//! evaluation (`γ₃`), `point_at`'s own rounding (`γ₃` of the terms), and the
+//! distance of the polynomial sample coordinates ([`PlaneMap::approx`]) from
+//! `point_at`'s.
+//!
+//! A sample is then, for each candidate,
+//!
+//! - **outside** when some `F < −m`: its ray misses the closed triangle;
+//! - **inside** when every `F > m` and the triangle lies strictly between
+//!   `p` and the light (every corner's depth along the light's normal
+//!   certainly below every sample's): the open segment crosses the
+//!   triangle's interior, so [`segment_blocked`] says blocked;
+//! - **unsure** otherwise (within a margin of an edge, or a triangle not
+//!   certainly in front of the light).
+//!
+//! The sample is unoccluded when every candidate is outside, occluded when
+//! one is inside; an unsure candidate (a band some `10⁻¹³` of the light
+//! wide around each image edge, or a triangle reaching the light's depth)
+//! sends it to [`Bvh::segment_unoccluded`]. The candidates are binned on a
+//! uniform grid of the plane coordinates by the same margins (a cell lists
+//! a candidate unless some `F` is certainly negative on the whole cell;
+//! a cell inside one image certainly occluded needs no test at all), so a
+//! sample tests only its cell's list.
+//!
+//! Both decisions are [`segment_blocked`]'s exact answer wherever its
+//! predicates are exact: coordinates `0` or within `[10⁻⁹⁰, 10⁹⁰]` in
+//! magnitude, which the receivers, the light and the candidates are held
+//! to (`±10³⁰`, else every sample casts its ray); a sample point with a
+//! nonzero coordinate below `10⁻⁹⁰` is outside that domain by chance only.
+
+use super::Replicate;
+use crate::bvh::Bvh;
+use crate::kernel::footprint::f64::gamma;
+use crate::kernel::predicate::{orient3d, Sign};
+use crate::scene::emitter::PlaneMap;
+use crate::scene::Emitter;
+use glam::{DVec2, DVec3};
+
+/// `γ(16)`: more roundings than any bound below needs.
+const G16: f64 = gamma(16);
+
+/// The largest coordinate magnitude of the fast path (far inside the exact
+/// predicates' domain, and far from overflow in the products below).
+const BIG: f64 = 1e30;
+
+/// The smallest nonzero coordinate magnitude of the fast path.
+const TINY: f64 = 1e-90;
+
+/// How the triangle's image decides a sample.
+#[derive(Clone, Copy, Debug, PartialEq)]
+enum Verdict {
+    Outside,
+    Inside,
+    Unsure,
+}
+
+/// One candidate's image on the light's plane.
+#[derive(Clone, Copy, Debug)]
+struct Image {
+    /// Per edge `[a, b, c, m]`: `F(q) = a + b q.x + c q.y`, positive inside,
+    /// certain beyond the margin `m`.
+    edges: [[f64; 4]; 3],
+    /// Every corner certainly between the receiver and the light.
+    between: bool,
+}
+
+impl Image {
+    #[inline]
+    fn classify(&self, q: DVec2) -> Verdict {
+        let mut inside = true;
+        for [a, b, c, m] in self.edges {
+            let f = a + b * q.x + c * q.y;
+            if f < -m {
+                return Verdict::Outside;
+            }
+            inside &= f > m;
+        }
+        if inside && self.between {
+            Verdict::Inside
+        } else {
+            Verdict::Unsure
+        }
+    }
+
+    /// The verdict for every point of the square of half-width `h` around
+    /// `q` (its `Inside` and `Outside` hold for each of them).
+    fn classify_square(&self, q: DVec2, h: f64) -> Verdict {
+        let mut inside = true;
+        for [a, b, c, m] in self.edges {
+            let f = a + b * q.x + c * q.y;
+            let spread = (b.abs() + c.abs()) * h;
+            if f + spread < -m {
+                return Verdict::Outside;
+            }
+            inside &= f - spread > m;
+        }
+        if inside && self.between {
+            Verdict::Inside
+        } else {
+            Verdict::Unsure
+        }
+    }
+}
+
+/// The per-receiver structure, reused between receivers (one per thread).
+#[derive(Debug, Default)]
+pub(super) struct Binned {
+    map: Option<PlaneMap>,
+    images: Vec<Image>,
+    /// Cells per axis.
+    cells: usize,
+    /// The same, as `f64`.
+    cells_f64: f64,
+    /// `cells / (2 half)`.
+    inv_width: f64,
+    /// `start[k]..start[k + 1]` indexes `items` for cell `k`.
+    start: Vec<u32>,
+    items: Vec<u32>,
+    /// Cells inside one image certainly occluded.
+    covered: Vec<bool>,
+    candidates: Vec<u32>,
+    /// `(cell, image)` pairs before the counting sort.
+    pairs: Vec<(u32, u32)>,
+    /// The counting sort's cursors.
+    next: Vec<u32>,
+    /// A replicate's samples and their approximate plane coordinates.
+    samples: Vec<(DVec2, DVec2)>,
+}
+
+impl Binned {
+    /// Forgets the prepared receiver: every sample casts its ray.
+    pub(super) fn clear(&mut self) {
+        self.map = None;
+    }
+
+    /// Prepares the decisions for receiver `p` on a grid of `cells²`
+    /// cells; `false` when they do not apply (a segment or point emitter,
+    /// coordinates outside the fast path's domain, a receiver not
+    /// certainly in front of the light): then every sample casts its ray.
+    pub(super) fn build(&mut self, bvh: &Bvh, emitter: &Emitter, p: DVec3, cells: usize) -> bool {
+        self.map = None;
+        let Some(map) = emitter.plane_map() else {
+            return false;
+        };
+        let [ex, ey] = map.axes;
+        let (c, half) = (map.center, map.half);
+        if !in_domain(p) || !in_domain(c) || !(ex * half).is_finite() || !(ey * half).is_finite() {
+            return false;
+        }
+        let reach = (ex.abs() + ey.abs()) * half;
+        if !in_domain(c.abs() + reach) {
+            return false;
+        }
+        // The light's unit normal toward its side of `p`, and the depth
+        // along it of every sample point `x`: `w · (x − p)` within
+        // `[depth_lo, depth_hi]` (the in-plane spread `|w · eᵢ| half`,
+        // `point_at`'s rounding and the dot products' bounded by the
+        // `G16` term).
+        let Some(mut w) = ex.cross(ey).try_normalize() else {
+            return false;
+        };
+        let d = c - p;
+        if w.dot(d) < 0.0 {
+            w = -w;
+        }
+        let wd = w.dot(d);
+        let spread = (w.dot(ex).abs() + w.dot(ey).abs()) * half;
+        let err = 2.0 * G16 * (w.abs().dot(d.abs() + c.abs() + 2.0 * reach));
+        let (depth_lo, depth_hi) = (wd - spread - err, wd + spread + err);
+        if !(depth_lo > 0.0 && depth_hi.is_finite()) {
+            return false;
+        }
+
+        // Every segment from `p` to a sample point lies in this pyramid:
+        // its base is `10⁻⁶` of the depth beyond the light's plane, and
+        // `10⁻⁶` of the light plus a thousand times the rounding scale
+        // `err` wider than the square `|q| ≤ half`, where the rounding of
+        // the points and corners is held below `10⁻⁸` of the depth.
+        if err.is_nan() || err >= 1e-8 * wd {
+            return false;
+        }
+        let wide = half * (1.0 + 1e-6) + 1e3 * err / ex.length().min(ey.length());
+        let corner = |sx: f64, sy: f64| {
+            let k = c + (ex * sx + ey * sy) * wide;
+            p + (k - p) * (1.0 + 1e-6)
+        };
+        let hull = [
+            p,
+            corner(1.0, 1.0),
+            corner(-1.0, 1.0),
+            corner(-1.0, -1.0),
+            corner(1.0, -1.0),
+        ];
+        bvh.triangles_meeting_hull(&hull, &mut self.candidates);
+
+        // The dual axes: `q = (e₀* · (y − c), e₁* · (y − c))` for a point
+        // `y` of the plane (for binning only).
+        let dual = [
+            ey.cross(w) / ex.dot(ey.cross(w)),
+            w.cross(ex) / ey.dot(w.cross(ex)),
+        ];
+        // The size, in plane coordinates, of a rounding of `c` or `d`.
+        let reach_q =
+            (d.abs() + c.abs()).max_element() * (dual[0].abs() + dual[1].abs()).max_element();
+        self.images.clear();
+        self.pairs.clear();
+        let width = 2.0 * half / cells as f64;
+        // Half a cell, widened past the rounding of the cell index and
+        // centre (a few ulps of `half`).
+        let h = 0.5 * width * (1.0 + 1e-9) + 1e-12 * half;
+        let triangles = bvh.occluders().triangles();
+        for &id in &self.candidates {
+            let Some(t) = triangles.get(id as usize) else {
+                continue;
+            };
+            if !t.iter().all(|&v| v.is_finite()) {
+                continue;
+            }
+            if !t.iter().all(|&v| in_domain(v)) {
+                return false;
+            }
+            let sigma = match orient3d(t[0], t[1], t[2], p) {
+                Sign::Zero => continue,
+                Sign::Positive => 1.0,
+                Sign::Negative => -1.0,
+            };
+            let rel = t.map(|v| v - p);
+            let depth = rel.map(|r| {
+                let e = 2.0 * G16 * w.abs().dot(r.abs());
+                let z = w.dot(r);
+                (z - e, z + e)
+            });
+            if depth.iter().all(|z| z.1 <= 0.0) || depth.iter().all(|z| z.0 >= depth_hi) {
+                continue;
+            }
+            let between = depth.iter().all(|z| z.1 < depth_lo);
+            let mut edges = [[0.0; 4]; 3];
+            for (k, edge) in edges.iter_mut().enumerate() {
+                let (a, b) = (rel[k], rel[(k + 1) % 3]);
+                let n = a.cross(b) * sigma;
+                let (aa, ba) = (a.abs(), b.abs());
+                // `|fl(n) − n| ≤ γ₅ nn` per component, `|n| ≤ 2 nn`.
+                let nn = DVec3::new(
+                    aa.y * ba.z + aa.z * ba.y,
+                    aa.z * ba.x + aa.x * ba.z,
+                    aa.x * ba.y + aa.y * ba.x,
+                );
+                let (fa, fb, fc) = (n.dot(d), n.dot(ex), n.dot(ey));
+                let axes = nn.dot(ex.abs() + ey.abs());
+                let margin = 2.0
+                    * (G16
+                        * (fa.abs()
+                            + (fb.abs() + fc.abs()) * half
+                            + 3.0 * nn.dot(d.abs())
+                            + 2.0 * axes * half
+                            + 2.0 * (nn.dot(c.abs()) + axes * half))
+                        + 2.0 * axes * map.error);
+                *edge = [fa, fb, fc, margin];
+            }
+            if !edges.iter().flatten().all(|x| x.is_finite()) {
+                return false;
+            }
+            let image = Image { edges, between };
+            let index = self.images.len() as u32;
+            // The cells to test: around the corners' projections where
+            // every corner is well in front of `p` (the image is their
+            // hull, located far better than the cell added around it),
+            // else all.
+            let range = if depth.iter().all(|z| z.0 > 1e-3 * depth_lo) {
+                let (mut lo, mut hi) =
+                    (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+                for (r, z) in rel.iter().zip(&depth) {
+                    let y = *r * (wd / (0.5 * (z.0 + z.1))) - d;
+                    let q = DVec2::new(dual[0].dot(y), dual[1].dot(y));
+                    lo = lo.min(q);
+                    hi = hi.max(q);
+                }
+                let pad = 2.0 * map.error
+                    + 1e-6 * (half + lo.abs().max(hi.abs()).max_element() + reach_q);
+                cell_range(lo - pad, hi + pad, half, cells)
+            } else {
+                Some(((0, cells - 1), (0, cells - 1)))
+            };
+            let Some(((x0, x1), (y0, y1))) = range else {
+                continue;
+            };
+            // A row or column of cells: each meets the image's box, and
+            // none is inside the image (it cannot hold a cell whole).
+            let strip = x0 == x1 || y0 == y1;
+            for iy in y0..=y1 {
+                for ix in x0..=x1 {
+                    let m = DVec2::new(
+                        -half + (ix as f64 + 0.5) * width,
+                        -half + (iy as f64 + 0.5) * width,
+                    );
+                    let verdict = if strip {
+                        Verdict::Unsure
+                    } else {
+                        image.classify_square(m, h)
+                    };
+                    match verdict {
+                        Verdict::Outside => {}
+                        // An occluded cell: marked by an out-of-range image.
+                        Verdict::Inside => self.pairs.push(((iy * cells + ix) as u32, u32::MAX)),
+                        Verdict::Unsure => self.pairs.push(((iy * cells + ix) as u32, index)),
+                    }
+                }
+            }
+            self.images.push(image);
+        }
+
+        // Counting sort of the pairs by cell, images in candidate order.
+        let n = cells * cells;
+        self.start.clear();
+        self.start.resize(n + 1, 0);
+        self.covered.clear();
+        self.covered.resize(n, false);
+        for &(k, image) in &self.pairs {
+            if image == u32::MAX {
+                self.covered[k as usize] = true;
+            } else {
+                self.start[k as usize + 1] += 1;
+            }
+        }
+        for k in 0..n {
+            self.start[k + 1] += self.start[k];
+        }
+        self.items.clear();
+        self.items.resize(self.start[n] as usize, 0);
+        self.next.clear();
+        self.next.extend_from_slice(&self.start[..n]);
+        for &(k, image) in &self.pairs {
+            if image != u32::MAX {
+                let at = &mut self.next[k as usize];
+                self.items[*at as usize] = image;
+                *at += 1;
+            }
+        }
+        self.cells = cells;
+        self.cells_f64 = cells as f64;
+        self.inv_width = cells as f64 / (2.0 * half);
+        self.map = Some(map);
+        true
+    }
+
+    /// How many of the first `m` points of `replicate` are unoccluded from
+    /// the prepared receiver: each decided on the plane where certain, else
+    /// by `ray`, the sample's own ray. Every sample casts its ray when
+    /// [`Binned::build`] returned `false`.
+    pub(super) fn count_unoccluded(
+        &mut self,
+        replicate: &Replicate,
+        m: u32,
+        ray: impl Fn(DVec2) -> bool,
+    ) -> u32 {
+        let Some(map) = self.map else {
+            return (0..m).map(|i| u32::from(ray(replicate.point(i)))).sum();
+        };
+        // In passes, each a loop without branches on the data.
+        self.samples.clear();
+        self.samples
+            .extend((0..m).map(|i| (replicate.point(i), DVec2::ZERO)));
+        for (s, q) in &mut self.samples {
+            *q = map.approx(*s);
+        }
+        let mut visible = 0;
+        for &(s, q) in &self.samples {
+            let known = self.decide(&map, q);
+            visible += u32::from(known.unwrap_or_else(|| ray(s)));
+        }
+        visible
+    }
+
+    /// Whether the sample at approximate plane coordinates `q` is
+    /// unoccluded, when certain; `None` when its ray must decide.
+    #[inline]
+    fn decide(&self, map: &PlaneMap, q: DVec2) -> Option<bool> {
+        // Truncation is the floor for the non-negative values kept.
+        let (x, y) = (
+            (q.x + map.half) * self.inv_width,
+            (q.y + map.half) * self.inv_width,
+        );
+        let cells = self.cells_f64;
+        if !(x >= 0.0 && x < cells && y >= 0.0 && y < cells) {
+            return None;
+        }
+        // Through `i32` (a single instruction; the values are below 64).
+        let k = y as i32 as usize * self.cells + x as i32 as usize;
+        if self.covered[k] {
+            return Some(false);
+        }
+        let mut unsure = false;
+        for &i in &self.items[self.start[k] as usize..self.start[k + 1] as usize] {
+            match self.images[i as usize].classify(q) {
+                Verdict::Outside => {}
+                Verdict::Inside => return Some(false),
+                Verdict::Unsure => unsure = true,
+            }
+        }
+        (!unsure).then_some(true)
+    }
+}
+
+/// Finite, and each coordinate `0` or within `[TINY, BIG]` in magnitude.
+fn in_domain(v: DVec3) -> bool {
+    v.to_array()
+        .iter()
+        .all(|x| *x == 0.0 || (x.abs() >= TINY && x.abs() <= BIG))
+}
+
+/// The cells `(x0, x1), (y0, y1)` (inclusive) a box `[lo, hi]` of plane
+/// coordinates meets on the grid of `cells²` over `[−half, half]²`; `None`
+/// when it misses the grid.
+fn cell_range(
+    lo: DVec2,
+    hi: DVec2,
+    half: f64,
+    cells: usize,
+) -> Option<((usize, usize), (usize, usize))> {
+    if !(lo.cmple(DVec2::splat(half)).all() && hi.cmpge(DVec2::splat(-half)).all()) {
+        return None;
+    }
+    let scale = cells as f64 / (2.0 * half);
+    let index = |x: f64| (((x + half) * scale).floor().max(0.0) as usize).min(cells - 1);
+    Some(((index(lo.x), index(hi.x)), (index(lo.y), index(hi.y))))
+}
+
+#[cfg(test)]
+mod tests {
+    use super::super::SplitMix64;
+    use super::*;
+    use crate::bvh::Occluders;
+    use crate::scene::Light;
+    use proptest::prelude::*;
+
+    /// Uniform in `[lo, hi)`.
+    fn uniform(rng: &mut SplitMix64, lo: f64, hi: f64) -> f64 {
+        lo + (hi - lo) * ((rng.next() >> 11) as f64 / (1u64 << 53) as f64)
+    }
+
+    fn vector(rng: &mut SplitMix64, size: f64) -> DVec3 {
+        DVec3::new(
+            uniform(rng, -size, size),
+            uniform(rng, -size, size),
+            uniform(rng, -size, size),
+        )
+    }
+
+    /// A light of each area kind, a receiver `p` below it, and a soup of
+    /// triangles made to sit on the decisions' edges: corners exactly at
+    /// `p`, at sample points, on the segments to them, edges through those,
+    /// triangles in a plane through `p` (exactly: `p` and the corners share
+    /// `z`), crossing or beyond the light's plane, behind `p`, tiny and
+    /// huge ones, and quads split along a diagonal that sample rays graze.
+    fn scene(seed: u64) -> (Light, DVec3, Vec<[DVec3; 3]>, Vec<DVec2>) {
+        let mut rng = SplitMix64(seed);
+        let offset = if rng.next() % 2 == 0 {
+            DVec3::ZERO
+        } else {
+            vector(&mut rng, 1e4)
+        };
+        let p = offset + vector(&mut rng, 0.5);
+        let size = uniform(&mut rng, 0.05, 1.0);
+        let lateral = DVec3::new(
+            uniform(&mut rng, -1.0, 1.0),
+            uniform(&mut rng, -1.0, 1.0),
+            0.0,
+        );
+        let above = p + lateral + DVec3::new(0.0, 0.0, size + uniform(&mut rng, 0.3, 4.0));
+        let light = match rng.next() % 3 {
+            0 => Light::sphere(above, size),
+            1 => Light::disk(
+                above,
+                DVec3::new(0.1, -0.2, 1.0) + vector(&mut rng, 0.5),
+                size,
+            ),
+            _ => Light::rect(
+                above,
+                DVec3::new(size, 0.0, 0.0) + vector(&mut rng, 0.2 * size),
+                DVec3::new(0.0, size, 0.0) + vector(&mut rng, 0.2 * size),
+            ),
+        }
+        .expect("a light");
+        let emitter = light.emitter(p).expect("an emitter");
+        let samples: Vec<DVec2> = (0..1024)
+            .map(|_| DVec2::new(uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0)))
+            .collect();
+        let mut triangles = Vec::new();
+        for _ in 0..(rng.next() % 60 + 1) {
+            let x0 = emitter.point_at(samples[(rng.next() % 1024) as usize]);
+            let scale = 10f64.powf(uniform(&mut rng, -4.0, 0.3));
+            let on_ray = p.lerp(x0, uniform(&mut rng, 0.0, 1.2));
+            let t = match rng.next() % 8 {
+                0 => [p, p + vector(&mut rng, scale), p + vector(&mut rng, scale)],
+                1 => [
+                    on_ray,
+                    on_ray + vector(&mut rng, scale),
+                    on_ray + vector(&mut rng, scale),
+                ],
+                2 => {
+                    let d = vector(&mut rng, scale);
+                    [on_ray - d, on_ray + d, on_ray + vector(&mut rng, scale)]
+                }
+                3 => {
+                    let mut t = [0; 3].map(|_| p + vector(&mut rng, scale * 4.0));
+                    for v in &mut t {
+                        v.z = p.z;
+                    }
+                    t
+                }
+                4 => [
+                    x0,
+                    x0 + vector(&mut rng, scale),
+                    x0 + vector(&mut rng, scale),
+                ],
+                5 => {
+                    let d = vector(&mut rng, scale);
+                    let (a, b) = (on_ray - d, on_ray + d);
+                    let e = vector(&mut rng, scale);
+                    triangles.push([a, b, on_ray + e]);
+                    [b, a, on_ray - e]
+                }
+                _ => {
+                    let c =
+                        p.lerp(above, uniform(&mut rng, -0.3, 1.3)) + vector(&mut rng, size * 2.0);
+                    [
+                        c + vector(&mut rng, scale),
+                        c + vector(&mut rng, scale),
+                        c + vector(&mut rng, scale),
+                    ]
+                }
+            };
+            triangles.push(t);
+        }
+        (light, p, triangles, samples)
+    }
+
+    /// The samples of `scene(seed)` decided on the plane, and their
+    /// count; panics (through `check`) on a decision that is not the ray's.
+    fn decide_scene(seed: u64, mut check: impl FnMut(bool, bool, DVec2)) -> usize {
+        let (light, p, triangles, samples) = scene(seed);
+        let bvh = Bvh::new(Occluders::from_triangles(triangles));
+        let emitter = light.emitter(p).expect("an emitter");
+        let mut binned = Binned::default();
+        assert!(binned.build(&bvh, &emitter, p, 16), "seed {seed}");
+        let map = binned.map.expect("a plane");
+        let mut decided = 0;
+        for &s in &samples {
+            if let Some(unoccluded) = binned.decide(&map, map.approx(s)) {
+                decided += 1;
+                check(
+                    unoccluded,
+                    bvh.segment_unoccluded(p, emitter.point_at(s)),
+                    s,
+                );
+            }
+        }
+        decided
+    }
+
+    proptest! {
+        #![proptest_config(ProptestConfig { cases: 256, ..ProptestConfig::default() })]
+
+        /// Every decision made on the light's plane is the exact ray's
+        /// answer ([`Bvh::segment_unoccluded`]), on samples whose rays
+        /// pass exactly through corners and along edges.
+        #[test]
+        fn decisions_are_the_rays_answers(seed in any::<u64>()) {
+            let mut wrong = None;
+            decide_scene(seed, |decided, ray, s| {
+                if decided != ray && wrong.is_none() {
+                    wrong = Some(s);
+                }
+            });
+            prop_assert_eq!(wrong, None);
+        }
+    }
+
+    /// The test above is not vacuous: over a fixed set of its scenes, most
+    /// samples are decided on the plane (the rest cast their rays).
+    #[test]
+    fn most_samples_are_decided() {
+        let (mut decided, mut total) = (0, 0);
+        for seed in 0..200 {
+            decided += decide_scene(seed, |a, b, s| assert_eq!(a, b, "seed {seed} s {s:?}"));
+            total += 1024;
+        }
+        assert!(decided * 4 > total * 3, "{decided} of {total}");
+    }
+
+    /// The polynomial plane coordinates are within the stated error of
+    /// `point_at`'s, over every wedge of the concentric map, its diagonals
+    /// and its centre.
+    #[test]
+    fn approximate_coordinates_are_within_their_error() {
+        let light = Light::disk(DVec3::new(1.0, 2.0, 3.0), DVec3::new(0.3, -0.1, 1.0), 0.7)
+            .expect("a light");
+        let emitter = light.emitter(DVec3::ZERO).expect("an emitter");
+        let map = emitter.plane_map().expect("a plane");
+        let mut rng = SplitMix64(3);
+        let mut worst: f64 = 0.0;
+        let special = [0.0, 0.25, 0.5, 0.75, 1.0 - f64::EPSILON / 2.0];
+        let mut grid = Vec::new();
+        for a in special {
+            for b in special {
+                grid.push(DVec2::new(a, b));
+            }
+        }
+        for s in grid.into_iter().chain(
+            (0..100_000)
+                .map(|_| DVec2::new(uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0))),
+        ) {
+            let x = emitter.point_at(s) - map.center;
+            let exact = DVec2::new(x.dot(map.axes[0]), x.dot(map.axes[1]));
+            let q = map.approx(s);
+            worst = worst.max((q - exact).abs().max_element());
+            assert!(q.abs().max_element() <= map.half, "{s:?}");
+        }
+        // The error is the polynomials' (4e-6 of the radius), far above
+        // the rounding of the check itself.
+        assert!(worst <= map.error, "worst {worst}, bound {}", map.error);
+        assert!(
+            worst > 0.1 * map.error,
+            "worst {worst}: the bound is far from tight"
+        );
+    }
+}
