@@ -312,7 +312,7 @@ impl Replicate {
         let coordinate = |d: usize| {
             let x = owen_scramble_reversed(reversed[d], self.scramble[d]) ^ self.shift[d];
             // 20 jitter bits below the 32-bit grid: the sum is exact and < 1.
-            let jitter = ((h >> (32 * d)) & 0xF_FFFF) as f64 / f64::from(1u32 << 20);
+            let jitter = f64::from(((h >> (32 * d)) & 0xF_FFFF) as u32) / f64::from(1u32 << 20);
             (f64::from(x) + jitter) / 4_294_967_296.0
         };
         DVec2::new(coordinate(0), coordinate(1))

@@ -104,12 +104,12 @@ impl Image {
     }
 
     /// The verdict for every point of the square of half-width `h` around
-    /// `q` (its `Inside` and `Outside` hold for each of them).
-    fn classify_square(&self, q: DVec2, h: f64) -> Verdict {
+    /// `q` (its `Inside` and `Outside` hold for each of them), given
+    /// `spread[e] = (|b| + |c|) h` of each edge.
+    fn classify_square(&self, q: DVec2, spread: &[f64; 3]) -> Verdict {
         let mut inside = true;
-        for [a, b, c, m] in self.edges {
+        for ([a, b, c, m], spread) in self.edges.into_iter().zip(spread) {
             let f = a + b * q.x + c * q.y;
-            let spread = (b.abs() + c.abs()) * h;
             if f + spread < -m {
                 return Verdict::Outside;
             }
@@ -144,6 +144,8 @@ pub(super) struct Binned {
     pairs: Vec<(u32, u32)>,
     /// The counting sort's cursors.
     next: Vec<u32>,
+    /// The cells' centres on either axis.
+    centers: Vec<f64>,
     /// A replicate's samples and their approximate plane coordinates.
     samples: Vec<(DVec2, DVec2)>,
 }
@@ -229,6 +231,9 @@ impl Binned {
         // Half a cell, widened past the rounding of the cell index and
         // centre (a few ulps of `half`).
         let h = 0.5 * width * (1.0 + 1e-9) + 1e-12 * half;
+        self.centers.clear();
+        self.centers
+            .extend((0..cells as u32).map(|i| -half + (f64::from(i) + 0.5) * width));
         let triangles = bvh.occluders().triangles();
         for &id in &self.candidates {
             let Some(t) = triangles.get(id as usize) else {
@@ -308,16 +313,14 @@ impl Binned {
             // A row or column of cells: each meets the image's box, and
             // none is inside the image (it cannot hold a cell whole).
             let strip = x0 == x1 || y0 == y1;
+            let spread = image.edges.map(|[_, b, c, _]| (b.abs() + c.abs()) * h);
             for iy in y0..=y1 {
                 for ix in x0..=x1 {
-                    let m = DVec2::new(
-                        -half + (ix as f64 + 0.5) * width,
-                        -half + (iy as f64 + 0.5) * width,
-                    );
+                    let m = DVec2::new(self.centers[ix], self.centers[iy]);
                     let verdict = if strip {
                         Verdict::Unsure
                     } else {
-                        image.classify_square(m, h)
+                        image.classify_square(m, &spread)
                     };
                     match verdict {
                         Verdict::Outside => {}
@@ -442,7 +445,8 @@ fn cell_range(
         return None;
     }
     let scale = cells as f64 / (2.0 * half);
-    let index = |x: f64| (((x + half) * scale).floor().max(0.0) as usize).min(cells - 1);
+    // Truncation is the floor for the non-negative values kept.
+    let index = |x: f64| (((x + half) * scale).max(0.0) as u32 as usize).min(cells - 1);
     Some(((index(lo.x), index(hi.x)), (index(lo.y), index(hi.y))))
 }
 
