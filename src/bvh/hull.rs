@@ -29,15 +29,27 @@ impl Bvh {
     /// of the tree, are always reported; triangles with a non-finite corner
     /// never (they block nothing).
     pub fn triangles_meeting_hull(&self, points: &[DVec3], out: &mut Vec<u32>) {
+        self.triangles_meeting_hull_at_most(points, out, usize::MAX);
+    }
+
+    /// [`Bvh::triangles_meeting_hull`] when it finds at most `cap`
+    /// triangles (then `true`); else `false` as soon as it finds more,
+    /// `out` holding an unspecified part of them.
+    pub(crate) fn triangles_meeting_hull_at_most(
+        &self,
+        points: &[DVec3],
+        out: &mut Vec<u32>,
+        cap: usize,
+    ) -> bool {
         out.clear();
         if points.is_empty() {
-            return;
+            return true;
         }
         out.extend_from_slice(&self.outlier_ids);
         if self.nodes.is_empty() || !points.iter().all(|&v| in_f32_range(v)) {
             out.extend_from_slice(&self.ids);
             out.sort_unstable();
-            return;
+            return out.len() <= cap;
         }
         let hull = Hull::new(points);
         let mut stack = vec![0u32];
@@ -54,8 +66,12 @@ impl Bvh {
                     out.push(self.ids[(child & !LEAF) as usize]);
                 }
             }
+            if out.len() > cap {
+                return false;
+            }
         }
         out.sort_unstable();
+        true
     }
 
     /// The most points whose face planes [`Bvh::triangles_meeting_hull`]

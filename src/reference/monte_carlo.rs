@@ -177,7 +177,8 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Opti
     let mut means = [0.0f64; REPLICATES as usize];
     let samples = k * m;
     BINNED.with_borrow_mut(|binned| {
-        let decided = samples >= BINNED_FROM && binned.build(bvh, emitter, p, grid_cells(samples));
+        let decided =
+            samples >= BINNED_FROM && binned.build(bvh, emitter, p, samples, grid_cells(samples));
         if !decided {
             binned.clear();
         }

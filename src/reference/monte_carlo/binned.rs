@@ -160,7 +160,14 @@ impl Binned {
     /// cells; `false` when they do not apply (a segment or point emitter,
     /// coordinates outside the fast path's domain, a receiver not
     /// certainly in front of the light): then every sample casts its ray.
-    pub(super) fn build(&mut self, bvh: &Bvh, emitter: &Emitter, p: DVec3, cells: usize) -> bool {
+    pub(super) fn build(
+        &mut self,
+        bvh: &Bvh,
+        emitter: &Emitter,
+        p: DVec3,
+        samples: u32,
+        cells: usize,
+    ) -> bool {
         self.map = None;
         let Some(map) = emitter.plane_map() else {
             return false;
@@ -214,7 +221,14 @@ impl Binned {
             corner(-1.0, -1.0),
             corner(1.0, -1.0),
         ];
-        bvh.triangles_meeting_hull(&hull, &mut self.candidates);
+        // Worth it only while the set-up costs less than the rays it
+        // saves: a candidate costs about a ray to prepare, finding one a
+        // tenth of that, a cell test a tenth (measured on piles of
+        // occluders over one receiver, `benches/references.rs`).
+        let cap = samples as usize / 8;
+        if !bvh.triangles_meeting_hull_at_most(&hull, &mut self.candidates, cap) {
+            return false;
+        }
 
         // The dual axes: `q = (e₀* · (y − c), e₁* · (y − c))` for a point
         // `y` of the plane (for binning only).
@@ -234,8 +248,17 @@ impl Binned {
         self.centers.clear();
         self.centers
             .extend((0..cells as u32).map(|i| -half + (f64::from(i) + 0.5) * width));
+        let mut budget = 8 * samples as usize;
+        let n = cells * cells;
+        self.covered.clear();
+        self.covered.resize(n, false);
+        let mut uncovered = n;
         let triangles = bvh.occluders().triangles();
         for &id in &self.candidates {
+            if uncovered == 0 {
+                // Every sample is blocked: no other candidate matters.
+                break;
+            }
             let Some(t) = triangles.get(id as usize) else {
                 continue;
             };
@@ -312,6 +335,11 @@ impl Binned {
             };
             // A row or column of cells: each meets the image's box, and
             // none is inside the image (it cannot hold a cell whole).
+            let tested = (x1 - x0 + 1) * (y1 - y0 + 1);
+            if tested > budget {
+                return false;
+            }
+            budget -= tested;
             let strip = x0 == x1 || y0 == y1;
             let spread = image.edges.map(|[_, b, c, _]| (b.abs() + c.abs()) * h);
             for iy in y0..=y1 {
@@ -322,29 +350,27 @@ impl Binned {
                     } else {
                         image.classify_square(m, &spread)
                     };
+                    let k = iy * cells + ix;
                     match verdict {
                         Verdict::Outside => {}
-                        // An occluded cell: marked by an out-of-range image.
-                        Verdict::Inside => self.pairs.push(((iy * cells + ix) as u32, u32::MAX)),
-                        Verdict::Unsure => self.pairs.push(((iy * cells + ix) as u32, index)),
+                        Verdict::Inside => {
+                            uncovered -= usize::from(!self.covered[k]);
+                            self.covered[k] = true;
+                        }
+                        Verdict::Unsure => self.pairs.push((k as u32, index)),
                     }
                 }
             }
             self.images.push(image);
         }
 
-        // Counting sort of the pairs by cell, images in candidate order.
-        let n = cells * cells;
+        // Counting sort of the pairs by cell, images in candidate order
+        // (a covered cell needs no list).
+        self.pairs.retain(|&(k, _)| !self.covered[k as usize]);
         self.start.clear();
         self.start.resize(n + 1, 0);
-        self.covered.clear();
-        self.covered.resize(n, false);
-        for &(k, image) in &self.pairs {
-            if image == u32::MAX {
-                self.covered[k as usize] = true;
-            } else {
-                self.start[k as usize + 1] += 1;
-            }
+        for &(k, _) in &self.pairs {
+            self.start[k as usize + 1] += 1;
         }
         for k in 0..n {
             self.start[k + 1] += self.start[k];
@@ -354,11 +380,9 @@ impl Binned {
         self.next.clear();
         self.next.extend_from_slice(&self.start[..n]);
         for &(k, image) in &self.pairs {
-            if image != u32::MAX {
-                let at = &mut self.next[k as usize];
-                self.items[*at as usize] = image;
-                *at += 1;
-            }
+            let at = &mut self.next[k as usize];
+            self.items[*at as usize] = image;
+            *at += 1;
         }
         self.cells = cells;
         self.cells_f64 = cells as f64;
@@ -567,7 +591,7 @@ mod tests {
         let bvh = Bvh::new(Occluders::from_triangles(triangles));
         let emitter = light.emitter(p).expect("an emitter");
         let mut binned = Binned::default();
-        assert!(binned.build(&bvh, &emitter, p, 16), "seed {seed}");
+        assert!(binned.build(&bvh, &emitter, p, 1 << 20, 16), "seed {seed}");
         let map = binned.map.expect("a plane");
         let mut decided = 0;
         for &s in &samples {
