@@ -278,3 +278,46 @@ fn holds_each_once_and_agrees(
         assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
     }
 }
+
+/// The capped hull query gives the whole query's answer when it finds no
+/// more than the cap, and says so when it finds more.
+#[test]
+fn capped_hull_query_is_the_query_or_refuses() {
+    let mut rng = Rng::new(11);
+    let triangles: Vec<[DVec3; 3]> = (0..2000)
+        .map(|_| {
+            let c = DVec3::new(
+                coordinate(&mut rng, 0.0, 3.0),
+                coordinate(&mut rng, 0.0, 3.0),
+                coordinate(&mut rng, 0.0, 3.0),
+            );
+            [
+                c,
+                c + DVec3::new(0.1, 0.0, 0.02),
+                c + DVec3::new(0.0, 0.1, -0.03),
+            ]
+        })
+        .collect();
+    let bvh = Bvh::new(Occluders::from_triangles(triangles));
+    let hull = [
+        DVec3::new(0.0, 0.0, -3.0),
+        DVec3::new(1.0, 1.0, 3.0),
+        DVec3::new(-1.0, 1.0, 3.0),
+        DVec3::new(-1.0, -1.0, 3.0),
+        DVec3::new(1.0, -1.0, 3.0),
+    ];
+    let mut all = Vec::new();
+    bvh.triangles_meeting_hull(&hull, &mut all);
+    assert!(all.len() > 20 && all.len() < 2000, "{} found", all.len());
+    let mut capped = Vec::new();
+    for cap in [0, 1, all.len() / 2, all.len() - 1] {
+        assert!(
+            !bvh.triangles_meeting_hull_at_most(&hull, &mut capped, cap),
+            "cap {cap}"
+        );
+    }
+    for cap in [all.len(), all.len() + 1, usize::MAX] {
+        assert!(bvh.triangles_meeting_hull_at_most(&hull, &mut capped, cap));
+        assert_eq!(capped, all);
+    }
+}
