@@ -7,9 +7,12 @@
 //!
 //! For a receiver `p` and a disk or rect emitter, the light's points are
 //! `center + e₀ q.x + e₁ q.y` for plane coordinates `q` ([`PlaneMap`]). The
-//! triangles whose boxes meet the pyramid from `p` over (a square a quarter
-//! wider than) the light are found once ([`Bvh::triangles_meeting_hull`]);
-//! every other triangle misses every sample's segment. For a candidate
+//! triangles whose boxes meet the pyramid from `p` over the square
+//! `|q.x|, |q.y| ≤ half` (widened by `10⁻⁶` and deepened by `10⁻⁶` of the
+//! light's depth, far beyond the rounding of the points, which is held
+//! below `10⁻⁸` of the depth) are found once
+//! ([`Bvh::triangles_meeting_hull`]); every other triangle misses every
+//! sample's segment. For a candidate
 //! `v₀v₁v₂` not coplanar with `p` (a coplanar one blocks nothing by
 //! [`segment_blocked`]'s convention: the receiver is not strictly on one
 //! side of it), the points `y` whose ray from `p` meets the closed triangle
@@ -35,13 +38,24 @@
 //!   certainly in front of the light).
 //!
 //! The sample is unoccluded when every candidate is outside, occluded when
-//! one is inside; an unsure candidate (a band some `10⁻¹³` of the light
-//! wide around each image edge, or a triangle reaching the light's depth)
+//! one is inside; an unsure candidate (a band about `10⁻⁵` of a disk's
+//! radius wide around each image edge — the polynomial coordinates' error
+//! — and far narrower on a rect, or a triangle reaching the light's depth)
 //! sends it to [`Bvh::segment_unoccluded`]. The candidates are binned on a
-//! uniform grid of the plane coordinates by the same margins (a cell lists
-//! a candidate unless some `F` is certainly negative on the whole cell;
-//! a cell inside one image certainly occluded needs no test at all), so a
-//! sample tests only its cell's list.
+//! uniform grid of the plane coordinates: the cells a candidate may touch
+//! are those meeting the box of its corners' projections (where every
+//! corner lies at least `10⁻³` of the light's depth in front of `p`: the
+//! image is then the hull of the projections, located to about `10⁻¹³`
+//! relative, and the box is widened by `10⁻⁶` of the coordinates and twice
+//! the sample coordinates' error; else every cell), and of those a cell
+//! lists it unless some `F` is certainly negative on the whole cell. A cell
+//! inside one image certainly occluded needs no test at all, and once every
+//! cell is such, no further candidate matters. A sample tests only its
+//! cell's list.
+//!
+//! Where this would cost more than it saves — more than `samples/8`
+//! candidates, or more than 8 cell tests per sample — [`Binned::build`]
+//! declines and every sample casts its ray.
 //!
 //! Both decisions are [`segment_blocked`]'s exact answer wherever its
 //! predicates are exact: coordinates `0` or within `[10⁻⁹⁰, 10⁹⁰]` in
