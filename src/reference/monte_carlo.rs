@@ -330,15 +330,27 @@ impl Replicate {
 
     /// Point `i` in `[0, 1)²`.
     fn point(&self, i: u32) -> DVec2 {
+        self.point_in(i, self.grid(i))
+    }
+
+    /// The cell of point `i` on the `2³²` grid: the point lies in
+    /// `[g/2³², (g + 1)/2³²)` on each axis.
+    fn grid(&self, i: u32) -> [u32; 2] {
         // The digits bit-reversed, as `owen_scramble` hashes them: van der
         // Corput's are `i` itself.
         let reversed = [i, sobol_second_reversed(i)];
+        std::array::from_fn(|d| {
+            owen_scramble_reversed(reversed[d], self.scramble[d]) ^ self.shift[d]
+        })
+    }
+
+    /// Point `i`, whose grid cell is `grid` ([`Replicate::grid`]).
+    fn point_in(&self, i: u32, grid: [u32; 2]) -> DVec2 {
         let h = mix64(self.jitter ^ u64::from(i));
         let coordinate = |d: usize| {
-            let x = owen_scramble_reversed(reversed[d], self.scramble[d]) ^ self.shift[d];
             // 20 jitter bits below the 32-bit grid: the sum is exact and < 1.
             let jitter = f64::from(((h >> (32 * d)) & 0xF_FFFF) as u32) / f64::from(1u32 << 20);
-            (f64::from(x) + jitter) / 4_294_967_296.0
+            (f64::from(grid[d]) + jitter) / 4_294_967_296.0
         };
         DVec2::new(coordinate(0), coordinate(1))
     }

@@ -55,7 +55,8 @@ pub(crate) struct PlaneMap {
     pub(crate) axes: [DVec3; 2],
     /// `|q.x|, |q.y| ≤ half` for every sample.
     pub(crate) half: f64,
-    /// [`PlaneMap::approx`] is within `error` of `q` on each axis.
+    /// [`PlaneMap::approx`] is within `error` of `q` on each axis, also
+    /// when given an `s` within `2⁻³³` of the sample's on each axis.
     pub(crate) error: f64,
     /// The disk's radius; `None` for a rect.
     radius: Option<f64>,
@@ -63,7 +64,8 @@ pub(crate) struct PlaneMap {
 
 impl PlaneMap {
     /// The plane coordinates of sample `s`, within [`PlaneMap::error`] of
-    /// those [`Emitter::point_at`] uses, without its cosine and sine.
+    /// those [`Emitter::point_at`] uses, without its cosine and sine (for
+    /// any `s` within `2⁻³³` of the sample on each axis).
     #[inline]
     pub(crate) fn approx(&self, s: DVec2) -> DVec2 {
         match self.radius {
@@ -87,18 +89,23 @@ impl Emitter {
                     // The signed radius and |cos|, |sin| within 1, two
                     // roundings.
                     half: r * (1.0 + CONCENTRIC_APPROX_ERROR + 1e-15),
-                    // The polynomials' error, and one rounding of each
-                    // product on both sides.
-                    error: r * (CONCENTRIC_APPROX_ERROR + 1e-15),
+                    // The polynomials' error, one rounding of each
+                    // product on both sides, and `2⁻³³` on each axis of
+                    // `s` through the map's Lipschitz constant: the
+                    // concentric map's Jacobian has norm at most
+                    // `2 · 1.3823` (at the wedges' diagonals, `θ = ±π/4`),
+                    // so `2.77 · √2 · 2⁻³³ < 10⁻⁹` of the radius.
+                    error: r * (CONCENTRIC_APPROX_ERROR + 1e-9),
                     radius: Some(r),
                 })
             }
-            // The same operations as `point_at`: the same `q`.
+            // The same operations as `point_at`: the same `q` for the
+            // same `s`, and `2 · 2⁻³³` for an `s` that far.
             Emitter::Rect(r) => Some(PlaneMap {
                 center: r.center(),
                 axes: [r.u(), r.v()],
                 half: 1.0,
-                error: 0.0,
+                error: 1e-9,
                 radius: None,
             }),
             Emitter::Segment(_) | Emitter::Point(_) => None,

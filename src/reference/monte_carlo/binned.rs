@@ -160,8 +160,9 @@ pub(super) struct Binned {
     next: Vec<u32>,
     /// The cells' centres on either axis.
     centers: Vec<f64>,
-    /// A replicate's samples and their approximate plane coordinates.
-    samples: Vec<(DVec2, DVec2)>,
+    /// A replicate's samples (their cells on the `2³²` grid) and their
+    /// approximate plane coordinates.
+    samples: Vec<([u32; 2], DVec2)>,
 }
 
 impl Binned {
@@ -418,17 +419,21 @@ impl Binned {
         let Some(map) = self.map else {
             return (0..m).map(|i| u32::from(ray(replicate.point(i)))).sum();
         };
-        // In passes, each a loop without branches on the data.
+        // In passes, each a loop without branches on the data. The plane
+        // coordinates come from the centre of the sample's cell on the
+        // `2³²` grid (`PlaneMap::approx` allows for it); the sample's own
+        // point, jitter and all, only where its ray is cast.
         self.samples.clear();
         self.samples
-            .extend((0..m).map(|i| (replicate.point(i), DVec2::ZERO)));
-        for (s, q) in &mut self.samples {
-            *q = map.approx(*s);
+            .extend((0..m).map(|i| (replicate.grid(i), DVec2::ZERO)));
+        for (grid, q) in &mut self.samples {
+            let centre = grid.map(|g| (f64::from(g) + 0.5) / 4_294_967_296.0);
+            *q = map.approx(DVec2::from(centre));
         }
         let mut visible = 0;
-        for &(s, q) in &self.samples {
+        for (i, &(grid, q)) in (0..m).zip(&self.samples) {
             let known = self.decide(&map, q);
-            visible += u32::from(known.unwrap_or_else(|| ray(s)));
+            visible += u32::from(known.unwrap_or_else(|| ray(replicate.point_in(i, grid))));
         }
         visible
     }
@@ -675,9 +680,13 @@ mod tests {
         ) {
             let x = emitter.point_at(s) - map.center;
             let exact = DVec2::new(x.dot(map.axes[0]), x.dot(map.axes[1]));
-            let q = map.approx(s);
-            worst = worst.max((q - exact).abs().max_element());
-            assert!(q.abs().max_element() <= map.half, "{s:?}");
+            // At the sample and at the centre of its cell on the 2³² grid,
+            // where `count_unoccluded` takes it.
+            let centre = (s * 4_294_967_296.0).floor() + 0.5;
+            for q in [map.approx(s), map.approx(centre / 4_294_967_296.0)] {
+                worst = worst.max((q - exact).abs().max_element());
+                assert!(q.abs().max_element() <= map.half, "{s:?}");
+            }
         }
         // The error is the polynomials' (4e-6 of the radius), far above
         // the rounding of the check itself.
@@ -685,6 +694,32 @@ mod tests {
         assert!(
             worst > 0.1 * map.error,
             "worst {worst}: the bound is far from tight"
+        );
+    }
+
+    /// The Lipschitz constant `PlaneMap::error` allows for moving `s` by
+    /// `2⁻³³`: the concentric map moves by at most `2.77` times as much
+    /// (in units of the radius), most near the wedges' diagonals.
+    #[test]
+    fn concentric_map_is_lipschitz_as_stated() {
+        let light = Light::disk(DVec3::ZERO, DVec3::Z, 1.0).expect("a light");
+        let emitter = light
+            .emitter(DVec3::new(0.0, 0.0, -1.0))
+            .expect("an emitter");
+        let mut rng = SplitMix64(5);
+        let mut worst: f64 = 0.0;
+        for _ in 0..200_000 {
+            let s = DVec2::new(uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0));
+            let step =
+                DVec2::new(uniform(&mut rng, -1.0, 1.0), uniform(&mut rng, -1.0, 1.0)) * 1e-5;
+            let t = (s + step).clamp(DVec2::ZERO, DVec2::splat(0.999_999));
+            let moved = (emitter.point_at(t) - emitter.point_at(s)).length();
+            worst = worst.max(moved / (t - s).length());
+        }
+        assert!(worst <= 2.0 * 1.3823 + 1e-3, "worst {worst}");
+        assert!(
+            worst > 2.0 * 1.3823 * 0.95,
+            "worst {worst}: the constant is far from tight"
         );
     }
 }
