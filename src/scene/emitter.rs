@@ -215,28 +215,19 @@ fn square_share_above(h: f64, a: f64, b: f64) -> f64 {
 /// ("A Low Distortion Map Between Disk and Square", 1997): area-preserving
 /// up to the constant `π/4`.
 fn concentric_disk(s: DVec2) -> DVec2 {
-    let (r, theta) = concentric_polar(s);
-    if r == 0.0 {
-        return DVec2::ZERO;
-    }
-    DVec2::new(theta.cos(), theta.sin()) * r
-}
-
-/// The concentric map's signed radius and angle: `θ ∈ [−π/4, π/4]` in the
-/// wedges around the x axis, `θ ∈ [π/4, 3π/4]` around the y axis (the
-/// radius negative in the lower and left wedges); `(0, 0)` at the centre.
-fn concentric_polar(s: DVec2) -> (f64, f64) {
     let o = s * 2.0 - DVec2::ONE;
     if o == DVec2::ZERO {
-        (0.0, 0.0)
-    } else if o.x.abs() > o.y.abs() {
+        return DVec2::ZERO;
+    }
+    let (r, theta) = if o.x.abs() > o.y.abs() {
         (o.x, std::f64::consts::FRAC_PI_4 * (o.y / o.x))
     } else {
         (
             o.y,
             std::f64::consts::FRAC_PI_2 - std::f64::consts::FRAC_PI_4 * (o.x / o.y),
         )
-    }
+    };
+    DVec2::new(theta.cos(), theta.sin()) * r
 }
 
 /// [`concentric_disk`] with the cosine and sine replaced by polynomials:
@@ -247,7 +238,7 @@ fn concentric_polar(s: DVec2) -> (f64, f64) {
 /// deciding where a sample lands before its exact point is needed.
 fn concentric_disk_approx(s: DVec2) -> DVec2 {
     // Selections rather than branches (the wedge is a coin toss per
-    // sample): `r` and the ratio as `concentric_polar` takes them, `φ` its
+    // sample): `r` and the ratio as `concentric_disk` takes them, `φ` its
     // angle in the x wedges and `π/2 − θ` in the y wedges.
     let o = s * 2.0 - DVec2::ONE;
     let wide = o.x.abs() > o.y.abs();

@@ -8,9 +8,10 @@
 //! For a receiver `p` and a disk or rect emitter, the light's points are
 //! `center + e₀ q.x + e₁ q.y` for plane coordinates `q` ([`PlaneMap`]). The
 //! triangles whose boxes meet the pyramid from `p` over the square
-//! `|q.x|, |q.y| ≤ half` (widened by `10⁻⁶` and deepened by `10⁻⁶` of the
-//! light's depth, far beyond the rounding of the points, which is held
-//! below `10⁻⁸` of the depth) are found once
+//! `|q.x|, |q.y| ≤ half` (widened by `10⁻⁶` of it and `10⁻⁹` of the
+//! coordinates, and deepened by `10⁻⁶` of the light's depth: far beyond the
+//! rounding of the points, for a receiver not within 0.06° of the light's
+//! plane and coordinates below a million times its depth) are found once
 //! ([`Bvh::triangles_meeting_hull`]); every other triangle misses every
 //! sample's segment. For a candidate
 //! `v₀v₁v₂` not coplanar with `p` (a coplanar one blocks nothing by
@@ -216,15 +217,28 @@ impl Binned {
             return false;
         }
 
-        // Every segment from `p` to a sample point lies in this pyramid:
-        // its base is `10⁻⁶` of the depth beyond the light's plane, and
-        // `10⁻⁶` of the light plus a thousand times the rounding scale
-        // `err` wider than the square `|q| ≤ half`, where the rounding of
-        // the points and corners is held below `10⁻⁸` of the depth.
-        if err.is_nan() || err >= 1e-8 * wd {
+        // The dual axes: `q = (e₀* · (y − c), e₁* · (y − c))` for a point
+        // `y` of the plane; their length turns lengths into plane
+        // coordinates.
+        let dual = [
+            ey.cross(w) / ex.dot(ey.cross(w)),
+            w.cross(ex) / ey.dot(w.cross(ex)),
+        ];
+        let to_q = dual[0].length().max(dual[1].length());
+        // The coordinates' scale: every rounding below is a few ulps of it.
+        let scale = (p.abs() + c.abs() + reach).max_element();
+        // Held away from grazing views (the receiver within 0.06° of the
+        // light's plane) and from coordinates a million times the depth,
+        // every segment from `p` to a sample point lies in this pyramid:
+        // its base `10⁻⁶` of the depth beyond the light, `10⁻⁶` of the
+        // light and `10⁻⁹` of the scale wider than the square
+        // `|q| ≤ half` — the points' and the corners' rounding, a few ulps
+        // of the scale, moves them by under `10⁻¹²` of it across and
+        // `10⁻⁹` of the depth along the view.
+        if !(wd >= 1e-3 * d.length() && 1e-6 * scale <= wd && to_q.is_finite()) {
             return false;
         }
-        let wide = half * (1.0 + 1e-6) + 1e3 * err / ex.length().min(ey.length());
+        let wide = half * (1.0 + 1e-6) + 1e-9 * scale * to_q;
         let corner = |sx: f64, sy: f64| {
             let k = c + (ex * sx + ey * sy) * wide;
             p + (k - p) * (1.0 + 1e-6)
@@ -245,12 +259,6 @@ impl Binned {
             return false;
         }
 
-        // The dual axes: `q = (e₀* · (y − c), e₁* · (y − c))` for a point
-        // `y` of the plane (for binning only).
-        let dual = [
-            ey.cross(w) / ex.dot(ey.cross(w)),
-            w.cross(ex) / ey.dot(w.cross(ex)),
-        ];
         // The size, in plane coordinates, of a rounding of `c` or `d`.
         let reach_q =
             (d.abs() + c.abs()).max_element() * (dual[0].abs() + dual[1].abs()).max_element();
