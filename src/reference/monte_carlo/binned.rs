@@ -566,13 +566,13 @@ mod tests {
             let x0 = emitter.point_at(samples[(rng.next() % 1024) as usize]);
             let scale = 10f64.powf(uniform(&mut rng, -4.0, 0.3));
             let on_ray = p.lerp(x0, uniform(&mut rng, 0.0, 1.2));
+            // A triangle with a corner exactly at `a`.
+            let cornered = |rng: &mut SplitMix64, a: DVec3| {
+                [a, a + vector(rng, scale), a + vector(rng, scale)]
+            };
             let t = match rng.next() % 8 {
-                0 => [p, p + vector(&mut rng, scale), p + vector(&mut rng, scale)],
-                1 => [
-                    on_ray,
-                    on_ray + vector(&mut rng, scale),
-                    on_ray + vector(&mut rng, scale),
-                ],
+                0 => cornered(&mut rng, p),
+                1 => cornered(&mut rng, on_ray),
                 2 => {
                     let d = vector(&mut rng, scale);
                     [on_ray - d, on_ray + d, on_ray + vector(&mut rng, scale)]
@@ -584,11 +584,7 @@ mod tests {
                     }
                     t
                 }
-                4 => [
-                    x0,
-                    x0 + vector(&mut rng, scale),
-                    x0 + vector(&mut rng, scale),
-                ],
+                4 => cornered(&mut rng, x0),
                 5 => {
                     let d = vector(&mut rng, scale);
                     let (a, b) = (on_ray - d, on_ray + d);
