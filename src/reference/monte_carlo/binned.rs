@@ -607,14 +607,18 @@ mod tests {
         (light, p, triangles, samples)
     }
 
-    /// The samples of `scene(seed)` decided on the plane, and their
-    /// count; panics (through `check`) on a decision that is not the ray's.
+    /// The count of the samples of `scene(seed)` decided on the plane
+    /// (none where the set-up declines), each passed to `check` with the
+    /// ray's answer.
     fn decide_scene(seed: u64, mut check: impl FnMut(bool, bool, DVec2)) -> usize {
         let (light, p, triangles, samples) = scene(seed);
         let bvh = Bvh::new(Occluders::from_triangles(triangles));
         let emitter = light.emitter(p).expect("an emitter");
         let mut binned = Binned::default();
-        assert!(binned.build(&bvh, &emitter, p, 1 << 20, 16), "seed {seed}");
+        if !binned.build(&bvh, &emitter, p, 1 << 20, 16) {
+            // Declined (a grazing view of a tilted disk): every ray is cast.
+            return 0;
+        }
         let map = binned.map.expect("a plane");
         let mut decided = 0;
         for &s in &samples {
