@@ -203,11 +203,8 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Opti
     let mut means = [0.0f64; REPLICATES as usize];
     let samples = k * m;
     BINNED.with_borrow_mut(|binned| {
-        let decided =
-            samples >= BINNED_FROM && binned.build(bvh, emitter, p, samples, grid_cells(samples));
-        if !decided {
-            binned.clear();
-        }
+        // Where the set-up declines, every sample casts its ray.
+        binned.build(bvh, emitter, p, samples, binned::grid_cells(samples));
         for (mean, replicate) in means.iter_mut().zip(replicates) {
             let visible = binned.count_unoccluded(&replicate, m, |s| {
                 bvh.segment_unoccluded(p, emitter.point_at(s))
@@ -271,17 +268,6 @@ pub fn visibility_many(
         .par_iter()
         .map(|&p| visibility(bvh, light, p, options))
         .collect()
-}
-
-/// The fewest samples per receiver decided on the light's plane (module
-/// [`binned`]); fewer cast every ray, as the plane's set-up costs about as
-/// much as this many rays.
-const BINNED_FROM: u32 = 256;
-
-/// Cells per axis of the light's grid for `samples` samples: about four
-/// samples per cell, 4 to 64 per axis.
-fn grid_cells(samples: u32) -> usize {
-    ((f64::from(samples).sqrt() / 2.0) as usize).clamp(4, 64)
 }
 
 std::thread_local! {

@@ -75,6 +75,17 @@ use glam::{DVec2, DVec3};
 /// `γ(16)`: more roundings than any bound below needs.
 const G16: f64 = gamma(16);
 
+/// The fewest samples per receiver decided on the light's plane; fewer
+/// cast every ray, as the plane's set-up costs about as much as this many
+/// rays.
+const BINNED_FROM: u32 = 256;
+
+/// Cells per axis of the light's grid for `samples` samples: about four
+/// samples per cell, 4 to 64 per axis.
+pub(super) fn grid_cells(samples: u32) -> usize {
+    ((f64::from(samples).sqrt() / 2.0) as usize).clamp(4, 64)
+}
+
 /// The largest coordinate magnitude of the fast path (far inside the exact
 /// predicates' domain, and far from overflow in the products below).
 const BIG: f64 = 1e30;
@@ -93,42 +104,27 @@ enum Verdict {
 /// One candidate's image on the light's plane.
 #[derive(Clone, Copy, Debug)]
 struct Image {
-    /// Per edge `[a, b, c, m]`: `F(q) = a + b q.x + c q.y`, positive inside,
-    /// certain beyond the margin `m`.
-    edges: [[f64; 4]; 3],
+    /// Per edge `[a, b, c]`: `F(q) = a + b q.x + c q.y`, positive inside.
+    edges: [[f64; 3]; 3],
+    /// Per edge, the margin `m` beyond which the sign of `F` is certain.
+    margins: [f64; 3],
     /// Every corner certainly between the receiver and the light.
     between: bool,
 }
 
 impl Image {
+    /// The verdict at `q`, given each edge's margin: [`Image::margins`]
+    /// for a sample, or those widened by the most `F` varies over a cell
+    /// around `q` for every point of the cell.
     #[inline]
-    fn classify(&self, q: DVec2) -> Verdict {
+    fn classify(&self, q: DVec2, margins: &[f64; 3]) -> Verdict {
         let mut inside = true;
-        for [a, b, c, m] in self.edges {
+        for ([a, b, c], m) in self.edges.into_iter().zip(margins) {
             let f = a + b * q.x + c * q.y;
             if f < -m {
                 return Verdict::Outside;
             }
-            inside &= f > m;
-        }
-        if inside && self.between {
-            Verdict::Inside
-        } else {
-            Verdict::Unsure
-        }
-    }
-
-    /// The verdict for every point of the square of half-width `h` around
-    /// `q` (its `Inside` and `Outside` hold for each of them), given
-    /// `spread[e] = (|b| + |c|) h` of each edge.
-    fn classify_square(&self, q: DVec2, spread: &[f64; 3]) -> Verdict {
-        let mut inside = true;
-        for ([a, b, c, m], spread) in self.edges.into_iter().zip(spread) {
-            let f = a + b * q.x + c * q.y;
-            if f + spread < -m {
-                return Verdict::Outside;
-            }
-            inside &= f - spread > m;
+            inside &= f > *m;
         }
         if inside && self.between {
             Verdict::Inside
@@ -167,15 +163,12 @@ pub(super) struct Binned {
 }
 
 impl Binned {
-    /// Forgets the prepared receiver: every sample casts its ray.
-    pub(super) fn clear(&mut self) {
-        self.map = None;
-    }
-
-    /// Prepares the decisions for receiver `p` on a grid of `cells²`
-    /// cells; `false` when they do not apply (a segment or point emitter,
-    /// coordinates outside the fast path's domain, a receiver not
-    /// certainly in front of the light): then every sample casts its ray.
+    /// Prepares the decisions for receiver `p` and `samples` samples on a
+    /// grid of `cells²` cells; `false` when they do not apply (fewer than
+    /// [`BINNED_FROM`] samples, a segment or point emitter, coordinates
+    /// outside the fast path's domain, a receiver not certainly in front
+    /// of the light, a set-up past its budget): then every sample casts
+    /// its ray.
     pub(super) fn build(
         &mut self,
         bvh: &Bvh,
@@ -185,6 +178,9 @@ impl Binned {
         cells: usize,
     ) -> bool {
         self.map = None;
+        if samples < BINNED_FROM {
+            return false;
+        }
         let Some(map) = emitter.plane_map() else {
             return false;
         };
@@ -306,8 +302,8 @@ impl Binned {
                 continue;
             }
             let between = depth.iter().all(|z| z.1 < depth_lo);
-            let mut edges = [[0.0; 4]; 3];
-            for (k, edge) in edges.iter_mut().enumerate() {
+            let (mut edges, mut margins) = ([[0.0; 3]; 3], [0.0; 3]);
+            for (k, (edge, margin)) in edges.iter_mut().zip(&mut margins).enumerate() {
                 let (a, b) = (rel[k], rel[(k + 1) % 3]);
                 let n = a.cross(b) * sigma;
                 let (aa, ba) = (a.abs(), b.abs());
@@ -319,7 +315,7 @@ impl Binned {
                 );
                 let (fa, fb, fc) = (n.dot(d), n.dot(ex), n.dot(ey));
                 let axes = nn.dot(ex.abs() + ey.abs());
-                let margin = 2.0
+                *margin = 2.0
                     * (G16
                         * (fa.abs()
                             + (fb.abs() + fc.abs()) * half
@@ -327,12 +323,21 @@ impl Binned {
                             + 2.0 * axes * half
                             + 2.0 * (nn.dot(c.abs()) + axes * half))
                         + 2.0 * axes * map.error);
-                *edge = [fa, fb, fc, margin];
+                *edge = [fa, fb, fc];
             }
-            if !edges.iter().flatten().all(|x| x.is_finite()) {
+            if !edges
+                .iter()
+                .flatten()
+                .chain(&margins)
+                .all(|x| x.is_finite())
+            {
                 return false;
             }
-            let image = Image { edges, between };
+            let image = Image {
+                edges,
+                margins,
+                between,
+            };
             let index = self.images.len() as u32;
             // The cells to test: around the corners' projections where
             // every corner is well in front of `p` (the image is their
@@ -364,14 +369,18 @@ impl Binned {
             }
             budget -= tested;
             let strip = x0 == x1 || y0 == y1;
-            let spread = image.edges.map(|[_, b, c, _]| (b.abs() + c.abs()) * h);
+            // Each margin widened by the most `F` varies over a cell.
+            let mut cell_margins = margins;
+            for (m, [_, b, c]) in cell_margins.iter_mut().zip(edges) {
+                *m += (b.abs() + c.abs()) * h;
+            }
             for iy in y0..=y1 {
                 for ix in x0..=x1 {
                     let m = DVec2::new(self.centers[ix], self.centers[iy]);
                     let verdict = if strip {
                         Verdict::Unsure
                     } else {
-                        image.classify_square(m, &spread)
+                        image.classify(m, &cell_margins)
                     };
                     let k = iy * cells + ix;
                     match verdict {
@@ -466,7 +475,8 @@ impl Binned {
         }
         let mut unsure = false;
         for &i in &self.items[self.start[k] as usize..self.start[k + 1] as usize] {
-            match self.images[i as usize].classify(q) {
+            let image = &self.images[i as usize];
+            match image.classify(q, &image.margins) {
                 Verdict::Outside => {}
                 Verdict::Inside => return Some(false),
                 Verdict::Unsure => unsure = true,
