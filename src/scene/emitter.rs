@@ -41,25 +41,36 @@ impl Emitter {
     }
 }
 
-/// An area emitter's sample points as an affine image of plane
-/// coordinates: [`Emitter::point_at`]`(s)` is `center + axes[0] q.x +
+/// A disk, rect or segment emitter's sample points as an affine image of
+/// plane coordinates: [`Emitter::point_at`]`(s)` is `center + axes[0] q.x +
 /// axes[1] q.y` for the plane coordinates `q` of `s`, each coordinate
-/// rounded at most three times (`γ₃` relative to the terms' magnitudes). For
+/// within a few roundings (`γ₅` relative to the terms' magnitudes). For
 /// Monte Carlo's decisions on the light (`reference::monte_carlo`).
 #[derive(Clone, Copy, Debug)]
 pub(crate) struct PlaneMap {
     /// The point at `q = 0`.
     pub(crate) center: DVec3,
     /// The vectors `q.x` and `q.y` scale: the disk's unit axes, the rect's
-    /// half-axes.
+    /// half-axes, the segment's half-difference and zero.
     pub(crate) axes: [DVec3; 2],
     /// `|q.x|, |q.y| ≤ half` for every sample.
     pub(crate) half: f64,
     /// [`PlaneMap::approx`] is within `error` of `q` on each axis, also
     /// when given an `s` within `2⁻³³` of the sample's on each axis.
     pub(crate) error: f64,
-    /// The disk's radius; `None` for a rect.
-    radius: Option<f64>,
+    /// Which map from `s` to `q`.
+    kind: MapKind,
+}
+
+/// The map from a sample `s` to plane coordinates.
+#[derive(Clone, Copy, Debug)]
+enum MapKind {
+    /// The concentric map onto the disk of this radius.
+    Disk(f64),
+    /// `q = 2s − 1`.
+    Rect,
+    /// `q = (2 s.x − 1, 0)`: the segment is the `q.x` axis.
+    Segment,
 }
 
 impl PlaneMap {
@@ -68,16 +79,17 @@ impl PlaneMap {
     /// any `s` within `2⁻³³` of the sample on each axis).
     #[inline]
     pub(crate) fn approx(&self, s: DVec2) -> DVec2 {
-        match self.radius {
-            Some(r) => concentric_disk_approx(s) * r,
-            None => s * 2.0 - DVec2::ONE,
+        match self.kind {
+            MapKind::Disk(r) => concentric_disk_approx(s) * r,
+            MapKind::Rect => s * 2.0 - DVec2::ONE,
+            MapKind::Segment => DVec2::new(s.x * 2.0 - 1.0, 0.0),
         }
     }
 }
 
 impl Emitter {
-    /// The plane map of a disk or rect emitter; `None` for a segment or a
-    /// point.
+    /// The plane map of a disk, rect or segment emitter (a segment's
+    /// second axis is zero); `None` for a point.
     pub(crate) fn plane_map(&self) -> Option<PlaneMap> {
         match *self {
             Emitter::Disk(d) => {
@@ -96,7 +108,7 @@ impl Emitter {
                     // `2 · 1.3823` (at the wedges' diagonals, `θ = ±π/4`),
                     // so `2.77 · √2 · 2⁻³³ < 10⁻⁹` of the radius.
                     error: r * (CONCENTRIC_APPROX_ERROR + 1e-9),
-                    radius: Some(r),
+                    kind: MapKind::Disk(r),
                 })
             }
             // The same operations as `point_at`: the same `q` for the
@@ -106,9 +118,19 @@ impl Emitter {
                 axes: [r.u(), r.v()],
                 half: 1.0,
                 error: 1e-9,
-                radius: None,
+                kind: MapKind::Rect,
             }),
-            Emitter::Segment(_) | Emitter::Point(_) => None,
+            // `a (1 − s) + b s` is `c + e q.x` with `c`, `e` the midpoint and
+            // the half-difference (one rounding each, and three in `lerp`:
+            // within the same `γ` of the terms), and no second axis.
+            Emitter::Segment(g) => Some(PlaneMap {
+                center: (g.a() + g.b()) * 0.5,
+                axes: [(g.b() - g.a()) * 0.5, DVec3::ZERO],
+                half: 1.0,
+                error: 1e-9,
+                kind: MapKind::Segment,
+            }),
+            Emitter::Point(_) => None,
         }
     }
 
