@@ -562,17 +562,18 @@ proptest! {
 
     /// Whatever shortcut the estimate takes (from 256 samples most are
     /// decided on the light's plane), it is the count of its rays, bit for
-    /// bit: random soups between a receiver and a sphere, disk or rect
-    /// light, sample counts on both sides of that threshold, receivers in
+    /// bit: random soups between a receiver and a sphere, disk, rect or
+    /// segment light, sample counts on both sides of that threshold, receivers in
     /// turn on one thread (so a receiver never reuses another's set-up).
     #[test]
     fn estimates_are_their_rays_counted(seed in any::<u64>()) {
         let mut rng = Rng::new(seed);
         let height = rng.uniform(1.0, 5.0);
         let size = rng.uniform(0.1, 1.0);
-        let light = match rng.below(3) {
+        let light = match rng.below(4) {
             0 => Light::sphere(v3(0.0, 0.0, height), size),
             1 => Light::disk(v3(0.0, 0.0, height), v3(rng.uniform(-0.5, 0.5), 0.3, 1.0), size),
+            2 => Light::segment(v3(-size, 0.1, height), v3(size, -0.1, height + 0.2)),
             _ => Light::rect(v3(0.0, 0.0, height), v3(size, 0.1, 0.0), v3(0.0, size, 0.2)),
         }
         .expect("a light");

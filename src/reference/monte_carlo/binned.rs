@@ -151,6 +151,9 @@ pub(super) struct Binned {
     /// Cells inside one image certainly occluded.
     covered: Vec<bool>,
     candidates: Vec<u32>,
+    /// The pyramid the candidates were culled to: the receiver, then the
+    /// base's corners in order around it.
+    hull: [DVec3; 5],
     /// `(cell, image)` pairs before the counting sort.
     pairs: Vec<(u32, u32)>,
     /// The counting sort's cursors.
@@ -254,7 +257,7 @@ impl Binned {
             let k = c + ex * (sx * wide) + across * sy;
             p + (k - p) * (1.0 + 1e-6)
         };
-        let hull = [
+        self.hull = [
             p,
             corner(1.0, 1.0),
             corner(-1.0, 1.0),
@@ -266,7 +269,7 @@ impl Binned {
         // tenth of that, a cell test a tenth (measured on piles of
         // occluders over one receiver, `benches/references.rs`).
         let cap = samples as usize / 8;
-        if !bvh.triangles_meeting_hull_at_most(&hull, &mut self.candidates, cap) {
+        if !bvh.triangles_meeting_hull_at_most(&self.hull, &mut self.candidates, cap) {
             return false;
         }
 
@@ -701,6 +704,55 @@ mod tests {
             });
             prop_assert_eq!(wrong, None);
         }
+    }
+
+    /// Every sample point lies in the pyramid the candidates are culled to
+    /// (so every sample's segment from its apex does): on or inside each
+    /// of its faces, decided exactly, for every kind of emitter — a
+    /// segment's pyramid too, thin as it is across the segment's plane —
+    /// the light's own corners and ends included.
+    #[test]
+    fn sample_points_lie_in_the_pyramid() {
+        let mut kinds = [0; 3];
+        for seed in 0..300 {
+            let (light, p, triangles, samples) = scene(seed);
+            let bvh = Bvh::new(Occluders::from_triangles(triangles));
+            let emitter = light.emitter(p).expect("an emitter");
+            let mut binned = Binned::default();
+            if !binned.build(&bvh, &emitter, p, 1 << 20, 16) {
+                continue;
+            }
+            let [apex, base @ ..] = binned.hull;
+            let inner = (apex + base.iter().sum::<DVec3>() / 4.0) / 2.0;
+            // The four sides, and the base (two triangles: its corners
+            // need not be exactly coplanar), each facing `inner`.
+            let faces = [
+                [apex, base[0], base[1]],
+                [apex, base[1], base[2]],
+                [apex, base[2], base[3]],
+                [apex, base[3], base[0]],
+                [base[0], base[1], base[2]],
+                [base[0], base[2], base[3]],
+            ];
+            // The samples, and the light's corners and ends exactly.
+            let last = 1.0 - f64::EPSILON / 2.0;
+            let corners = [0.0, last].map(|x| [0.0, last].map(|y| DVec2::new(x, y)));
+            for [a, b, c] in faces {
+                let side = orient3d(a, b, c, inner);
+                assert_ne!(side, Sign::Zero, "seed {seed}: a flat face");
+                for &s in samples.iter().chain(corners.as_flattened()) {
+                    let x = emitter.point_at(s);
+                    let at = orient3d(a, b, c, x);
+                    assert!(at == side || at == Sign::Zero, "seed {seed}: {s:?} outside");
+                }
+            }
+            kinds[match emitter {
+                Emitter::Disk(_) => 0,
+                Emitter::Rect(_) => 1,
+                _ => 2,
+            }] += 1;
+        }
+        assert!(kinds.iter().all(|&n| n >= 50), "{kinds:?}");
     }
 
     /// The test above is not vacuous: over a fixed set of its scenes, most
