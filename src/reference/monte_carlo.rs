@@ -45,11 +45,13 @@
 //! # Cost
 //!
 //! Each sample is the exact answer of its occlusion ray
-//! ([`Bvh::segment_unoccluded`]), but with at least 256 samples on a disk,
-//! sphere or rect light most samples are decided without casting it. Once
+//! ([`Bvh::segment_unoccluded`]), but with at least 256 samples on any
+//! light but a point most samples are decided without casting it. Once
 //! per receiver the triangles that can hide part of the light from it are
 //! culled with the BVH, and each one's image on the light is written as
-//! three linear edge functions of the light's plane coordinates, with
+//! three linear edge functions of the light's plane coordinates (for a
+//! segment, of its one coordinate, on the plane through it facing the
+//! receiver), with
 //! margins that bound every rounding between them and the exact
 //! determinants at the points the samples map to. A sample whose
 //! (polynomially approximated) coordinates lie certainly outside every
@@ -61,10 +63,11 @@
 //! image needing no test at all. The estimates are therefore the same, bit
 //! for bit, as casting every ray (tested sample by sample against the rays
 //! on scenes built to put corners and edges exactly on sample rays). Where
-//! the set-up would cost more than the rays it saves — past `samples/8`
+//! the set-up would cost more than the rays it saves — past `samples/2`
 //! candidate triangles, or 8 cell tests per sample, as under a pile of
 //! thousands of occluders — and where its margins are not proven (a
-//! receiver within 0.06° of the light's plane, coordinates beyond `±10³⁰`
+//! receiver within 0.06° of the light's plane or a segment's line,
+//! coordinates beyond `±10³⁰`
 //! or a million times the light's depth), every ray is cast. Measured
 //! figures: `benches/README.md`.
 
@@ -324,12 +327,17 @@ impl Replicate {
     /// The cell of point `i` on the `2³²` grid: the point lies in
     /// `[g/2³², (g + 1)/2³²)` on each axis.
     fn grid(&self, i: u32) -> [u32; 2] {
-        // The digits bit-reversed, as `owen_scramble` hashes them: van der
-        // Corput's are `i` itself.
-        let reversed = [i, sobol_second_reversed(i)];
-        std::array::from_fn(|d| {
-            owen_scramble_reversed(reversed[d], self.scramble[d]) ^ self.shift[d]
-        })
+        [
+            self.grid_first(i),
+            owen_scramble_reversed(sobol_second_reversed(i), self.scramble[1]) ^ self.shift[1],
+        ]
+    }
+
+    /// The first coordinate of [`Replicate::grid`] (the digits
+    /// bit-reversed, as `owen_scramble` hashes them: van der Corput's are
+    /// `i` itself).
+    fn grid_first(&self, i: u32) -> u32 {
+        owen_scramble_reversed(i, self.scramble[0]) ^ self.shift[0]
     }
 
     /// Point `i`, whose grid cell is `grid` ([`Replicate::grid`]).

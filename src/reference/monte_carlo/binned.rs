@@ -6,12 +6,18 @@
 //! # Construction
 //!
 //! For a receiver `p` and a disk or rect emitter, the light's points are
-//! `center + e₀ q.x + e₁ q.y` for plane coordinates `q` ([`PlaneMap`]). The
+//! `center + e₀ q.x + e₁ q.y` for plane coordinates `q` ([`PlaneMap`]). A
+//! segment emitter is `center + e₀ q.x` with `q.y = 0`: its plane is the one
+//! through it normal to the perpendicular from `p` to its line (so that
+//! all its points lie at one depth from `p`), `e₁` an axis of that plane
+//! across the segment, and its grid a single row of cells. The
 //! triangles whose boxes meet the pyramid from `p` over the square
 //! `|q.x|, |q.y| ≤ half` (widened by `10⁻⁶` of it and `10⁻⁹` of the
 //! coordinates, and deepened by `10⁻⁶` of the light's depth: far beyond the
 //! rounding of the points, for a receiver not within 0.06° of the light's
-//! plane and coordinates below a million times its depth) are found once
+//! plane, as seen from any of its points, and coordinates below a million
+//! times its depth; for a segment, a pyramid as thin across the plane as
+//! that widening) are found once
 //! ([`Bvh::triangles_meeting_hull`]); every other triangle misses every
 //! sample's segment. For a candidate
 //! `v₀v₁v₂` not coplanar with `p` (a coplanar one blocks nothing by
@@ -24,7 +30,7 @@
 //! factor of more than 2 to spare, every rounding between it and the exact
 //! determinant at the sample point `point_at` returns: the rounded
 //! differences and cross product (`γ₅`), the three dot products, the
-//! evaluation (`γ₃`), `point_at`'s own rounding (`γ₃` of the terms), and the
+//! evaluation (`γ₃`), `point_at`'s own rounding (`γ₅` of the terms), and the
 //! distance of the polynomial sample coordinates ([`PlaneMap::approx`]) from
 //! `point_at`'s.
 //!
@@ -54,7 +60,7 @@
 //! cell is such, no further candidate matters. A sample tests only its
 //! cell's list.
 //!
-//! Where this would cost more than it saves — more than `samples/8`
+//! Where this would cost more than it saves — more than `samples/2`
 //! candidates, or more than 8 cell tests per sample — [`Binned::build`]
 //! declines and every sample casts its ray.
 //!
@@ -265,10 +271,14 @@ impl Binned {
             corner(1.0, -1.0),
         ];
         // Worth it only while the set-up costs less than the rays it
-        // saves: a candidate costs about a ray to prepare, finding one a
-        // tenth of that, a cell test a tenth (measured on piles of
-        // occluders over one receiver, `benches/references.rs`).
-        let cap = samples as usize / 8;
+        // saves: a candidate costs about half a ray to prepare, finding one
+        // a tenth of a ray, a cell test a tenth (measured on piles of
+        // occluders over one receiver, `benches/references.rs`: 4096
+        // candidates prepared and their samples decided took 0.6 of the
+        // time of 4096 rays). So at most `samples/2` candidates: the set-up
+        // never costs much more than the rays, and a query past the cap is
+        // abandoned after a twentieth of their cost.
+        let cap = samples as usize / 2;
         if !bvh.triangles_meeting_hull_at_most(&self.hull, &mut self.candidates, cap) {
             return false;
         }
@@ -470,8 +480,15 @@ impl Binned {
         // `2³²` grid (`PlaneMap::approx` allows for it); the sample's own
         // point, jitter and all, only where its ray is cast.
         self.samples.clear();
-        self.samples
-            .extend((0..m).map(|i| (replicate.grid(i), DVec2::ZERO)));
+        if self.cells[1] == 1 {
+            // A segment's points depend on `s.x` alone: its second grid
+            // coordinate is left at 0.
+            self.samples
+                .extend((0..m).map(|i| ([replicate.grid_first(i), 0], DVec2::ZERO)));
+        } else {
+            self.samples
+                .extend((0..m).map(|i| (replicate.grid(i), DVec2::ZERO)));
+        }
         for (grid, q) in &mut self.samples {
             let centre = grid.map(|g| (f64::from(g) + 0.5) / 4_294_967_296.0);
             *q = map.approx(DVec2::from(centre));
