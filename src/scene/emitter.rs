@@ -103,10 +103,14 @@ impl Emitter {
                     half: r * (1.0 + CONCENTRIC_APPROX_ERROR + 1e-15),
                     // The polynomials' error, one rounding of each
                     // product on both sides, and `2⁻³³` on each axis of
-                    // `s` through the map's Lipschitz constant: the
-                    // concentric map's Jacobian has norm at most
-                    // `2 · 1.3823` (at the wedges' diagonals, `θ = ±π/4`),
-                    // so `2.77 · √2 · 2⁻³³ < 10⁻⁹` of the radius.
+                    // `s` through the map's Lipschitz constant: in the
+                    // wedge `|a| ≥ |b|` of `(a, b) = 2s − 1` the point is
+                    // `a (cos φ, sin φ)`, `φ = π/4 · b/a`, whose Jacobian
+                    // in `(a, b)` turned by `−φ` is `[[1, 0], [−φ, π/4]]`,
+                    // of norm at most `√((1 + 2k + √(1 + 4k²))/2) =
+                    // 1.38236` (`k = π²/16`, at `|φ| = π/4`); so in `s`
+                    // at most `2.7648`, and `2.77 · √2 · 2⁻³³ < 10⁻⁹` of
+                    // the radius.
                     error: r * (CONCENTRIC_APPROX_ERROR + 1e-9),
                     kind: MapKind::Disk(r),
                 })
