@@ -3,6 +3,7 @@
 //! convex hull of a few points.
 
 use super::node::{Node, EMPTY, LEAF, WIDTH};
+use super::ray::STACK;
 use super::{in_f32_range, Bvh};
 use glam::DVec3;
 
@@ -17,10 +18,13 @@ impl Bvh {
     /// A box is dropped only when it is separated from the hull, decided
     /// with rounding bounds (never wrongly): by the hull's bounding box
     /// (exact comparisons), or along a normal `n` of one of the hull's faces
-    /// — found among the planes through three of the points (for at most
-    /// [`Bvh::HULL_FACE_POINTS`] points; any `n` is a valid separating axis,
-    /// the face normals are merely the tight ones) — when the box's interval
-    /// of `n · (q − points[0])` lies beyond the hull's. Each dot product is
+    /// when the box's interval of `n · (q − points[0])` lies beyond the
+    /// hull's. Any `n` is a valid separating axis, the face normals are
+    /// merely the tight ones: five points are read as a pyramid (the apex,
+    /// then the base's corners in order around it), whose four sides and
+    /// base give the normals; otherwise they are found among the planes
+    /// through three of the points (for at most [`Bvh::HULL_FACE_POINTS`]
+    /// points). Each dot product is
     /// bounded by `γ₆ Σ|nᵢ||qᵢ − aᵢ|` (one rounded difference, product and
     /// two sums need `γ₄`).
     ///
@@ -52,16 +56,27 @@ impl Bvh {
             return out.len() <= cap;
         }
         let hull = Hull::new(points);
-        let mut stack = vec![0u32];
-        while let Some(node) = stack.pop() {
-            let n = &self.nodes[node as usize];
+        // Depth-first, as the rays go: at most `stack_need` entries.
+        let mut small = [0u32; STACK];
+        let mut large = Vec::new();
+        let stack: &mut [u32] = if self.stack_need <= STACK {
+            &mut small
+        } else {
+            large.resize(self.stack_need, 0);
+            &mut large
+        };
+        let mut top = 1;
+        while top > 0 {
+            top -= 1;
+            let n = &self.nodes[stack[top] as usize];
             for lane in 0..WIDTH {
                 let child = n.child[lane];
                 if child == EMPTY || hull.separated(n, lane) {
                     continue;
                 }
                 if child & LEAF == 0 {
-                    stack.push(child);
+                    stack[top] = child;
+                    top += 1;
                 } else {
                     out.push(self.ids[(child & !LEAF) as usize]);
                 }
@@ -108,6 +123,23 @@ impl Hull {
             axes: Vec::new(),
         };
         let n = points.len();
+        if let &[apex, a, b, c, d] = points {
+            // A pyramid, as the references pass it: its four sides and its
+            // base, with no search.
+            let faces = [
+                (apex, a, b),
+                (apex, b, c),
+                (apex, c, d),
+                (apex, d, a),
+                (a, b, c),
+            ];
+            for (p, q, r) in faces {
+                if let Some(normal) = (q - p).cross(r - p).try_normalize() {
+                    hull.add_axis(normal, points);
+                }
+            }
+            return hull;
+        }
         if !(3..=Bvh::HULL_FACE_POINTS).contains(&n) {
             return hull;
         }
@@ -138,17 +170,23 @@ impl Hull {
             }
         }
         for normal in normals {
-            let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
-            for &v in points {
-                let (s, bound) = dot_bounded(normal, v, origin);
-                l = l.min(s - bound);
-                h = h.max(s + bound);
-            }
-            if l.is_finite() && h.is_finite() {
-                hull.axes.push((normal, l, h));
-            }
+            hull.add_axis(normal, points);
         }
         hull
+    }
+
+    /// Adds `normal` as a separating axis, with the interval the points
+    /// span along it (rounding bounds included).
+    fn add_axis(&mut self, normal: DVec3, points: &[DVec3]) {
+        let (mut l, mut h) = (f64::INFINITY, f64::NEG_INFINITY);
+        for &v in points {
+            let (s, bound) = dot_bounded(normal, v, self.origin);
+            l = l.min(s - bound);
+            h = h.max(s + bound);
+        }
+        if l.is_finite() && h.is_finite() {
+            self.axes.push((normal, l, h));
+        }
     }
 
     /// Whether lane `lane` of `n` is certainly disjoint from the hull.
