@@ -157,6 +157,8 @@ pub(super) struct Binned {
     /// Cells inside one image certainly occluded.
     covered: Vec<bool>,
     candidates: Vec<u32>,
+    /// Every sample's answer, where one answer holds for all of them.
+    all: Option<bool>,
     /// The pyramid the candidates were culled to: the receiver, then the
     /// base's corners in order around it.
     hull: [DVec3; 5],
@@ -188,6 +190,7 @@ impl Binned {
         cells: usize,
     ) -> bool {
         self.map = None;
+        self.all = None;
         if samples < BINNED_FROM {
             return false;
         }
@@ -459,6 +462,18 @@ impl Binned {
         self.bounds = DVec2::new(grid[0] as f64, grid[1] as f64);
         self.inv_width = self.bounds / (2.0 * half);
         self.map = Some(map);
+        // No image listed and no cell covered: every sample is unoccluded;
+        // every cell covered: every sample is occluded (a sample on the
+        // grid's far edge, which `decide` leaves to its ray, lies in the
+        // last cell's widened box all the same). Either way no sample
+        // need be computed.
+        self.all = if uncovered == 0 {
+            Some(false)
+        } else if self.items.is_empty() && uncovered == n {
+            Some(true)
+        } else {
+            None
+        };
         true
     }
 
@@ -475,6 +490,9 @@ impl Binned {
         let Some(map) = self.map else {
             return (0..m).map(|i| u32::from(ray(replicate.point(i)))).sum();
         };
+        if let Some(unoccluded) = self.all {
+            return if unoccluded { m } else { 0 };
+        }
         // In passes, each a loop without branches on the data. The plane
         // coordinates come from the centre of the sample's cell on the
         // `2³²` grid (`PlaneMap::approx` allows for it); the sample's own
@@ -675,7 +693,8 @@ mod tests {
 
     /// The count of the samples of `scene(seed)` decided on the plane
     /// (none where the set-up declines), each passed to `check` with the
-    /// ray's answer; and the emitter's kind (0 disk, 1 rect, 2 segment).
+    /// ray's answer — all of them where the set-up found one answer for
+    /// all; and the emitter's kind (0 disk, 1 rect, 2 segment).
     fn decide_scene(seed: u64, mut check: impl FnMut(bool, bool, DVec2)) -> (usize, usize) {
         let (light, p, triangles, samples) = scene(seed);
         let bvh = Bvh::new(Occluders::from_triangles(triangles));
@@ -693,7 +712,9 @@ mod tests {
         let map = binned.map.expect("a plane");
         let mut decided = 0;
         for &s in &samples {
-            if let Some(unoccluded) = binned.decide(&map, map.approx(s)) {
+            // The answer for every sample where one holds, else its own.
+            let known = binned.all.or_else(|| binned.decide(&map, map.approx(s)));
+            if let Some(unoccluded) = known {
                 decided += 1;
                 check(
                     unoccluded,
@@ -770,6 +791,58 @@ mod tests {
             }] += 1;
         }
         assert!(kinds.iter().all(|&n| n >= 50), "{kinds:?}");
+    }
+
+    /// Where the set-up finds one answer for every sample, that answer is
+    /// every ray's, and the count is that of the rays; and it finds one
+    /// where it should: with nothing in the way (a triangle off to the
+    /// side), and with one wide triangle just in front of the receiver.
+    #[test]
+    fn one_answer_for_all_is_every_rays() {
+        let mut found = [0; 2];
+        for seed in 0..300 {
+            let (light, p, _, _) = scene(seed);
+            let emitter = light.emitter(p).expect("an emitter");
+            let map = emitter.plane_map().expect("a plane");
+            let toward = map.center - p;
+            let across = map.axes[0].length() + map.axes[1].length();
+            let (u, v) = toward.normalize().any_orthonormal_pair();
+            let side = p + u * 40.0 * (across + toward.length());
+            // Every ray from `p` to the light crosses the plane normal to
+            // `toward` at `near` within `2 t (across + |toward|)` of it.
+            let t = 1e-4;
+            let near = p + toward * t;
+            let reach = 40.0 * t * (across + toward.length());
+            let scenes = [
+                vec![[side, side + v, side + toward]],
+                vec![[
+                    near - (u + v) * reach,
+                    near + (u - v) * reach,
+                    near + v * reach,
+                ]],
+            ];
+            for (answer, triangles) in [true, false].into_iter().zip(scenes) {
+                let bvh = Bvh::new(Occluders::from_triangles(triangles));
+                let replicate = Replicate::new(&mut SplitMix64(seed));
+                let rays = (0..64)
+                    .filter(|&i| bvh.segment_unoccluded(p, emitter.point_at(replicate.point(i))))
+                    .count() as u32;
+                assert_eq!(rays, if answer { 64 } else { 0 }, "seed {seed}");
+                let mut binned = Binned::default();
+                if !binned.build(&bvh, &emitter, p, 1 << 12, 16) {
+                    continue;
+                }
+                if let Some(all) = binned.all {
+                    assert_eq!(all, answer, "seed {seed}");
+                    found[usize::from(answer)] += 1;
+                }
+                let counted = binned.count_unoccluded(&replicate, 64, |s| {
+                    bvh.segment_unoccluded(p, emitter.point_at(s))
+                });
+                assert_eq!(counted, rays, "seed {seed}");
+            }
+        }
+        assert!(found.iter().all(|&n| n >= 200), "{found:?}");
     }
 
     /// The test above is not vacuous: over a fixed set of its scenes, most
