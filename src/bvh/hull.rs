@@ -24,9 +24,10 @@ impl Bvh {
     /// then the base's corners in order around it), whose four sides and
     /// base give the normals; otherwise they are found among the planes
     /// through three of the points (for at most [`Bvh::HULL_FACE_POINTS`]
-    /// points). Each dot product is
-    /// bounded by `γ₆ Σ|nᵢ||qᵢ − aᵢ|` (one rounded difference, product and
-    /// two sums need `γ₄`).
+    /// points). Each dot product with a point of the hull is bounded by
+    /// `γ₆ Σ|nᵢ||qᵢ − aᵢ|` (one rounded difference, product and two sums
+    /// need `γ₄`); a box's interval, from its rounded centre `c` and
+    /// half-extent `e`, by `γ₁₀ Σ|nᵢ|(|cᵢ − aᵢ| + eᵢ + |cᵢ|)`.
     ///
     /// No points: `out` is empty. A non-finite point, or one beyond
     /// `f32::MAX`: every indexed triangle. Triangles beyond `±2⁶⁰`, kept out
@@ -101,12 +102,15 @@ struct Hull {
     hi: DVec3,
     /// Reference point `a` of the axes (the first point).
     origin: DVec3,
-    /// `(n, lo, hi)`: the hull lies in `lo ≤ n · (q − a) ≤ hi`.
-    axes: Vec<(DVec3, f64, f64)>,
+    /// `(n, |n|, lo, hi)`: the hull lies in `lo ≤ n · (q − a) ≤ hi`.
+    axes: Vec<(DVec3, DVec3, f64, f64)>,
 }
 
 /// `γ(6)`.
 const GAMMA6: f64 = crate::kernel::footprint::f64::gamma(6);
+
+/// `γ(10)`.
+const GAMMA10: f64 = crate::kernel::footprint::f64::gamma(10);
 
 impl Hull {
     fn new(points: &[DVec3]) -> Hull {
@@ -185,7 +189,7 @@ impl Hull {
             h = h.max(s + bound);
         }
         if l.is_finite() && h.is_finite() {
-            self.axes.push((normal, l, h));
+            self.axes.push((normal, normal.abs(), l, h));
         }
     }
 
@@ -195,14 +199,22 @@ impl Hull {
         if lo.cmpgt(self.hi).any() || hi.cmplt(self.lo).any() {
             return true;
         }
-        self.axes.iter().any(|&(normal, l, h)| {
-            // The corners minimising and maximising `normal · q`.
-            let q_min = DVec3::select(normal.cmpge(DVec3::ZERO), lo, hi);
-            let q_max = DVec3::select(normal.cmpge(DVec3::ZERO), hi, lo);
-            let (s_min, b_min) = dot_bounded(normal, q_min, self.origin);
-            let (s_max, b_max) = dot_bounded(normal, q_max, self.origin);
+        // The box as its centre `c` and half-extent `e`, each rounded once
+        // (the box lies within `(e + u |c|)/(1 − u)` of `c` on each axis),
+        // and along each axis the interval `n · (c − a) ± |n| · e`, widened
+        // by `γ₁₀ |n| · (|c − a| + e + |c|)`: more than the rounding of
+        // `c`, `e`, `c − a`, the two dot products and the sum
+        // (`γ₃ + γ₅`); the final comparisons need none (a rounded
+        // `s − r > h` implies the exact one).
+        let c = (lo + hi) * 0.5;
+        let e = (hi - lo) * 0.5;
+        let d = c - self.origin;
+        let slack = d.abs() + e + c.abs();
+        self.axes.iter().any(|&(normal, abs_normal, l, h)| {
+            let s = normal.dot(d);
+            let r = abs_normal.dot(e) + GAMMA10 * abs_normal.dot(slack);
             // NaN (never expected with finite inputs) compares false: kept.
-            s_min - b_min > h || s_max + b_max < l
+            s - r > h || s + r < l
         })
     }
 }
