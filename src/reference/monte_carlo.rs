@@ -326,6 +326,7 @@ impl Replicate {
 
     /// The cell of point `i` on the `2³²` grid: the point lies in
     /// `[g/2³², (g + 1)/2³²)` on each axis.
+    #[inline]
     fn grid(&self, i: u32) -> [u32; 2] {
         [
             self.grid_first(i),
@@ -336,6 +337,7 @@ impl Replicate {
     /// The first coordinate of [`Replicate::grid`] (the digits
     /// bit-reversed, as `owen_scramble` hashes them: van der Corput's are
     /// `i` itself).
+    #[inline]
     fn grid_first(&self, i: u32) -> u32 {
         owen_scramble_reversed(i, self.scramble[0]) ^ self.shift[0]
     }
