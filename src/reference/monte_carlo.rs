@@ -45,7 +45,7 @@
 //! # Cost
 //!
 //! Each sample is the exact answer of its occlusion ray
-//! ([`Bvh::segment_unoccluded`]), but with at least 256 samples on any
+//! ([`Bvh::segment_unoccluded`]), but with at least 32 samples on any
 //! light but a point most samples are decided without casting it. Once
 //! per receiver the triangles that can hide part of the light from it are
 //! culled with the BVH, and each one's image on the light is written as
@@ -60,15 +60,16 @@
 //! others — within about `10⁻⁵` of the light's radius from an image's
 //! edge, or under a triangle reaching the light's depth — cast their ray. The
 //! images are binned on a grid of the light's plane, a cell inside one
-//! image needing no test at all. The estimates are therefore the same, bit
+//! image needing no test at all, and a receiver whose cells all hold no
+//! image, or are all inside one, computing no sample at all. The estimates are therefore the same, bit
 //! for bit, as casting every ray (tested sample by sample against the rays
 //! on scenes built to put corners and edges exactly on sample rays). Where
 //! the set-up would cost more than the rays it saves — past `samples/2`
 //! candidate triangles, or 8 cell tests per sample, as under a pile of
 //! thousands of occluders — and where its margins are not proven (a
 //! receiver within 0.06° of the light's plane or a segment's line,
-//! coordinates beyond `±10³⁰`
-//! or a million times the light's depth), every ray is cast. Measured
+//! coordinates beyond `±10³⁰` or a million times the light's depth),
+//! every ray is cast. Measured
 //! figures: `benches/README.md`.
 
 mod binned;
