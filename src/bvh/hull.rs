@@ -3,7 +3,7 @@
 //! convex hull of a few points.
 
 use super::node::{Node, EMPTY, LEAF, WIDTH};
-use super::ray::STACK;
+use super::ray::NodeStack;
 use super::{in_f32_range, Bvh};
 use glam::DVec3;
 
@@ -58,14 +58,8 @@ impl Bvh {
         }
         let hull = Hull::new(points);
         // Depth-first, as the rays go: at most `stack_need` entries.
-        let mut small = [0u32; STACK];
-        let mut large = Vec::new();
-        let stack: &mut [u32] = if self.stack_need <= STACK {
-            &mut small
-        } else {
-            large.resize(self.stack_need, 0);
-            &mut large
-        };
+        let mut stack = NodeStack::new();
+        let stack = stack.entries(self.stack_need);
         let mut top = 1;
         while top > 0 {
             top -= 1;

@@ -9,6 +9,32 @@ use glam::DVec3;
 /// Stack entries kept on the machine stack; deeper trees use a heap stack.
 pub(super) const STACK: usize = 64;
 
+/// A traversal's stack of node indices: on the machine stack up to
+/// [`STACK`] entries, on the heap beyond.
+pub(super) struct NodeStack {
+    small: [u32; STACK],
+    large: Vec<u32>,
+}
+
+impl NodeStack {
+    pub(super) fn new() -> NodeStack {
+        NodeStack {
+            small: [0; STACK],
+            large: Vec::new(),
+        }
+    }
+
+    /// `need` entries, the first of them 0 (the root).
+    pub(super) fn entries(&mut self, need: usize) -> &mut [u32] {
+        if need <= STACK {
+            &mut self.small
+        } else {
+            self.large.resize(need, 0);
+            &mut self.large
+        }
+    }
+}
+
 impl Bvh {
     /// Whether the open segment `(p, x)` meets no triangle, decided exactly
     /// by [`segment_blocked`] on every triangle whose box the segment may
@@ -61,14 +87,8 @@ impl Bvh {
         let Some(ray) = ray else {
             return !self.triangles.iter().any(|t| segment_blocked(p, x, t));
         };
-        let mut small = [0u32; STACK];
-        let mut large = Vec::new();
-        let stack: &mut [u32] = if self.stack_need <= STACK {
-            &mut small
-        } else {
-            large.resize(self.stack_need, 0);
-            &mut large
-        };
+        let mut stack = NodeStack::new();
+        let stack = stack.entries(self.stack_need);
         let mut top = 0;
         let mut node = 0u32;
         // A value read from each child node and leaf triangle as soon as
