@@ -24,7 +24,7 @@ impl NodeStack {
         }
     }
 
-    /// `need` entries, the first of them 0 (the root).
+    /// At least `need` entries, all 0 (the root's index).
     pub(super) fn entries(&mut self, need: usize) -> &mut [u32] {
         if need <= STACK {
             &mut self.small

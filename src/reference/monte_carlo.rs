@@ -51,9 +51,8 @@
 //! culled with the BVH, and each one's image on the light is written as
 //! three linear edge functions of the light's plane coordinates (for a
 //! segment, of its one coordinate, on the plane through it facing the
-//! receiver), with
-//! margins that bound every rounding between them and the exact
-//! determinants at the points the samples map to. A sample whose
+//! receiver), with margins that bound every rounding between them and the
+//! exact determinants at the points the samples map to. A sample whose
 //! (polynomially approximated) coordinates lie certainly outside every
 //! image is unoccluded; one certainly inside the image of a triangle that
 //! lies certainly between the receiver and the light is occluded; the
@@ -61,16 +60,16 @@
 //! edge, or under a triangle reaching the light's depth — cast their ray. The
 //! images are binned on a grid of the light's plane, a cell inside one
 //! image needing no test at all, and a receiver whose cells all hold no
-//! image, or are all inside one, computing no sample at all. The estimates are therefore the same, bit
-//! for bit, as casting every ray (tested sample by sample against the rays
-//! on scenes built to put corners and edges exactly on sample rays). Where
+//! image, or are all inside one, computing no sample at all. The estimates
+//! are therefore the same, bit for bit, as casting every ray (tested
+//! sample by sample against the rays on scenes built to put corners and
+//! edges exactly on sample rays). Where
 //! the set-up would cost more than the rays it saves — past `samples/2`
 //! candidate triangles, or 8 cell tests per sample, as under a pile of
 //! thousands of occluders — and where its margins are not proven (a
 //! receiver within 0.06° of the light's plane or a segment's line,
 //! coordinates beyond `±10³⁰` or a million times the light's depth),
-//! every ray is cast. Measured
-//! figures: `benches/README.md`.
+//! every ray is cast. Measured figures: `benches/README.md`.
 
 mod binned;
 
