@@ -693,11 +693,20 @@ mod tests {
         (light, p, triangles, samples)
     }
 
-    /// The count of the samples of `scene(seed)` decided on the plane
-    /// (none where the set-up declines), each passed to `check` with the
-    /// ray's answer — all of them where the set-up found one answer for
-    /// all; and the emitter's kind (0 disk, 1 rect, 2 segment).
-    fn decide_scene(seed: u64, mut check: impl FnMut(bool, bool, DVec2)) -> (usize, usize) {
+    /// `scene(seed)` set up: the receiver, its BVH, the emitter and its
+    /// kind (0 disk, 1 rect, 2 segment), the samples, and the plane
+    /// structure, `None` where the set-up declines (a grazing view of a
+    /// tilted disk: every ray is cast).
+    struct SetUp {
+        p: DVec3,
+        bvh: Bvh,
+        emitter: Emitter,
+        kind: usize,
+        samples: Vec<DVec2>,
+        binned: Option<Binned>,
+    }
+
+    fn set_up(seed: u64) -> SetUp {
         let (light, p, triangles, samples) = scene(seed);
         let bvh = Bvh::new(Occluders::from_triangles(triangles));
         let emitter = light.emitter(p).expect("an emitter");
@@ -707,10 +716,35 @@ mod tests {
             _ => 2,
         };
         let mut binned = Binned::default();
-        if !binned.build(&bvh, &emitter, p, 1 << 20, 16) {
-            // Declined (a grazing view of a tilted disk): every ray is cast.
-            return (0, kind);
+        let binned = binned
+            .build(&bvh, &emitter, p, 1 << 20, 16)
+            .then_some(binned);
+        SetUp {
+            p,
+            bvh,
+            emitter,
+            kind,
+            samples,
+            binned,
         }
+    }
+
+    /// The count of the samples of `scene(seed)` decided on the plane
+    /// (none where the set-up declines), each passed to `check` with the
+    /// ray's answer — all of them where the set-up found one answer for
+    /// all; and the emitter's kind.
+    fn decide_scene(seed: u64, mut check: impl FnMut(bool, bool, DVec2)) -> (usize, usize) {
+        let SetUp {
+            p,
+            bvh,
+            emitter,
+            kind,
+            samples,
+            binned,
+        } = set_up(seed);
+        let Some(binned) = binned else {
+            return (0, kind);
+        };
         let map = binned.map.expect("a plane");
         let mut decided = 0;
         for &s in &samples {
@@ -755,13 +789,16 @@ mod tests {
     fn sample_points_lie_in_the_pyramid() {
         let mut kinds = [0; 3];
         for seed in 0..300 {
-            let (light, p, triangles, samples) = scene(seed);
-            let bvh = Bvh::new(Occluders::from_triangles(triangles));
-            let emitter = light.emitter(p).expect("an emitter");
-            let mut binned = Binned::default();
-            if !binned.build(&bvh, &emitter, p, 1 << 20, 16) {
+            let SetUp {
+                emitter,
+                kind,
+                samples,
+                binned,
+                ..
+            } = set_up(seed);
+            let Some(binned) = binned else {
                 continue;
-            }
+            };
             let [apex, base @ ..] = binned.hull;
             let inner = (apex + base.iter().sum::<DVec3>() / 4.0) / 2.0;
             // The four sides, and the base (two triangles: its corners
@@ -786,11 +823,7 @@ mod tests {
                     assert!(at == side || at == Sign::Zero, "seed {seed}: {s:?} outside");
                 }
             }
-            kinds[match emitter {
-                Emitter::Disk(_) => 0,
-                Emitter::Rect(_) => 1,
-                _ => 2,
-            }] += 1;
+            kinds[kind] += 1;
         }
         assert!(kinds.iter().all(|&n| n >= 50), "{kinds:?}");
     }
