@@ -789,14 +789,8 @@ mod tests {
     fn sample_points_lie_in_the_pyramid() {
         let mut kinds = [0; 3];
         for seed in 0..300 {
-            let SetUp {
-                emitter,
-                kind,
-                samples,
-                binned,
-                ..
-            } = set_up(seed);
-            let Some(binned) = binned else {
+            let set = set_up(seed);
+            let Some(binned) = &set.binned else {
                 continue;
             };
             let [apex, base @ ..] = binned.hull;
@@ -817,13 +811,13 @@ mod tests {
             for [a, b, c] in faces {
                 let side = orient3d(a, b, c, inner);
                 assert_ne!(side, Sign::Zero, "seed {seed}: a flat face");
-                for &s in samples.iter().chain(corners.as_flattened()) {
-                    let x = emitter.point_at(s);
+                for &s in set.samples.iter().chain(corners.as_flattened()) {
+                    let x = set.emitter.point_at(s);
                     let at = orient3d(a, b, c, x);
                     assert!(at == side || at == Sign::Zero, "seed {seed}: {s:?} outside");
                 }
             }
-            kinds[kind] += 1;
+            kinds[set.kind] += 1;
         }
         assert!(kinds.iter().all(|&n| n >= 50), "{kinds:?}");
     }
