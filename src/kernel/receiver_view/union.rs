@@ -122,7 +122,10 @@ impl Measure {
 /// cell with its bounds. The order of the search decides only how soon an
 /// edge is found covered whole; an edge that is not collects the span of
 /// every triangle it meets, the same set in any order, so the area does
-/// not depend on it.
+/// not depend on it. An edge whose reverse is an edge of another triangle
+/// (two images sharing a mesh edge, their corners the same bits) lies
+/// between the two and is dropped before any search ([`Edges`]), as the
+/// search would find: on a mesh's images most edges are shared.
 ///
 /// An edge lying on a side of the clip square can be covered only by the
 /// edges of other triangles on that side (every triangle lies in the closed
@@ -157,6 +160,7 @@ pub(super) fn union_area_sweeping_from(
 ) -> f64 {
     let grid = &mut scratch.grid;
     grid.build(tris, half);
+    scratch.edges.build(tris);
     scratch.stamp.clear();
     scratch.stamp.resize(tris.len(), u32::MAX);
     let mut counts = [0usize; 4];
@@ -183,6 +187,9 @@ pub(super) fn union_area_sweeping_from(
                     set.add_uncovered(side, a, b, half, measure, &mut sum);
                     continue;
                 }
+            }
+            if scratch.edges.has_reverse(tris, a, b) {
+                continue;
             }
             let (lo, hi) = (a.min(b), a.max(b));
             scratch.intervals.clear();
@@ -222,11 +229,80 @@ pub(super) fn union_area_sweeping_from(
 #[derive(Debug, Default)]
 pub(super) struct UnionScratch {
     grid: Grid,
+    edges: Edges,
     /// The last edge each triangle was tested against.
     stamp: Vec<u32>,
     intervals: Vec<(f64, f64)>,
     /// Per side of the clip square, the swept edges so far.
     sides: [SideSet; 4],
+}
+
+/// The triangles' directed edges, hashed by their ends, to find an edge's
+/// reverse: two counter-clockwise triangles with an edge `a → b` and
+/// `b → a` lie on its two sides, so the edge is covered whole and neither
+/// keeps any of it. The search would find that too (the other triangle's
+/// span is the whole edge); on a mesh's images, where most edges are
+/// shared, finding it here is what saves the search.
+#[derive(Debug, Default)]
+struct Edges {
+    /// Open addressing, linear probing: `3 i + k` for edge `k` of triangle
+    /// `i`, [`Edges::EMPTY`] for a free slot.
+    slots: Vec<u32>,
+    /// `64 −` the number of index bits.
+    shift: u32,
+}
+
+impl Edges {
+    const EMPTY: u32 = u32::MAX;
+
+    fn build(&mut self, tris: &[Tri]) {
+        let bits = (6 * tris.len())
+            .next_power_of_two()
+            .max(16)
+            .trailing_zeros();
+        self.shift = 64 - bits;
+        self.slots.clear();
+        self.slots.resize(1 << bits, Edges::EMPTY);
+        let mask = self.slots.len() - 1;
+        for (t, i) in tris.iter().zip(0_u32..) {
+            for k in 0..3 {
+                let (a, b) = t.edge(k);
+                let mut s = self.slot(a, b);
+                while self.slots[s] != Edges::EMPTY {
+                    s = (s + 1) & mask;
+                }
+                self.slots[s] = 3 * i + k as u32;
+            }
+        }
+    }
+
+    /// The first slot to probe for the edge `a → b`: a multiplicative hash
+    /// of its ends' bits (`0.0` and `−0.0` alike).
+    fn slot(&self, a: DVec2, b: DVec2) -> usize {
+        let bits = |x: f64| (x + 0.0).to_bits();
+        let h = bits(a.x)
+            ^ bits(a.y).rotate_left(16)
+            ^ bits(b.x).rotate_left(32)
+            ^ bits(b.y).rotate_left(48);
+        (h.wrapping_mul(0x9e37_79b9_7f4a_7c15) >> self.shift) as usize
+    }
+
+    /// Whether some triangle of `tris` (those of the last
+    /// [`Edges::build`]) has the edge `b → a`.
+    fn has_reverse(&self, tris: &[Tri], a: DVec2, b: DVec2) -> bool {
+        let mask = self.slots.len() - 1;
+        let mut s = self.slot(b, a);
+        loop {
+            let e = self.slots[s];
+            if e == Edges::EMPTY {
+                return false;
+            }
+            if tris[(e / 3) as usize].edge((e % 3) as usize) == (b, a) {
+                return true;
+            }
+            s = (s + 1) & mask;
+        }
+    }
 }
 
 /// A side of the clip square.
@@ -764,6 +840,109 @@ mod tests {
                     assert!(!overlaps || found[j], "case {case}: triangle {j} missed");
                 }
             }
+        }
+    }
+
+    /// [`Edges::has_reverse`] is the brute-force search for a triangle with
+    /// the edge `b → a`, on triangles sharing corners (some given as
+    /// `−0.0` where another has `0.0`, equal values of different bits).
+    #[test]
+    fn reversed_edges_are_those_of_a_search() {
+        let mut rng = Rng::new(5);
+        let mut edges = Edges::default();
+        let mut found = 0;
+        for case in 0..200 {
+            let corners: Vec<DVec2> = (0..3 + rng.below(12))
+                .map(|_| {
+                    let mut c = || match rng.below(4) {
+                        0 => 0.0,
+                        1 => -0.0,
+                        _ => rng.uniform(-1.0, 1.0),
+                    };
+                    DVec2::new(c(), c())
+                })
+                .collect();
+            let k = corners.len();
+            let tris: Vec<Tri> = (0..rng.below(40))
+                .filter_map(|_| {
+                    let pick = |rng: &mut Rng| corners[rng.below(k as u64) as usize];
+                    Tri::new(pick(&mut rng), pick(&mut rng), pick(&mut rng))
+                })
+                .collect();
+            edges.build(&tris);
+            for t in &tris {
+                for e in 0..3 {
+                    let (a, b) = t.edge(e);
+                    let searched = tris.iter().any(|u| (0..3).any(|f| u.edge(f) == (b, a)));
+                    assert_eq!(edges.has_reverse(&tris, a, b), searched, "case {case}");
+                    found += usize::from(searched);
+                }
+            }
+        }
+        // The cases share corners enough for the search to find many.
+        assert!(found > 1000, "{found} reversed edges");
+    }
+
+    /// A triangulated polygon — a jittered grid of squares, each split in
+    /// two, sharing every inner edge bit for bit — covers the polygon: its
+    /// union within the disk is [`polygon_disk_area`] of the outline, and
+    /// within the square the outline's area. Only the outline's edges
+    /// have no reverse, so nearly every edge is settled by the table.
+    #[test]
+    fn a_triangulated_polygon_is_its_outline() {
+        use crate::kernel::disk::f64::polygon_disk_area;
+        let mut rng = Rng::new(9);
+        let mut scratch = UnionScratch::default();
+        for case in 0..60 {
+            let n = 1 + rng.below(12) as usize;
+            let (x0, y0) = (rng.uniform(-1.4, 0.0), rng.uniform(-1.4, 0.0));
+            let w = rng.uniform(0.1, 1.4 - x0.max(y0)) / n as f64;
+            // Corner (i, j) of the grid; inner corners jittered.
+            let corner: Vec<Vec<DVec2>> = (0..=n)
+                .map(|i| {
+                    (0..=n)
+                        .map(|j| {
+                            let inner = i > 0 && i < n && j > 0 && j < n;
+                            let jitter = |rng: &mut Rng| {
+                                if inner {
+                                    rng.uniform(-0.3, 0.3) * w
+                                } else {
+                                    0.0
+                                }
+                            };
+                            let x = x0 + i as f64 * w + jitter(&mut rng);
+                            let y = y0 + j as f64 * w + jitter(&mut rng);
+                            DVec2::new(x, y)
+                        })
+                        .collect()
+                })
+                .collect();
+            let mut tris = Vec::new();
+            for i in 0..n {
+                for j in 0..n {
+                    let [a, b, c, d] = [
+                        corner[i][j],
+                        corner[i + 1][j],
+                        corner[i + 1][j + 1],
+                        corner[i][j + 1],
+                    ];
+                    tris.extend(Tri::new(a, b, c));
+                    tris.extend(Tri::new(a, c, d));
+                }
+            }
+            assert_eq!(tris.len(), 2 * n * n);
+            let outline = [corner[0][0], corner[n][0], corner[n][n], corner[0][n]];
+            let (measure, half, expected) = if case % 2 == 0 {
+                (Measure::Disk(1.0), 1.5, polygon_disk_area(1.0, &outline))
+            } else {
+                let d = corner[n][n] - corner[0][0];
+                (Measure::Square, 1.5, d.x * d.y)
+            };
+            let area = union_area(&tris, measure, half, &mut scratch);
+            assert!(
+                (area - expected).abs() <= 1e-14,
+                "case {case}: {n}² squares, {area} against {expected}"
+            );
         }
     }
 
