@@ -126,6 +126,14 @@ pub fn orient2d_value(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     if !(a.is_finite() && b.is_finite() && c.is_finite()) {
         return 0.0;
     }
+    orient2d_value_finite(a, b, c)
+}
+
+/// [`orient2d_value`] for finite points (the caller's guarantee: the same
+/// value, without the check).
+#[inline]
+pub(crate) fn orient2d_value_finite(a: DVec2, b: DVec2, c: DVec2) -> f64 {
+    debug_assert!(a.is_finite() && b.is_finite() && c.is_finite());
     let (det, detleft, detright, exact_zero) = orient2d_rounded(a, b, c);
     // |det − exact| ≤ bound, so the relative error is below 2⁻⁴⁰ here.
     let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) * (1u64 << 40) as f64;

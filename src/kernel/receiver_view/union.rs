@@ -4,10 +4,12 @@
 //! the [parent module's documentation](super)).
 
 use crate::kernel::disk::f64::segment_disk_area;
-use crate::kernel::predicate::{orient2d, orient2d_value, Sign};
+use crate::kernel::predicate::{orient2d, orient2d_value_finite, Sign};
 use glam::DVec2;
 
-/// A projected triangle, counter-clockwise, with its bounds.
+/// A projected triangle, counter-clockwise, with its bounds; its corners
+/// are finite (the orientation of a non-finite point is zero, so
+/// [`Tri::new`] refuses it).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Tri {
     v: [DVec2; 3],
@@ -688,7 +690,10 @@ fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)
         // Signed areas with exact signs and accurate values: the cut of
         // this edge by `f` and the cut of `f` by this edge land on the same
         // point even for nearly parallel edges.
-        let (va, vb) = (orient2d_value(f0, f1, a), orient2d_value(f0, f1, b));
+        let (va, vb) = (
+            orient2d_value_finite(f0, f1, a),
+            orient2d_value_finite(f0, f1, b),
+        );
         match (Sign::of(va), Sign::of(vb)) {
             (Sign::Zero, Sign::Zero) => {
                 let same_side = (b - a).dot(f1 - f0) > 0.0;
