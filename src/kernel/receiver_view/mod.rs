@@ -48,7 +48,10 @@
 //!   and the pieces inside no other are summed with [`segment_disk_area`]
 //!   (the disk) or `½ a × b` (the rect, in its own affine coordinates
 //!   `x = c + s u + t v`, where it is the square `[−1, 1]²` and area ratios
-//!   are unchanged; no normal of the rect's plane is ever computed).
+//!   are unchanged; no normal of the rect's plane is ever computed). An
+//!   edge that two images share in opposite directions (a mesh edge, the
+//!   fast path's corners the same bits in both) lies between them and is
+//!   dropped at once: on a mesh's images most edges are.
 //! - **Segment** ([`SegmentView`]). The plane through `p` and the segment
 //!   cuts each triangle in a segment; clipped to the triangle `(p, a, b)`
 //!   and projected from `p` onto the light it blocks one interval of the
