@@ -263,14 +263,15 @@ impl Edges {
     const EMPTY: u32 = u32::MAX;
 
     /// The most triangles the table is built for: beyond, it outgrows the
-    /// caches, and on images that share no edge (near-coincident copies
-    /// of a triangle, 10⁵ of them) cost a fifth more than the search it
-    /// was to save; the search alone decides there, as it would.
+    /// caches, and on images that share no edge it cost more than the
+    /// search it was to save (10⁵ near-coincident copies of a triangle, an
+    /// earlier hash: a fifth more); the search alone decides there, as it
+    /// would.
     const MOST: usize = 1 << 16;
 
     /// The fewest triangles the table is built for: below, the search is
     /// short, and the table cost more than it saved where no edge is
-    /// shared (16 random images: 3 % slower with it).
+    /// shared (16 random images, an earlier hash: 3 % slower with it).
     const FEWEST: usize = 32;
 
     /// The table of `tris`' edges, but for those on a side of the clip
