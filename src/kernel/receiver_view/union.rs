@@ -183,15 +183,14 @@ pub(super) fn union_area_sweeping_from(
     for (i, ti) in tris.iter().enumerate() {
         for k in 0..3 {
             let (a, b) = ti.edge(k);
-            let side = Side::of(a, b, half);
-            if let Some(side) = side {
+            if let Some(side) = Side::of(a, b, half) {
                 let set = &mut scratch.sides[side as usize];
                 if set.active {
                     set.add_uncovered(side, a, b, half, measure, &mut sum);
                     continue;
                 }
             }
-            if side.is_none() && scratch.edges.has_reverse(tris, a, b) {
+            if scratch.edges.has_reverse(tris, a, b) {
                 continue;
             }
             let (lo, hi) = (a.min(b), a.max(b));
@@ -276,7 +275,8 @@ impl Edges {
 
     /// The table of `tris`' edges, but for those on a side of the clip
     /// square (`half` its half-width), whose reverse no triangle in the
-    /// square can have.
+    /// square can have (a side edge's reverse would lie on the side too:
+    /// left out, so never found).
     fn build(&mut self, tris: &[Tri], half: f64) {
         self.slots.clear();
         if !(Edges::FEWEST..=Edges::MOST).contains(&tris.len()) {
@@ -285,32 +285,34 @@ impl Edges {
         let bits = (6 * tris.len()).next_power_of_two().trailing_zeros();
         self.shift = 64 - bits;
         self.slots.resize(1 << bits, Edges::EMPTY);
-        let mask = self.slots.len() - 1;
         for (t, i) in tris.iter().zip(0_u32..) {
             for k in 0..3 {
                 let (a, b) = t.edge(k);
                 if Side::of(a, b, half).is_some() {
                     continue;
                 }
-                let mut s = self.slot(a, b);
-                loop {
-                    let e = self.slots[s];
-                    if e == Edges::EMPTY {
-                        self.slots[s] = 3 * i + k as u32;
-                        break;
-                    }
-                    if Edges::ends(tris, e) == (a, b) {
-                        break;
-                    }
-                    s = (s + 1) & mask;
+                if let Err(s) = self.probe(tris, a, b) {
+                    self.slots[s] = 3 * i + k as u32;
                 }
             }
         }
     }
 
-    /// The ends of entry `e`.
-    fn ends(tris: &[Tri], e: u32) -> (DVec2, DVec2) {
-        tris[(e / 3) as usize].edge((e % 3) as usize)
+    /// The slot holding the edge `a → b` (`Ok`), or else the free slot the
+    /// probe ends at, where it would go (`Err`). The table is not empty.
+    fn probe(&self, tris: &[Tri], a: DVec2, b: DVec2) -> Result<usize, usize> {
+        let mask = self.slots.len() - 1;
+        let mut s = self.slot(a, b);
+        loop {
+            let e = self.slots[s];
+            if e == Edges::EMPTY {
+                return Err(s);
+            }
+            if tris[(e / 3) as usize].edge((e % 3) as usize) == (a, b) {
+                return Ok(s);
+            }
+            s = (s + 1) & mask;
+        }
     }
 
     /// The first slot to probe for the edge `a → b`: each end's bits
@@ -334,21 +336,7 @@ impl Edges {
     /// Whether some triangle of `tris` (those of the last
     /// [`Edges::build`]) has the edge `b → a`.
     fn has_reverse(&self, tris: &[Tri], a: DVec2, b: DVec2) -> bool {
-        if self.slots.is_empty() {
-            return false;
-        }
-        let mask = self.slots.len() - 1;
-        let mut s = self.slot(b, a);
-        loop {
-            let e = self.slots[s];
-            if e == Edges::EMPTY {
-                return false;
-            }
-            if Edges::ends(tris, e) == (b, a) {
-                return true;
-            }
-            s = (s + 1) & mask;
-        }
+        !self.slots.is_empty() && self.probe(tris, b, a).is_ok()
     }
 }
 
