@@ -141,6 +141,17 @@ fn disk_vs_ray(c: &mut Criterion) {
                 })
             },
         );
+        let mut areas = Vec::with_capacity(N);
+        group.bench_with_input(
+            BenchmarkId::new("segment_disk_areas/f64", label),
+            &edges,
+            |b, e| {
+                b.iter(|| {
+                    k64::segment_disk_areas(1.0, black_box(e), &mut areas);
+                    black_box(&areas);
+                })
+            },
+        );
         let edges32: Vec<(Vec2, Vec2)> = edges
             .iter()
             .map(|(p, q)| (p.as_vec2(), q.as_vec2()))

@@ -12,7 +12,7 @@ use support::{normal_two_sided_quantile, printing, samples, sidak, Big, Ctx};
 
 use glam::{DVec2, Vec2};
 use proptest::prelude::*;
-use softshadow::arbitrary::disk::{clipped_edge, disk_edge, polygon, DiskEdge};
+use softshadow::arbitrary::disk::{clipped_edge, disk_edge, edge, polygon, radius, DiskEdge};
 use softshadow::arbitrary::Rng;
 use softshadow::kernel::disk::{f32 as k32, f64 as k64};
 use softshadow::kernel::predicate::{orient2d, Sign};
@@ -192,6 +192,110 @@ fn segment_disk_area_accuracy() {
         w32.max,
         w32.case
     );
+}
+
+/// Edges the batched form must hand back to the scalar kernel, or get right
+/// without it: degenerate, non-finite, beyond the kernel's safe range,
+/// exactly on the circle, tangent.
+fn awkward_edges(r: f64) -> Vec<(DVec2, DVec2)> {
+    let p = DVec2::new(0.3 * r, -1.7 * r);
+    let on = DVec2::new(r, 0.0);
+    vec![
+        (p, p),
+        (p, -p),
+        (p, 2.0 * p),
+        (DVec2::ZERO, DVec2::ZERO),
+        (DVec2::ZERO, p),
+        (DVec2::new(f64::NAN, 0.0), p),
+        (p, DVec2::new(0.0, f64::INFINITY)),
+        (
+            DVec2::new(f64::NEG_INFINITY, 1.0),
+            DVec2::new(f64::INFINITY, 1.0),
+        ),
+        (DVec2::new(-1e300, r), DVec2::new(1e300, r)),
+        (DVec2::new(-1e61, 0.5 * r), DVec2::new(1e61, 0.5 * r)),
+        (DVec2::new(-1e59, 0.5 * r), DVec2::new(1e59, 0.5 * r)),
+        (on, DVec2::new(0.0, r)),
+        (on, -on),
+        (DVec2::new(r, -r), DVec2::new(r, r)),
+        (DVec2::new(-r, r), DVec2::new(r, r)),
+        (DVec2::new(1e-300, 0.0), DVec2::new(0.0, 1e-300)),
+        (DVec2::new(-0.0, 0.0), DVec2::new(0.0, -0.0)),
+        (DVec2::new(2.0 * r, -0.0), DVec2::new(-0.0, 2.0 * r)),
+    ]
+}
+
+/// `segment_disk_areas` is `segment_disk_area` edge by edge, bit for bit
+/// (both precisions): stiff edges for many radii, the awkward edges above
+/// in every lane position, every remainder length, radii outside the safe
+/// range. On a processor with AVX2 this runs the vector path.
+#[test]
+fn segment_disk_areas_is_segment_disk_area_bit_for_bit() {
+    let mut rng = Rng::new(0xba7c4);
+    let mut out64 = Vec::new();
+    let mut out32 = Vec::new();
+    let mut checked = 0usize;
+    let mut check = |r: f64, edges: &[(DVec2, DVec2)]| {
+        k64::segment_disk_areas(r, edges, &mut out64);
+        assert_eq!(out64.len(), edges.len());
+        for (&(a, b), &got) in edges.iter().zip(&out64) {
+            let want = k64::segment_disk_area(r, a, b);
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "f64 r={r:?} a={a:?} b={b:?}: {got} vs {want}"
+            );
+        }
+        let (r32, edges32): (f32, Vec<(Vec2, Vec2)>) = (
+            r as f32,
+            edges
+                .iter()
+                .map(|(a, b)| (a.as_vec2(), b.as_vec2()))
+                .collect(),
+        );
+        k32::segment_disk_areas(r32, &edges32, &mut out32);
+        assert_eq!(out32.len(), edges.len());
+        for (&(a, b), &got) in edges32.iter().zip(&out32) {
+            let want = k32::segment_disk_area(r32, a, b);
+            assert_eq!(
+                got.to_bits(),
+                want.to_bits(),
+                "f32 r={r32:?} a={a:?} b={b:?}: {got} vs {want}"
+            );
+        }
+        checked += edges.len();
+    };
+    for _ in 0..samples(60) {
+        let r = radius(&mut rng);
+        let mut edges: Vec<(DVec2, DVec2)> = (0..200).map(|_| edge(&mut rng, r)).collect();
+        check(r, &edges);
+        // Every awkward edge in every lane position, amid stiff ones.
+        for (i, &e) in awkward_edges(r).iter().enumerate() {
+            edges[i % 16] = e;
+            edges[100 + i] = e;
+        }
+        check(r, &edges);
+        // Every remainder length.
+        for n in 0..=17 {
+            check(r, &edges[..n]);
+        }
+    }
+    // Radii outside the safe range, and no radius at all.
+    let edges: Vec<(DVec2, DVec2)> = (0..40).map(|_| edge(&mut rng, 1.0)).collect();
+    for r in [
+        0.0,
+        -1.0,
+        f64::NAN,
+        f64::INFINITY,
+        1e-70,
+        1e70,
+        1e-310,
+        1e300,
+    ] {
+        check(r, &edges);
+        check(r, &awkward_edges(1.0));
+    }
+    assert!(checked > 10_000, "{checked} edges checked");
 }
 
 #[test]

@@ -21,11 +21,15 @@
 
 macro_rules! angle_kernels {
     ($T:ident, $TERMS:expr, $SMALL:expr, $LARGE:expr, $BIG:expr, $T0:expr, $T1:expr, $PHI1:expr, $PI4:expr, $PI2:expr, $PI:expr) => {
+        #[allow(unused_imports)] // for the docs
+        use crate::kernel::lanes::Lanes;
         /// `tan(1/4)` and `(√10 − 1)/3`: the boundaries between the three
         /// reduction intervals, around `c = 0`, `½` and `1`. The first keeps
         /// the middle interval's angles at or above ¼, in a binade whose ulp
         /// absorbs the reduction's rounding; the second balances `|u|`
         /// between the last two.
+        use crate::kernel::lanes::Real;
+
         const T0: $T = $T0;
         /// Below `SMALL` `den` and `num` are scaled up by the power of two
         /// `BIG`, above `LARGE` down by it.
@@ -51,9 +55,12 @@ macro_rules! angle_kernels {
             c
         };
 
+        /// Levels of Estrin's tree over [`TAYLOR`]: `⌈log₂ len⌉`.
+        const ESTRIN_LEVELS: u32 = (TAYLOR.len() - 1).ilog2() + 1;
+
         /// `a − b = s + e` exactly (Knuth's TwoSum).
         #[inline(always)]
-        fn two_diff(a: $T, b: $T) -> ($T, $T) {
+        fn two_diff<R: Real>(a: R, b: R) -> (R, R) {
             let s = a - b;
             let bv = a - s;
             let av = s + bv;
@@ -77,13 +84,8 @@ macro_rules! angle_kernels {
         #[must_use]
         #[inline]
         pub fn atan2(y: $T, x: $T) -> $T {
-            // Written as selects rather than branches: which octant a point is
-            // in is unpredictable, and a mispredicted branch costs as much as
-            // the polynomial.
-            let (ax, ay) = (x.abs(), y.abs());
-            let swap = ay > ax;
-            let (mut num, mut den) = if swap { (ax, ay) } else { (ay, ax) };
-            if !(den > 0.0 && den.is_finite() && num >= 0.0) {
+            let (num, den, swap, regular) = reduce(y, x);
+            if !regular {
                 if x.is_nan() || y.is_nan() {
                     // No NaN leaves a kernel: the documented total answer.
                     return 0.0;
@@ -91,32 +93,62 @@ macro_rules! angle_kernels {
                 // Both zero, or an infinity: the standard special values.
                 return y.atan2(x);
             }
-            if den < SMALL {
-                // Subnormal territory: scale both up by a power of two (exact,
-                // the ratio is unchanged) so the products below stay normal.
-                num *= BIG;
-                den *= BIG;
-            } else if den > LARGE {
-                // Keep den + num finite.
-                num /= BIG;
-                den /= BIG;
-            }
-            let (beyond0, beyond1) = (num > T0 * den, num > T1 * den);
-            let (c, phi) = match (beyond0, beyond1) {
-                (_, true) => (1.0, PI4),
-                (true, false) => (0.5, PHI1),
-                (false, false) => (0.0, (0.0, 0.0)),
+            core(num, den, swap, x, y)
+        }
+
+        /// `(num, den, swap, regular)`: `num = min(|x|, |y|)`, `den =
+        /// max(|x|, |y|)`, `swap` when `|y| > |x|`; `regular` when [`core`]
+        /// applies (`0 < den < ∞`, no NaN), not for the special values.
+        #[inline(always)]
+        pub(crate) fn reduce<R: Real<Scalar = $T>>(y: R, x: R) -> (R, R, R::Mask, R::Mask) {
+            let (ax, ay) = (x.abs(), y.abs());
+            let swap = ay.gt(ax);
+            let (num, den) = (R::select(swap, ax, ay), R::select(swap, ay, ax));
+            // `den − den` is 0 exactly when den is finite. (Not `den < ∞`:
+            // LLVM fuses that with `den > 0` into a class test it cannot
+            // keep in vector registers.)
+            let regular =
+                den.gt(R::splat(0.0)) & (den - den).eq(R::splat(0.0)) & num.ge(R::splat(0.0));
+            (num, den, swap, regular)
+        }
+
+        /// The arctangent once the special values are out of the way:
+        /// `num = min(|x|, |y|) ≥ 0`, `0 < den = max(|x|, |y|) < ∞`, `swap`
+        /// when `|y| > |x|`. Written as selects rather than branches: which
+        /// octant a point is in is unpredictable, a mispredicted branch costs
+        /// as much as the polynomial, and over [`Lanes`] every lane takes the
+        /// same instructions. [`atan2`] is this plus the special values.
+        #[inline(always)]
+        pub(crate) fn core<R: Real<Scalar = $T>>(num: R, den: R, swap: R::Mask, x: R, y: R) -> R {
+            let k = |x: $T| R::splat(x);
+            // Subnormal territory: scale both up by a power of two (exact,
+            // the ratio is unchanged) so the products below stay normal;
+            // near the top, down, to keep den + num finite.
+            let scale = R::select(
+                den.lt(k(SMALL)),
+                k(BIG),
+                R::select(den.gt(k(LARGE)), k(1.0 / BIG), k(1.0)),
+            );
+            let (num, den) = (num * scale, den * scale);
+            let (beyond0, beyond1) = (num.gt(k(T0) * den), num.gt(k(T1) * den));
+            // c ∈ {0, ½, 1} and its angle φ = atan c.
+            let pick = |one: $T, half: $T, zero: $T| {
+                R::select(beyond1, k(one), R::select(beyond0, k(half), k(zero)))
             };
-            // c ∈ {0, ½, 1}: c·den is exact, and so is num − c·den (Sterbenz:
-            // num lies within a factor 2 of c·den on each interval).
+            let c = pick(1.0, 0.5, 0.0);
+            let phi = (pick(PI4.0, PHI1.0, 0.0), pick(PI4.1, PHI1.1, 0.0));
+            // c·den is exact, and so is num − c·den (Sterbenz: num lies
+            // within a factor 2 of c·den on each interval).
             let u = (num - c * den) / (den + c * num);
             let z = u * u;
             // atan u = u (1 − z/3 + z²/5 − …): the series in z by Estrin's
             // scheme (a shallow tree instead of Horner's long chain).
-            let mut t = TAYLOR;
+            let mut t = TAYLOR.map(k);
             let mut n = t.len();
             let mut zp = z;
-            while n > 1 {
+            // A count of levels known at compile time, so that the tree is
+            // unrolled into straight-line code (also over lanes).
+            for _ in 0..ESTRIN_LEVELS {
                 for i in 0..n / 2 {
                     t[i] = t[2 * i] + zp * t[2 * i + 1];
                 }
@@ -124,24 +156,23 @@ macro_rules! angle_kernels {
                     t[n / 2] = t[n - 1];
                 }
                 n = n.div_ceil(2);
-                zp *= zp;
+                zp = zp * zp;
             }
             let atan_u = u + u * (z * t[0]);
             // The angle as an unevaluated sum hi + lo, so that the octant and
             // quadrant steps below add no rounding of their own.
             let (hi, lo) = (phi.0, atan_u + phi.1);
-            let (s, e) = two_diff(PI2.0, hi);
-            let (hi, lo) = if swap {
-                (s, e + (PI2.1 - lo))
-            } else {
-                (hi, lo)
-            };
-            let (s, e) = two_diff(PI.0, hi);
-            let (hi, lo) = if x.is_sign_negative() {
-                (s, e + (PI.1 - lo))
-            } else {
-                (hi, lo)
-            };
+            let (s, e) = two_diff(k(PI2.0), hi);
+            let (hi, lo) = (
+                R::select(swap, s, hi),
+                R::select(swap, e + (k(PI2.1) - lo), lo),
+            );
+            let (s, e) = two_diff(k(PI.0), hi);
+            let negative = x.is_sign_negative();
+            let (hi, lo) = (
+                R::select(negative, s, hi),
+                R::select(negative, e + (k(PI.1) - lo), lo),
+            );
             (hi + lo).copysign(y)
         }
     };

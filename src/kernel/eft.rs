@@ -10,20 +10,22 @@
 
 macro_rules! eft {
     ($T:ident) => {
+        use crate::kernel::lanes::Real;
+
         /// `a · b = p + e` exactly; see the module docs.
         #[inline(always)]
-        pub(crate) fn two_prod(a: $T, b: $T) -> ($T, $T) {
-            let p = a * b;
+        pub(crate) fn two_prod<R: Real<Scalar = $T>>(a: R, b: R) -> (R, R) {
             #[cfg(target_feature = "fma")]
             {
-                (p, a.mul_add(b, -p))
+                two_prod_fma(a, b)
             }
             #[cfg(not(target_feature = "fma"))]
             {
+                let p = a * b;
                 // Veltkamp's split: x = hi + lo with half-width halves.
                 const SPLIT: $T = ((1u64 << <$T>::MANTISSA_DIGITS.div_ceil(2)) + 1) as $T;
-                let split = |x: $T| {
-                    let c = SPLIT * x;
+                let split = |x: R| {
+                    let c = R::splat(SPLIT) * x;
                     let hi = c - (c - x);
                     (hi, x - hi)
                 };
@@ -31,6 +33,15 @@ macro_rules! eft {
                 let (bh, bl) = split(b);
                 (p, ((ah * bh - p) + ah * bl + al * bh) + al * bl)
             }
+        }
+
+        /// [`two_prod`] by a fused multiply-add: the same bits, fast only
+        /// where a hardware FMA is enabled (at build time, or in a function
+        /// compiled for it); elsewhere `mul_add` is a software routine.
+        #[inline(always)]
+        pub(crate) fn two_prod_fma<R: Real<Scalar = $T>>(a: R, b: R) -> (R, R) {
+            let p = a * b;
+            (p, a.mul_add(b, -p))
         }
     };
 }

@@ -25,6 +25,7 @@ pub mod distortion;
 pub(crate) mod eft;
 pub mod falloff;
 pub mod footprint;
+pub(crate) mod lanes;
 pub mod linear_light;
 pub mod predicate;
 pub mod receiver_view;

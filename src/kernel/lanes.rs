@@ -1,0 +1,314 @@
+//! One formula, one value or several lanes at once.
+//!
+//! The kernels that have a batched form write their formulas once, generic
+//! over [`Real`]: instantiated with `f64` (or `f32`) they are the scalar
+//! kernels, with [`Lanes`] they evaluate several inputs side by side. A
+//! [`Lanes`] operation is the same IEEE operation on each lane, written as a
+//! short loop the compiler turns into vector instructions (SSE2 on the
+//! baseline target, AVX2 where a caller is compiled for it), so a lane's
+//! result is bit for bit the scalar one. Branches become [`Real::select`]:
+//! every path is computed and the answer picked per lane.
+
+use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
+
+/// Arithmetic on one value or on lanes of values: IEEE operations, lane by
+/// lane, with comparisons giving a [`Real::Mask`].
+pub(crate) trait Real:
+    Copy
+    + Default
+    + Add<Output = Self>
+    + Sub<Output = Self>
+    + Mul<Output = Self>
+    + Div<Output = Self>
+    + Neg<Output = Self>
+{
+    /// The scalar type of a lane.
+    type Scalar: Copy;
+    /// One boolean per lane.
+    type Mask: Copy
+        + Default
+        + BitAnd<Output = Self::Mask>
+        + BitOr<Output = Self::Mask>
+        + Not<Output = Self::Mask>;
+
+    /// The same value in every lane.
+    fn splat(x: Self::Scalar) -> Self;
+    fn sqrt(self) -> Self;
+    fn abs(self) -> Self;
+    /// `f64::min`: the other operand where one is NaN.
+    fn min(self, other: Self) -> Self;
+    /// `f64::max`: the other operand where one is NaN.
+    fn max(self, other: Self) -> Self;
+    /// `self · b + c` with one rounding (a software routine unless a
+    /// hardware FMA is enabled where it is compiled).
+    fn mul_add(self, b: Self, c: Self) -> Self;
+    /// The magnitude of `self` with the sign bit of `sign`.
+    fn copysign(self, sign: Self) -> Self;
+    fn is_sign_negative(self) -> Self::Mask;
+    fn lt(self, other: Self) -> Self::Mask;
+    fn le(self, other: Self) -> Self::Mask;
+    fn gt(self, other: Self) -> Self::Mask;
+    fn ge(self, other: Self) -> Self::Mask;
+    fn eq(self, other: Self) -> Self::Mask;
+    /// `if_true` in the lanes where `mask` holds, `if_false` elsewhere.
+    fn select(mask: Self::Mask, if_true: Self, if_false: Self) -> Self;
+    /// Whether `mask` holds in any lane.
+    fn any(mask: Self::Mask) -> bool;
+}
+
+macro_rules! scalar_real {
+    ($T:ident) => {
+        impl Real for $T {
+            type Scalar = $T;
+            type Mask = bool;
+
+            #[inline(always)]
+            fn splat(x: $T) -> $T {
+                x
+            }
+            #[inline(always)]
+            fn sqrt(self) -> $T {
+                <$T>::sqrt(self)
+            }
+            #[inline(always)]
+            fn abs(self) -> $T {
+                <$T>::abs(self)
+            }
+            #[inline(always)]
+            fn min(self, other: $T) -> $T {
+                <$T>::min(self, other)
+            }
+            #[inline(always)]
+            fn max(self, other: $T) -> $T {
+                <$T>::max(self, other)
+            }
+            #[inline(always)]
+            fn mul_add(self, b: $T, c: $T) -> $T {
+                <$T>::mul_add(self, b, c)
+            }
+            #[inline(always)]
+            fn copysign(self, sign: $T) -> $T {
+                <$T>::copysign(self, sign)
+            }
+            #[inline(always)]
+            fn is_sign_negative(self) -> bool {
+                <$T>::is_sign_negative(self)
+            }
+            #[inline(always)]
+            fn lt(self, other: $T) -> bool {
+                self < other
+            }
+            #[inline(always)]
+            fn le(self, other: $T) -> bool {
+                self <= other
+            }
+            #[inline(always)]
+            fn gt(self, other: $T) -> bool {
+                self > other
+            }
+            #[inline(always)]
+            fn ge(self, other: $T) -> bool {
+                self >= other
+            }
+            #[inline(always)]
+            fn eq(self, other: $T) -> bool {
+                self == other
+            }
+            #[inline(always)]
+            fn any(mask: bool) -> bool {
+                mask
+            }
+            #[inline(always)]
+            fn select(mask: bool, if_true: $T, if_false: $T) -> $T {
+                if mask {
+                    if_true
+                } else {
+                    if_false
+                }
+            }
+        }
+    };
+}
+
+scalar_real!(f64);
+scalar_real!(f32);
+
+/// `N` values side by side: 4 `f64` or 8 `f32` fill an AVX2 register.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Lanes<T, const N: usize>(pub [T; N]);
+
+impl<T: Copy + Default, const N: usize> Default for Lanes<T, N> {
+    fn default() -> Self {
+        Lanes([T::default(); N])
+    }
+}
+
+/// One boolean per lane of [`Lanes`], as a lane-wide integer: all ones for
+/// true, zero for false (what a vector comparison produces, so masks stay
+/// in vector registers).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub(crate) struct Mask<U, const N: usize>(pub [U; N]);
+
+impl<U: Copy + Default, const N: usize> Default for Mask<U, N> {
+    fn default() -> Self {
+        Mask([U::default(); N])
+    }
+}
+
+macro_rules! mask_ops {
+    ($U:ident) => {
+        impl<const N: usize> BitAnd for Mask<$U, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn bitand(self, o: Self) -> Self {
+                Mask(core::array::from_fn(|i| self.0[i] & o.0[i]))
+            }
+        }
+
+        impl<const N: usize> BitOr for Mask<$U, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn bitor(self, o: Self) -> Self {
+                Mask(core::array::from_fn(|i| self.0[i] | o.0[i]))
+            }
+        }
+
+        impl<const N: usize> Not for Mask<$U, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn not(self) -> Self {
+                Mask(self.0.map(|m| !m))
+            }
+        }
+    };
+}
+
+mask_ops!(u64);
+mask_ops!(u32);
+
+macro_rules! lanes_real {
+    ($T:ident, $U:ident, $I:ident) => {
+        impl<const N: usize> Add for Lanes<$T, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn add(self, o: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i] + o.0[i]))
+            }
+        }
+        impl<const N: usize> Sub for Lanes<$T, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn sub(self, o: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i] - o.0[i]))
+            }
+        }
+        impl<const N: usize> Mul for Lanes<$T, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn mul(self, o: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i] * o.0[i]))
+            }
+        }
+        impl<const N: usize> Div for Lanes<$T, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn div(self, o: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i] / o.0[i]))
+            }
+        }
+        impl<const N: usize> Neg for Lanes<$T, N> {
+            type Output = Self;
+            #[inline(always)]
+            fn neg(self) -> Self {
+                Lanes(self.0.map(|x| -x))
+            }
+        }
+
+        impl<const N: usize> Real for Lanes<$T, N> {
+            type Scalar = $T;
+            type Mask = Mask<$U, N>;
+
+            #[inline(always)]
+            fn splat(x: $T) -> Self {
+                Lanes([x; N])
+            }
+            #[inline(always)]
+            fn sqrt(self) -> Self {
+                Lanes(self.0.map(<$T>::sqrt))
+            }
+            #[inline(always)]
+            fn abs(self) -> Self {
+                Lanes(self.0.map(<$T>::abs))
+            }
+            #[inline(always)]
+            fn min(self, o: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i].min(o.0[i])))
+            }
+            #[inline(always)]
+            fn max(self, o: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i].max(o.0[i])))
+            }
+            #[inline(always)]
+            fn mul_add(self, b: Self, c: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i].mul_add(b.0[i], c.0[i])))
+            }
+            #[inline(always)]
+            fn copysign(self, sign: Self) -> Self {
+                Lanes(core::array::from_fn(|i| self.0[i].copysign(sign.0[i])))
+            }
+            #[inline(always)]
+            fn is_sign_negative(self) -> Mask<$U, N> {
+                Mask(
+                    self.0
+                        .map(|x| <$U>::from((x.to_bits() as $I) < 0).wrapping_neg()),
+                )
+            }
+            #[inline(always)]
+            fn lt(self, o: Self) -> Mask<$U, N> {
+                Mask(core::array::from_fn(|i| {
+                    <$U>::from(self.0[i] < o.0[i]).wrapping_neg()
+                }))
+            }
+            #[inline(always)]
+            fn le(self, o: Self) -> Mask<$U, N> {
+                Mask(core::array::from_fn(|i| {
+                    <$U>::from(self.0[i] <= o.0[i]).wrapping_neg()
+                }))
+            }
+            #[inline(always)]
+            fn gt(self, o: Self) -> Mask<$U, N> {
+                Mask(core::array::from_fn(|i| {
+                    <$U>::from(self.0[i] > o.0[i]).wrapping_neg()
+                }))
+            }
+            #[inline(always)]
+            fn ge(self, o: Self) -> Mask<$U, N> {
+                Mask(core::array::from_fn(|i| {
+                    <$U>::from(self.0[i] >= o.0[i]).wrapping_neg()
+                }))
+            }
+            #[inline(always)]
+            fn eq(self, o: Self) -> Mask<$U, N> {
+                Mask(core::array::from_fn(|i| {
+                    <$U>::from(self.0[i] == o.0[i]).wrapping_neg()
+                }))
+            }
+            #[inline(always)]
+            fn any(mask: Mask<$U, N>) -> bool {
+                mask.0.iter().any(|&m| m != 0)
+            }
+            #[inline(always)]
+            fn select(mask: Mask<$U, N>, if_true: Self, if_false: Self) -> Self {
+                Lanes(core::array::from_fn(|i| {
+                    <$T>::from_bits(
+                        (mask.0[i] & if_true.0[i].to_bits())
+                            | (!mask.0[i] & if_false.0[i].to_bits()),
+                    )
+                }))
+            }
+        }
+    };
+}
+
+lanes_real!(f64, u64, i64);
+lanes_real!(f32, u32, i32);
