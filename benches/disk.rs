@@ -1,6 +1,8 @@
 //! Disk-occlusion kernels against a Möller–Trumbore ray–triangle test in the
 //! same group: the kernel's goal is to cost at most twice one ray–triangle
-//! test, the unit of work of the Monte Carlo reference it replaces.
+//! test, the unit of work of the Monte Carlo reference it replaces. The
+//! batched `segment_disk_areas` writes its areas to a reused vector (the
+//! vector is the result; nothing is summed), the per-edge loops sum theirs.
 //!
 //! `cargo bench --bench disk`; figures in `benches/README.md`.
 
@@ -166,6 +168,17 @@ fn disk_vs_ray(c: &mut Criterion) {
                         sum += k32::segment_disk_area(1.0, p, q);
                     }
                     sum
+                })
+            },
+        );
+        let mut areas32 = Vec::with_capacity(N);
+        group.bench_with_input(
+            BenchmarkId::new("segment_disk_areas/f32", label),
+            &edges32,
+            |b, e| {
+                b.iter(|| {
+                    k32::segment_disk_areas(1.0, black_box(e), &mut areas32);
+                    black_box(&areas32);
                 })
             },
         );

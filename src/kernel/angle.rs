@@ -19,8 +19,25 @@
 //! double-word constants, and the octant and quadrant are restored by
 //! `π/2 − ·` and `π − ·` on the unevaluated sum.
 
+/// One level of Estrin's scheme: `M = ⌈N/2⌉` sums `t[2i] + zp · t[2i+1]`,
+/// the last `t[N−1]` alone when `N` is odd.
+#[inline(always)]
+fn estrin_level<R: crate::kernel::lanes::Real, const N: usize, const M: usize>(
+    t: &[R; N],
+    zp: R,
+) -> [R; M] {
+    const { assert!(M == N.div_ceil(2)) };
+    core::array::from_fn(|i| {
+        if 2 * i + 1 < N {
+            t[2 * i] + zp * t[2 * i + 1]
+        } else {
+            t[2 * i]
+        }
+    })
+}
+
 macro_rules! angle_kernels {
-    ($T:ident, $TERMS:expr, $SMALL:expr, $LARGE:expr, $BIG:expr, $T0:expr, $T1:expr, $PHI1:expr, $PI4:expr, $PI2:expr, $PI:expr) => {
+    ($T:ident, $TERMS:expr, [$($LEVELS:literal),+], $SMALL:expr, $LARGE:expr, $BIG:expr, $T0:expr, $T1:expr, $PHI1:expr, $PI4:expr, $PI2:expr, $PI:expr) => {
         #[allow(unused_imports)] // for the docs
         use crate::kernel::lanes::Lanes;
         /// `tan(1/4)` and `(√10 − 1)/3`: the boundaries between the three
@@ -54,9 +71,6 @@ macro_rules! angle_kernels {
             }
             c
         };
-
-        /// Levels of Estrin's tree over [`TAYLOR`]: `⌈log₂ len⌉`.
-        const ESTRIN_LEVELS: u32 = (TAYLOR.len() - 1).ilog2() + 1;
 
         /// `a − b = s + e` exactly (Knuth's TwoSum).
         #[inline(always)]
@@ -143,21 +157,16 @@ macro_rules! angle_kernels {
             let z = u * u;
             // atan u = u (1 − z/3 + z²/5 − …): the series in z by Estrin's
             // scheme (a shallow tree instead of Horner's long chain).
-            let mut t = TAYLOR.map(k);
-            let mut n = t.len();
-            let mut zp = z;
-            // A count of levels known at compile time, so that the tree is
-            // unrolled into straight-line code (also over lanes).
-            for _ in 0..ESTRIN_LEVELS {
-                for i in 0..n / 2 {
-                    t[i] = t[2 * i] + zp * t[2 * i + 1];
-                }
-                if n % 2 == 1 {
-                    t[n / 2] = t[n - 1];
-                }
-                n = n.div_ceil(2);
-                zp = zp * zp;
-            }
+            // Each level pairs neighbours, `t[i] = t[2i] + zᵖ t[2i+1]`, the
+            // odd one out carried up; written level by level (sizes `$LEVELS`)
+            // so that it is straight-line code, in registers.
+            let t = TAYLOR.map(k);
+            let zp = z;
+            $(
+                let t: [R; $LEVELS] = super::estrin_level(&t, zp);
+                let zp = zp * zp;
+            )+
+            let _ = zp;
             let atan_u = u + u * (z * t[0]);
             // The angle as an unevaluated sum hi + lo, so that the octant and
             // quadrant steps below add no rounding of their own.
@@ -183,6 +192,7 @@ pub mod f64 {
     angle_kernels!(
         f64,
         14,
+        [7, 4, 2, 1],
         1e-280,
         1e299,
         (1u128 << 110) as f64,
@@ -200,6 +210,7 @@ pub mod f32 {
     angle_kernels!(
         f32,
         7,
+        [3, 2, 1],
         1e-29,
         1e34,
         (1u64 << 52) as f32,

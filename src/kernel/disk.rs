@@ -353,7 +353,14 @@ macro_rules! disk_kernels {
                         *f = frame::<FMA>(r, r2, &padded);
                     }
                 }
-                for (f, o) in frames.iter().zip(o.chunks_mut(LANES)) {
+                let mut outs = o.chunks_exact_mut(LANES);
+                for (f, o) in frames.iter().zip(&mut outs) {
+                    let areas = finish_lanes(r2, f);
+                    marked = marked | !areas.eq(areas);
+                    o.copy_from_slice(&areas.0);
+                }
+                let o = outs.into_remainder();
+                if let Some(f) = frames.get(n).filter(|_| !o.is_empty()) {
                     let areas = finish_lanes(r2, f);
                     marked = marked | !areas.eq(areas);
                     o.copy_from_slice(&areas.0[..o.len()]);
@@ -388,11 +395,16 @@ macro_rules! disk_kernels {
             by: R,
         ) -> Frame<R> {
             let k = |x: $T| R::splat(x);
-            let hi = k(SAFE_HI);
-            let in_range = ax.abs().le(hi) & ay.abs().le(hi) & bx.abs().le(hi) & by.abs().le(hi);
+            let (aa, bb) = (dot_of(ax, ay, ax, ay), dot_of(bx, by, bx, by));
+            // Within the safe range (every coordinate at most SAFE_HI, none
+            // NaN) when |a|, |b| ≤ SAFE_HI: stricter than the scalar test, so
+            // a few edges near its limit take the scalar path needlessly,
+            // never the other way round.
+            let hi2 = k(SAFE_HI * SAFE_HI);
+            let in_range = aa.le(hi2) & bb.le(hi2);
             let ab_cross = cross_by::<R, FMA>(ax, ay, bx, by);
             let zero = ab_cross.eq(k(0.0));
-            let inside = dot_of(ax, ay, ax, ay).le(r2) & dot_of(bx, by, bx, by).le(r2);
+            let inside = aa.le(r2) & bb.le(r2);
             let (dx, dy) = (bx - ax, by - ay);
             let inv_len = k(1.0) / dot_of(dx, dy, dx, dy).sqrt();
             let g = ab_cross * inv_len;
@@ -658,6 +670,67 @@ macro_rules! disk_kernels {
                 theta - c
             };
             sign * value / (2.0 * PI)
+        }
+
+        #[cfg(test)]
+        mod tests {
+            use super::*;
+
+            /// Both forms of the branch-free loop — products by FMA and by
+            /// Dekker's split — give `segment_disk_area`'s bits on edges of
+            /// every kind (inside, crossing, outside, tangent, degenerate,
+            /// out of range), whichever one the processor's dispatch picks.
+            /// (`tests/disk.rs` checks the public entry on stiff edges.)
+            #[test]
+            fn both_branch_free_forms_are_the_scalar_kernel() {
+                let mut state = 0x9e37_79b9_7f4a_7c15u64;
+                let mut unit = move || {
+                    state = state
+                        .wrapping_mul(6_364_136_223_846_793_005)
+                        .wrapping_add(1_442_695_040_888_963_407);
+                    (state >> 11) as $T / (1u64 << 53) as $T
+                };
+                let mut edges: Vec<($V2, $V2)> = (0..997)
+                    .map(|i| {
+                        // Boxes from well inside the unit disk to far outside.
+                        let s = [0.5, 1.0, 2.0, 8.0, 1e3][i % 5];
+                        let mut p = || $V2::new(s * (2.0 * unit() - 1.0), s * (2.0 * unit() - 1.0));
+                        (p(), p())
+                    })
+                    .collect();
+                let p = $V2::new(0.25, -1.5);
+                edges.extend([
+                    (p, p),
+                    (p, -p),
+                    ($V2::ZERO, p),
+                    ($V2::new(1.0, -1.0), $V2::new(1.0, 1.0)),
+                    ($V2::new(1.0, 0.0), $V2::new(0.0, 1.0)),
+                    ($V2::new(<$T>::NAN, 0.0), p),
+                    (p, $V2::new(<$T>::INFINITY, 0.0)),
+                    ($V2::new(-2.0 * SAFE_HI, 0.5), $V2::new(2.0 * SAFE_HI, 0.5)),
+                ]);
+                for r in [1.0, 0.75] {
+                    let mut out = vec![0.0; edges.len()];
+                    let marked = areas_branch_free::<false>(r, &edges, &mut out);
+                    let mut fused = vec![0.0; edges.len()];
+                    let marked_fused = areas_branch_free::<true>(r, &edges, &mut fused);
+                    assert!(marked && marked_fused, "the non-finite edges are marked");
+                    for (i, &(a, b)) in edges.iter().enumerate() {
+                        let want = segment_disk_area(r, a, b);
+                        for got in [out[i], fused[i]] {
+                            assert!(
+                                got.to_bits() == want.to_bits() || got.is_nan(),
+                                "r={r} a={a} b={b}: {got} vs {want}"
+                            );
+                        }
+                        // Only edges outside the safe range are left to the
+                        // scalar path.
+                        let far = a.abs().max_element().max(b.abs().max_element());
+                        let in_range = a.is_finite() && b.is_finite() && far <= SAFE_HI;
+                        assert_eq!(out[i].is_nan(), !in_range, "a={a} b={b}");
+                    }
+                }
+            }
         }
     };
 }
