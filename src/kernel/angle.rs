@@ -38,15 +38,13 @@ fn estrin_level<R: crate::kernel::lanes::Real, const N: usize, const M: usize>(
 
 macro_rules! angle_kernels {
     ($T:ident, $TERMS:expr, [$($LEVELS:literal),+], $SMALL:expr, $LARGE:expr, $BIG:expr, $T0:expr, $T1:expr, $PHI1:expr, $PI4:expr, $PI2:expr, $PI:expr) => {
-        #[allow(unused_imports)] // for the docs
-        use crate::kernel::lanes::Lanes;
+        use crate::kernel::lanes::Real;
+
         /// `tan(1/4)` and `(√10 − 1)/3`: the boundaries between the three
         /// reduction intervals, around `c = 0`, `½` and `1`. The first keeps
         /// the middle interval's angles at or above ¼, in a binade whose ulp
         /// absorbs the reduction's rounding; the second balances `|u|`
         /// between the last two.
-        use crate::kernel::lanes::Real;
-
         const T0: $T = $T0;
         /// Below `SMALL` `den` and `num` are scaled up by the power of two
         /// `BIG`, above `LARGE` down by it.
@@ -130,7 +128,8 @@ macro_rules! angle_kernels {
         /// `num = min(|x|, |y|) ≥ 0`, `0 < den = max(|x|, |y|) < ∞`, `swap`
         /// when `|y| > |x|`. Written as selects rather than branches: which
         /// octant a point is in is unpredictable, a mispredicted branch costs
-        /// as much as the polynomial, and over [`Lanes`] every lane takes the
+        /// as much as the polynomial, and over
+        /// [`Lanes`](crate::kernel::lanes::Lanes) every lane takes the
         /// same instructions. [`atan2`] is this plus the special values.
         #[inline(always)]
         pub(crate) fn core<R: Real<Scalar = $T>>(num: R, den: R, swap: R::Mask, x: R, y: R) -> R {

@@ -133,7 +133,7 @@ macro_rules! scalar_real {
 scalar_real!(f64);
 scalar_real!(f32);
 
-/// `N` values side by side: 4 `f64` or 8 `f32` fill an AVX2 register.
+/// `N` values side by side (4 `f64` fill an AVX2 register).
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub(crate) struct Lanes<T, const N: usize>(pub [T; N]);
 

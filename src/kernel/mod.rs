@@ -8,7 +8,7 @@
 //! | [`angle`] | a portable, platform-independent `atan2` (1.5 ulp) |
 //! | [`silhouette`] | mesh topology, silhouette edges from a point, conservative silhouettes for a sphere light |
 //! | [`wedge`] | penumbra wedges and the light-image-plane penumbra quad (SISM's coarse test) |
-//! | [`disk`] | area of a polygon ∩ a disk, signed circle-segment occlusion (SISM eq. 3) |
+//! | [`disk`] | area of a polygon ∩ a disk, signed circle-segment occlusion (SISM eq. 3); many edges at once, bit for bit the one-edge kernel |
 //! | [`falloff`] | Bernstein smoothstep and the exact straight-edge disk falloff |
 //! | [`footprint`] | the light's footprint on the light image plane: its radius, the projection, near and far clips, an edge mapped into the footprint; the rounding bound `γ(n)` |
 //! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
