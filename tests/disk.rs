@@ -235,34 +235,30 @@ fn segment_disk_areas_is_segment_disk_area_bit_for_bit() {
     let mut out64 = Vec::new();
     let mut out32 = Vec::new();
     let mut checked = 0usize;
+    // One precision: the batch against one call per edge, by bits.
+    macro_rules! same_bits {
+        ($k:ident, $r:expr, $edges:expr, $out:expr) => {
+            $k::segment_disk_areas($r, $edges, $out);
+            assert_eq!($out.len(), $edges.len());
+            for (&(a, b), &got) in $edges.iter().zip($out.iter()) {
+                let want = $k::segment_disk_area($r, a, b);
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "{} r={:?} a={a:?} b={b:?}: {got} vs {want}",
+                    stringify!($k),
+                    $r
+                );
+            }
+        };
+    }
     let mut check = |r: f64, edges: &[(DVec2, DVec2)]| {
-        k64::segment_disk_areas(r, edges, &mut out64);
-        assert_eq!(out64.len(), edges.len());
-        for (&(a, b), &got) in edges.iter().zip(&out64) {
-            let want = k64::segment_disk_area(r, a, b);
-            assert_eq!(
-                got.to_bits(),
-                want.to_bits(),
-                "f64 r={r:?} a={a:?} b={b:?}: {got} vs {want}"
-            );
-        }
-        let (r32, edges32): (f32, Vec<(Vec2, Vec2)>) = (
-            r as f32,
-            edges
-                .iter()
-                .map(|(a, b)| (a.as_vec2(), b.as_vec2()))
-                .collect(),
-        );
-        k32::segment_disk_areas(r32, &edges32, &mut out32);
-        assert_eq!(out32.len(), edges.len());
-        for (&(a, b), &got) in edges32.iter().zip(&out32) {
-            let want = k32::segment_disk_area(r32, a, b);
-            assert_eq!(
-                got.to_bits(),
-                want.to_bits(),
-                "f32 r={r32:?} a={a:?} b={b:?}: {got} vs {want}"
-            );
-        }
+        same_bits!(k64, r, edges, &mut out64);
+        let edges32: Vec<(Vec2, Vec2)> = edges
+            .iter()
+            .map(|(a, b)| (a.as_vec2(), b.as_vec2()))
+            .collect();
+        same_bits!(k32, r as f32, &edges32, &mut out32);
         checked += edges.len();
     };
     for _ in 0..samples(60) {

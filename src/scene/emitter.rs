@@ -47,6 +47,7 @@ impl Emitter {
 /// within a few roundings (`γ₅` relative to the terms' magnitudes). For
 /// Monte Carlo's decisions on the light (`reference::monte_carlo`).
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
 pub(crate) struct PlaneMap {
     /// The point at `q = 0`.
     pub(crate) center: DVec3,
@@ -64,6 +65,7 @@ pub(crate) struct PlaneMap {
 
 /// The map from a sample `s` to plane coordinates.
 #[derive(Clone, Copy, Debug)]
+#[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
 enum MapKind {
     /// The concentric map onto the disk of this radius.
     Disk(f64),
@@ -78,6 +80,7 @@ impl PlaneMap {
     /// those [`Emitter::point_at`] uses, without its cosine and sine (for
     /// any `s` within `2⁻³³` of the sample on each axis).
     #[inline]
+    #[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
     pub(crate) fn approx(&self, s: DVec2) -> DVec2 {
         match self.kind {
             MapKind::Disk(r) => concentric_disk_approx(s) * r,
@@ -90,6 +93,7 @@ impl PlaneMap {
 impl Emitter {
     /// The plane map of a disk, rect or segment emitter (a segment's
     /// second axis is zero); `None` for a point.
+    #[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
     pub(crate) fn plane_map(&self) -> Option<PlaneMap> {
         match *self {
             Emitter::Disk(d) => {
@@ -280,6 +284,7 @@ fn concentric_disk_approx(s: DVec2) -> DVec2 {
 /// the Taylor remainders `(π/4)⁸/8! < 3.6·10⁻⁶` and `(π/4)⁹/9! < 3.2·10⁻⁷`
 /// dominate; the `f64` evaluation, the libm functions' ulp and the
 /// rounding of `θ = FRAC_PI_2 − φ` in the y wedges add under `10⁻¹⁵`.
+#[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
 pub(crate) const CONCENTRIC_APPROX_ERROR: f64 = 4e-6;
 
 /// `cos φ` by its Taylor polynomial of degree 6.
