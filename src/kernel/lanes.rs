@@ -312,3 +312,116 @@ macro_rules! lanes_real {
 
 lanes_real!(f64, u64, i64);
 lanes_real!(f32, u32, i32);
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    /// Every `Lanes` operation is the scalar operation lane by lane, bit for
+    /// bit, on values chosen to break it: signed zeros, infinities, NaNs of
+    /// both signs, subnormals, ties.
+    #[test]
+    fn lanes_are_the_scalar_operations_lane_by_lane() {
+        let values = [
+            0.0,
+            -0.0,
+            1.0,
+            -1.5,
+            f64::INFINITY,
+            f64::NEG_INFINITY,
+            f64::NAN,
+            -f64::NAN,
+            5e-324,
+            -2.5e-310,
+            1e300,
+            3.0,
+        ];
+        let n = values.len();
+        let bits = |x: f64| x.to_bits();
+        // Every ordered pair, four lanes at a time.
+        let pairs: Vec<(f64, f64)> = (0..n * n).map(|i| (values[i / n], values[i % n])).collect();
+        for group in pairs.chunks(4) {
+            let mut a = [0.0; 4];
+            let mut b = [0.0; 4];
+            for (i, &(x, y)) in group.iter().enumerate() {
+                a[i] = x;
+                b[i] = y;
+            }
+            let (la, lb) = (Lanes(a), Lanes(b));
+            let c = Lanes([2.0, -0.0, f64::NAN, 7.0]);
+            let ops: [(L4, Op); 9] = [
+                (la + lb, |x, y, _| x + y),
+                (la - lb, |x, y, _| x - y),
+                (la * lb, |x, y, _| x * y),
+                (la / lb, |x, y, _| x / y),
+                (-la, |x, _, _| -x),
+                (la.min(lb), |x, y, _| x.min(y)),
+                (la.max(lb), |x, y, _| x.max(y)),
+                (la.copysign(lb), |x, y, _| x.copysign(y)),
+                (la.mul_add(lb, c), |x, y, z| x.mul_add(y, z)),
+            ];
+            for (k, (got, want)) in ops.iter().enumerate() {
+                for i in 0..4 {
+                    let w = want(a[i], b[i], c.0[i]);
+                    assert!(
+                        bits(got.0[i]) == bits(w) || (got.0[i].is_nan() && w.is_nan()),
+                        "op {k}, lane {i}: {} vs {w} for {} and {}",
+                        got.0[i],
+                        a[i],
+                        b[i]
+                    );
+                }
+            }
+            let masks = [
+                (
+                    la.lt(lb),
+                    [a[0] < b[0], a[1] < b[1], a[2] < b[2], a[3] < b[3]],
+                ),
+                (
+                    la.le(lb),
+                    [a[0] <= b[0], a[1] <= b[1], a[2] <= b[2], a[3] <= b[3]],
+                ),
+                (
+                    la.gt(lb),
+                    [a[0] > b[0], a[1] > b[1], a[2] > b[2], a[3] > b[3]],
+                ),
+                (
+                    la.ge(lb),
+                    [a[0] >= b[0], a[1] >= b[1], a[2] >= b[2], a[3] >= b[3]],
+                ),
+                (
+                    la.eq(lb),
+                    [a[0] == b[0], a[1] == b[1], a[2] == b[2], a[3] == b[3]],
+                ),
+                (la.is_sign_negative(), a.map(f64::is_sign_negative)),
+            ];
+            for (m, want) in masks {
+                assert_eq!(m.0.map(|x| x != 0), want, "{a:?} {b:?}");
+                assert!(m.0.iter().all(|&x| x == 0 || x == u64::MAX));
+                assert_eq!(Lanes::<f64, 4>::any(m), want.iter().any(|&x| x));
+                let picked = Lanes::select(m, la, lb);
+                for i in 0..4 {
+                    let w = if want[i] { a[i] } else { b[i] };
+                    assert_eq!(bits(picked.0[i]), bits(w));
+                }
+                let (and, or, not) = (m & masks_of(want), m | Mask([0; 4]), !m);
+                assert_eq!(and.0, m.0);
+                assert_eq!(or.0, m.0);
+                assert_eq!(not.0.map(|x| x != 0), want.map(|x| !x));
+            }
+            for ((&x, s), abs) in a.iter().zip(la.sqrt().0).zip(la.abs().0) {
+                let w = x.sqrt();
+                assert!(bits(s) == bits(w) || (s.is_nan() && w.is_nan()));
+                assert_eq!(bits(abs), bits(x.abs()));
+            }
+        }
+    }
+
+    type L4 = Lanes<f64, 4>;
+    /// The scalar operation a lane operation should be.
+    type Op = fn(f64, f64, f64) -> f64;
+
+    fn masks_of(b: [bool; 4]) -> Mask<u64, 4> {
+        Mask(b.map(|x| if x { u64::MAX } else { 0 }))
+    }
+}
