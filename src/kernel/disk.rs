@@ -208,20 +208,13 @@ macro_rules! disk_kernels {
                 // Both endpoints inside: the whole triangle.
                 return 0.5 * ab_cross;
             }
-            let d = b - a;
-            let inv_len = 1.0 / dot(d, d).sqrt();
-            // Distance of the line from the centre, signed by the orientation.
-            let g = ab_cross * inv_len;
+            let (g, ta, tb) = edge_frame(a.x, a.y, b.x, b.y, ab_cross);
             let abs_g = g.abs();
             if abs_g >= r {
                 // The whole edge lies outside: one circular sector.
                 return 0.5 * r2 * atan2(ab_cross, dot(a, b));
             }
-            // Positions along the edge's direction, measured from the foot of
-            // the perpendicular from the centre; the disk spans [−w, w].
-            let ta = dot(a, d) * inv_len;
-            let tb = dot(b, d) * inv_len;
-            let w = ((r - abs_g) * (r + abs_g)).sqrt();
+            let w = half_chord(r, abs_g);
             if tb <= -w || ta >= w {
                 return 0.5 * r2 * atan2(ab_cross, dot(a, b));
             }
@@ -230,6 +223,29 @@ macro_rules! disk_kernels {
                 return triangle;
             }
             triangle + 0.5 * r2 * atan2(im, re)
+        }
+
+        /// The edge `a → b` in its own frame, from `a × b`: the distance `g`
+        /// of its line from the centre, signed by the orientation, and the
+        /// positions `ta < tb` of its ends along its direction, measured from
+        /// the foot of the perpendicular from the centre.
+        #[inline(always)]
+        fn edge_frame<R: Real<Scalar = $T>>(ax: R, ay: R, bx: R, by: R, ab_cross: R) -> (R, R, R) {
+            let (dx, dy) = (bx - ax, by - ay);
+            let inv_len = R::splat(1.0) / dot_of(dx, dy, dx, dy).sqrt();
+            (
+                ab_cross * inv_len,
+                dot_of(ax, ay, dx, dy) * inv_len,
+                dot_of(bx, by, dx, dy) * inv_len,
+            )
+        }
+
+        /// Half the chord the line at distance `|g| < r` cuts from the
+        /// circle, `√((r − |g|)(r + |g|))`: no cancellation as the line
+        /// becomes tangent. The disk spans `[−w, w]` in the edge's frame.
+        #[inline(always)]
+        fn half_chord<R: Real>(r: R, abs_g: R) -> R {
+            ((r - abs_g) * (r + abs_g)).sqrt()
         }
 
         /// The pieces of an edge that crosses the circle, in its frame
@@ -409,13 +425,9 @@ macro_rules! disk_kernels {
             let ab_cross = cross_by::<R, FMA>(ax, ay, bx, by);
             let zero = ab_cross.eq(k(0.0));
             let inside = aa.le(r2) & bb.le(r2);
-            let (dx, dy) = (bx - ax, by - ay);
-            let inv_len = k(1.0) / dot_of(dx, dy, dx, dy).sqrt();
-            let g = ab_cross * inv_len;
+            let (g, ta, tb) = edge_frame(ax, ay, bx, by, ab_cross);
             let abs_g = g.abs();
-            let ta = dot_of(ax, ay, dx, dy) * inv_len;
-            let tb = dot_of(bx, by, dx, dy) * inv_len;
-            let w = ((r - abs_g) * (r + abs_g)).sqrt();
+            let w = half_chord(r, abs_g);
             let sector = abs_g.ge(r) | tb.le(-w) | ta.ge(w);
             let (triangle, outside, im, re) = crossing_pieces(g, w, ta, tb);
             let pre = R::select(inside, k(0.5) * ab_cross, triangle);
