@@ -55,7 +55,7 @@ macro_rules! disk_kernels {
 
         use crate::kernel::angle::$T::{self as angle, atan2};
         use crate::kernel::eft::$T::{two_prod, two_prod_fma};
-        use crate::kernel::lanes::{Lanes, Real};
+        use crate::kernel::lanes::{self, Lanes, Real};
 
         /// Edges evaluated side by side by [`segment_disk_areas`]: four, one
         /// AVX2 register of `f64` (of `f32`, half of one: eight `f32` lanes
@@ -309,18 +309,17 @@ macro_rules! disk_kernels {
         }
 
         /// The branch-free loop, in AVX2 and FMA where the processor has them.
-        #[cfg(all(feature = "simd", target_arch = "x86_64"))]
         fn areas_dispatch(r: $T, edges: &[($V2, $V2)], out: &mut [$T]) -> bool {
-            match pulp::x86::V3::try_new() {
-                Some(v3) => v3.vectorize(|| areas_branch_free::<true>(r, edges, out)),
-                None => areas_branch_free::<false>(r, edges, out),
-            }
-        }
-
-        /// The branch-free loop, for the build's target.
-        #[cfg(not(all(feature = "simd", target_arch = "x86_64")))]
-        fn areas_dispatch(r: $T, edges: &[($V2, $V2)], out: &mut [$T]) -> bool {
-            areas_branch_free::<{ cfg!(target_feature = "fma") }>(r, edges, out)
+            lanes::vectorized(
+                #[inline(always)]
+                |fma| {
+                    if fma {
+                        areas_branch_free::<true>(r, edges, out)
+                    } else {
+                        areas_branch_free::<false>(r, edges, out)
+                    }
+                },
+            )
         }
 
         /// Edges per block of [`areas_branch_free`]: its scratch array stays

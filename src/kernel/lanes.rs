@@ -11,6 +11,27 @@
 
 use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 
+/// `f(fma)`, compiled for AVX2 and FMA and run so where the processor has
+/// them (with the `simd` feature on x86-64: [`pulp`]'s run-time dispatch),
+/// else compiled for the build's target; `fma` says whether a fused
+/// multiply-add is an instruction where `f` runs. For loops written to be
+/// vectorised: `f` should be `#[inline(always)]` and call
+/// `#[inline(always)]` functions only, so that all of it is compiled with
+/// the wider instructions (a function the compiler keeps apart is compiled
+/// for the build's target). The answer is the same either way: the wider
+/// instructions are the same IEEE operations.
+#[inline(always)]
+pub(crate) fn vectorized<R>(f: impl FnOnce(bool) -> R) -> R {
+    #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        return v3.vectorize(
+            #[inline(always)]
+            || f(true),
+        );
+    }
+    f(cfg!(target_feature = "fma"))
+}
+
 /// Arithmetic on one value or on lanes of values: IEEE operations, lane by
 /// lane, with comparisons giving a [`Real::Mask`].
 pub(crate) trait Real:

@@ -56,8 +56,8 @@ pub(crate) struct PlaneMap {
     pub(crate) axes: [DVec3; 2],
     /// `|q.x|, |q.y| ≤ half` for every sample.
     pub(crate) half: f64,
-    /// [`PlaneMap::approx`] is within `error` of `q` on each axis, also
-    /// when given an `s` within `2⁻³³` of the sample's on each axis.
+    /// [`PlaneMap::approx_grid`] is within `error` of `q` on each axis,
+    /// also when given an `s` within `2⁻³³` of the sample's on each axis.
     pub(crate) error: f64,
     /// Which map from `s` to `q`.
     kind: MapKind,
@@ -76,18 +76,71 @@ enum MapKind {
 }
 
 impl PlaneMap {
-    /// The plane coordinates of sample `s`, within [`PlaneMap::error`] of
-    /// those [`Emitter::point_at`] uses, without its cosine and sine (for
-    /// any `s` within `2⁻³³` of the sample on each axis).
-    #[inline]
-    #[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
+    /// [`PlaneMap::approx_grid`] of one sample `s` (the tests' form).
+    #[cfg(test)]
     pub(crate) fn approx(&self, s: DVec2) -> DVec2 {
         match self.kind {
-            MapKind::Disk(r) => concentric_disk_approx(s) * r,
-            MapKind::Rect => s * 2.0 - DVec2::ONE,
-            MapKind::Segment => DVec2::new(s.x * 2.0 - 1.0, 0.0),
+            MapKind::Disk(r) => disk_q(s, r),
+            MapKind::Rect => rect_q(s),
+            MapKind::Segment => segment_q(s),
         }
     }
+
+    /// The plane coordinates of many samples, within [`PlaneMap::error`] of
+    /// those [`Emitter::point_at`] uses, without its cosine and sine: each
+    /// sample `s` given by its cell on the `2³²` grid (`gx[i]`, and `gy[i]`
+    /// unless `gy` is empty, as for a segment) and taken at the cell's
+    /// centre, within `2⁻³³` of it on each axis; into `qx`, `qy` (as long
+    /// as `gx`). Straight loops the compiler vectorises.
+    #[inline(always)]
+    #[cfg_attr(not(feature = "reference"), allow(dead_code))] // Monte Carlo's
+    pub(crate) fn approx_grid(&self, gx: &[u32], gy: &[u32], qx: &mut [f64], qy: &mut [f64]) {
+        // One loop per kind: the kind is not re-examined per sample.
+        #[inline(always)]
+        fn each(
+            gx: &[u32],
+            gy: &[u32],
+            qx: &mut [f64],
+            qy: &mut [f64],
+            map: impl Fn(DVec2) -> DVec2,
+        ) {
+            let centre = |g: u32| (f64::from(g) + 0.5) / 4_294_967_296.0;
+            let q = qx.iter_mut().zip(qy.iter_mut()).zip(gx);
+            if gy.is_empty() {
+                for ((x, y), &gx) in q {
+                    (*x, *y) = map(DVec2::new(centre(gx), 0.5)).into();
+                }
+            } else {
+                for (((x, y), &gx), &gy) in q.zip(gy) {
+                    (*x, *y) = map(DVec2::new(centre(gx), centre(gy))).into();
+                }
+            }
+        }
+        match self.kind {
+            MapKind::Disk(r) => each(gx, gy, qx, qy, |s| disk_q(s, r)),
+            MapKind::Rect => each(gx, gy, qx, qy, rect_q),
+            MapKind::Segment => each(gx, gy, qx, qy, segment_q),
+        }
+    }
+}
+
+/// The plane coordinates of `s` on a disk of radius `r` (see
+/// [`PlaneMap::approx_grid`]).
+#[inline(always)]
+fn disk_q(s: DVec2, r: f64) -> DVec2 {
+    concentric_disk_approx(s) * r
+}
+
+/// The plane coordinates of `s` on a rect: `q = 2s − 1`.
+#[inline(always)]
+fn rect_q(s: DVec2) -> DVec2 {
+    s * 2.0 - DVec2::ONE
+}
+
+/// The plane coordinates of `s` on a segment: `q = (2 s.x − 1, 0)`.
+#[inline(always)]
+fn segment_q(s: DVec2) -> DVec2 {
+    DVec2::new(s.x * 2.0 - 1.0, 0.0)
 }
 
 impl Emitter {
@@ -266,6 +319,7 @@ fn concentric_disk(s: DVec2) -> DVec2 {
 /// `|φ| ≤ π/4`, taking `cos θ = sin φ`, `sin θ = cos φ` in the wedges around
 /// the y axis, where `θ = π/2 − φ`), at a fraction of the cost — for
 /// deciding where a sample lands before its exact point is needed.
+#[inline(always)]
 fn concentric_disk_approx(s: DVec2) -> DVec2 {
     // Selections rather than branches (the wedge is a coin toss per
     // sample): `r` and the ratio as `concentric_disk` takes them, `φ` its
@@ -288,14 +342,14 @@ fn concentric_disk_approx(s: DVec2) -> DVec2 {
 pub(crate) const CONCENTRIC_APPROX_ERROR: f64 = 4e-6;
 
 /// `cos φ` by its Taylor polynomial of degree 6.
-#[inline]
+#[inline(always)]
 fn cos_poly(x: f64) -> f64 {
     let z = x * x;
     1.0 + z * (-0.5 + z * (1.0 / 24.0 + z * (-1.0 / 720.0)))
 }
 
 /// `sin φ` by its Taylor polynomial of degree 7.
-#[inline]
+#[inline(always)]
 fn sin_poly(x: f64) -> f64 {
     let z = x * x;
     x + x * z * (-1.0 / 6.0 + z * (1.0 / 120.0 + z * (-1.0 / 5_040.0)))

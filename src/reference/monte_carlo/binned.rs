@@ -31,7 +31,7 @@
 //! determinant at the sample point `point_at` returns: the rounded
 //! differences and cross product (`γ₅`), the three dot products, the
 //! evaluation (`γ₃`), `point_at`'s own rounding (`γ₅` of the terms), and the
-//! distance of the polynomial sample coordinates ([`PlaneMap::approx`]) from
+//! distance of the polynomial sample coordinates ([`PlaneMap::approx_grid`]) from
 //! `point_at`'s.
 //!
 //! A sample is then, for each candidate,
@@ -73,6 +73,7 @@
 use super::Replicate;
 use crate::bvh::Bvh;
 use crate::kernel::footprint::f64::gamma;
+use crate::kernel::lanes;
 use crate::kernel::predicate::{orient3d, Sign};
 use crate::scene::emitter::PlaneMap;
 use crate::scene::Emitter;
@@ -123,18 +124,19 @@ struct Image {
 impl Image {
     /// The verdict at `q`, given each edge's margin: [`Image::margins`]
     /// for a sample, or those widened by the most `F` varies over a cell
-    /// around `q` for every point of the cell.
-    #[inline]
+    /// around `q` for every point of the cell. Without branches, so that
+    /// loops of it vectorise.
+    #[inline(always)]
     fn classify(&self, q: DVec2, margins: &[f64; 3]) -> Verdict {
-        let mut inside = true;
+        let (mut outside, mut inside) = (false, self.between);
         for ([a, b, c], m) in self.edges.into_iter().zip(margins) {
             let f = a + b * q.x + c * q.y;
-            if f < -m {
-                return Verdict::Outside;
-            }
+            outside |= f < -m;
             inside &= f > *m;
         }
-        if inside && self.between {
+        if outside {
+            Verdict::Outside
+        } else if inside {
             Verdict::Inside
         } else {
             Verdict::Unsure
@@ -147,12 +149,8 @@ impl Image {
 pub(super) struct Binned {
     map: Option<PlaneMap>,
     images: Vec<Image>,
-    /// Cells along each axis: `[columns, rows]` (one row on a segment).
-    cells: [usize; 2],
-    /// The same, as `f64`.
-    bounds: DVec2,
-    /// Cells per unit of plane coordinate on each axis.
-    inv_width: DVec2,
+    /// The light's grid of cells.
+    grid: Grid,
     /// `start[k]..start[k + 1]` indexes `items` for cell `k`.
     start: Vec<u32>,
     items: Vec<u32>,
@@ -170,9 +168,26 @@ pub(super) struct Binned {
     next: Vec<u32>,
     /// The cells' centres on each axis.
     centers: [Vec<f64>; 2],
-    /// A replicate's samples (their cells on the `2³²` grid) and their
-    /// approximate plane coordinates.
-    samples: Vec<([u32; 2], DVec2)>,
+    /// One row's verdicts.
+    verdicts: Vec<Verdict>,
+    /// What each cell says of its samples, and one more entry (`Test`)
+    /// for samples outside the grid.
+    state: Vec<Cell>,
+    /// A replicate's samples, in [`Binned::count_unoccluded`].
+    scratch: Scratch,
+}
+
+/// A replicate's samples, one entry each: their cells on the `2³²` grid,
+/// approximate plane coordinates and cells on the light; and the samples
+/// their cells leave to their images (`pending`).
+#[derive(Debug, Default)]
+struct Scratch {
+    gx: Vec<u32>,
+    gy: Vec<u32>,
+    qx: Vec<f64>,
+    qy: Vec<f64>,
+    cell: Vec<u32>,
+    pending: Vec<u32>,
 }
 
 impl Binned {
@@ -306,6 +321,7 @@ impl Binned {
             centers.clear();
             centers.extend((0..n as u32).map(|i| -half + (f64::from(i) + 0.5) * width));
         }
+        self.verdicts.resize(grid[0], Verdict::Outside);
         let mut budget = 8 * samples as usize;
         let n = grid[0] * grid[1];
         self.covered.clear();
@@ -418,15 +434,18 @@ impl Binned {
             for (m, [_, b, c]) in cell_margins.iter_mut().zip(edges) {
                 *m += b.abs() * h.x + c.abs() * h.y;
             }
+            let columns = &self.centers[0][x0..=x1];
+            let verdicts = &mut self.verdicts[..columns.len()];
             for iy in y0..=y1 {
-                for ix in x0..=x1 {
-                    let m = DVec2::new(self.centers[0][ix], self.centers[1][iy]);
-                    let verdict = if strip {
-                        Verdict::Unsure
-                    } else {
-                        image.classify(m, &cell_margins)
-                    };
-                    let k = iy * grid[0] + ix;
+                let y = self.centers[1][iy];
+                if strip {
+                    verdicts.fill(Verdict::Unsure);
+                } else {
+                    for (v, &x) in verdicts.iter_mut().zip(columns) {
+                        *v = image.classify(DVec2::new(x, y), &cell_margins);
+                    }
+                }
+                for (k, &verdict) in (iy * grid[0] + x0..).zip(&*verdicts) {
                     match verdict {
                         Verdict::Outside => {}
                         Verdict::Inside => {
@@ -460,9 +479,23 @@ impl Binned {
             self.items[*at as usize] = image;
             *at += 1;
         }
-        self.cells = grid;
-        self.bounds = DVec2::new(grid[0] as f64, grid[1] as f64);
-        self.inv_width = self.bounds / (2.0 * half);
+        self.grid = Grid {
+            half,
+            inv_width: grid.map(|n| n as f64 / (2.0 * half)),
+            bounds: grid.map(|n| n as f64),
+            cells: grid.map(|n| n as u32),
+        };
+        self.state.clear();
+        self.state.extend((0..n).map(|k| {
+            if self.covered[k] {
+                Cell::Dark
+            } else if self.start[k] == self.start[k + 1] {
+                Cell::Lit
+            } else {
+                Cell::Test
+            }
+        }));
+        self.state.push(Cell::Test);
         self.map = Some(map);
         // No image listed and no cell covered: every sample is unoccluded;
         // every cell covered: every sample is occluded (a sample on the
@@ -495,52 +528,89 @@ impl Binned {
         if let Some(unoccluded) = self.all {
             return if unoccluded { m } else { 0 };
         }
-        // In passes, each a loop without branches on the data. The plane
-        // coordinates come from the centre of the sample's cell on the
-        // `2³²` grid (`PlaneMap::approx` allows for it); the sample's own
+        // In passes, each a loop without branches on the data: the samples'
+        // cells on the `2³²` grid, their plane coordinates (at the centre
+        // of that cell: `PlaneMap::approx_grid` allows for it) and their cells on
+        // the light; then the samples whose cell decides them counted, and
+        // the others listed for their images' tests. The sample's own
         // point, jitter and all, only where its ray is cast.
-        self.samples.clear();
-        if self.cells[1] == 1 {
-            // A segment's points depend on `s.x` alone: its second grid
-            // coordinate is left at 0.
-            self.samples
-                .extend((0..m).map(|i| ([replicate.grid_first(i), 0], DVec2::ZERO)));
+        let n = m as usize;
+        let s = &mut self.scratch;
+        for v in [&mut s.gx, &mut s.gy, &mut s.cell, &mut s.pending] {
+            v.resize(n, 0);
+        }
+        for v in [&mut s.qx, &mut s.qy] {
+            v.resize(n, 0.0);
+        }
+        // A segment's points depend on `s.x` alone: its second grid
+        // coordinate is left at 0.
+        let gy = if self.grid.cells[1] == 1 {
+            s.gy.fill(0);
+            &mut [][..]
         } else {
-            self.samples
-                .extend((0..m).map(|i| (replicate.grid(i), DVec2::ZERO)));
-        }
-        for (grid, q) in &mut self.samples {
-            let centre = grid.map(|g| (f64::from(g) + 0.5) / 4_294_967_296.0);
-            *q = map.approx(DVec2::from(centre));
-        }
+            &mut s.gy[..n]
+        };
+        let grid = &self.grid;
+        lanes::vectorized(
+            #[inline(always)]
+            |_| {
+                locate(
+                    replicate,
+                    &map,
+                    grid,
+                    &mut s.gx[..n],
+                    gy,
+                    &mut s.qx[..n],
+                    &mut s.qy[..n],
+                    &mut s.cell[..n],
+                );
+            },
+        );
         let mut visible = 0;
-        for (i, &(grid, q)) in (0..m).zip(&self.samples) {
-            let known = self.decide(&map, q);
-            visible += u32::from(known.unwrap_or_else(|| ray(replicate.point_in(i, grid))));
+        let mut listed = 0;
+        for (j, &k) in (0..).zip(&s.cell[..n]) {
+            let state = self.state.get(k as usize).copied().unwrap_or(Cell::Test);
+            visible += u32::from(state == Cell::Lit);
+            if let Some(slot) = s.pending.get_mut(listed) {
+                *slot = j;
+            }
+            listed += usize::from(state == Cell::Test);
+        }
+        let s = &self.scratch;
+        for &j in &s.pending[..listed] {
+            let j = j as usize;
+            let q = DVec2::new(s.qx[j], s.qy[j]);
+            let known = self.test_cell(s.cell[j], q);
+            visible += u32::from(
+                known.unwrap_or_else(|| ray(replicate.point_in(j as u32, [s.gx[j], s.gy[j]]))),
+            );
         }
         visible
     }
 
     /// Whether the sample at approximate plane coordinates `q` is
     /// unoccluded, when certain; `None` when its ray must decide.
+    #[cfg(test)]
+    fn decide(&self, q: DVec2) -> Option<bool> {
+        let k = self.grid.cell_of(q.x, q.y);
+        match self.state.get(k as usize) {
+            Some(Cell::Lit) => Some(true),
+            Some(Cell::Dark) => Some(false),
+            _ => self.test_cell(k, q),
+        }
+    }
+
+    /// [`Binned::decide`] for a sample in cell `k` (the grid's cell count
+    /// for one outside it) that its cell alone does not decide: its
+    /// cell's images tested.
     #[inline]
-    fn decide(&self, map: &PlaneMap, q: DVec2) -> Option<bool> {
-        // Truncation is the floor for the non-negative values kept.
-        let (x, y) = (
-            (q.x + map.half) * self.inv_width.x,
-            (q.y + map.half) * self.inv_width.y,
-        );
-        let bounds = self.bounds;
-        if !(x >= 0.0 && x < bounds.x && y >= 0.0 && y < bounds.y) {
+    fn test_cell(&self, k: u32, q: DVec2) -> Option<bool> {
+        let k = k as usize;
+        let (Some(&lo), Some(&hi)) = (self.start.get(k), self.start.get(k + 1)) else {
             return None;
-        }
-        // Through `i32` (a single instruction; the values are below 4096).
-        let k = y as i32 as usize * self.cells[0] + x as i32 as usize;
-        if self.covered[k] {
-            return Some(false);
-        }
+        };
         let mut unsure = false;
-        for &i in &self.items[self.start[k] as usize..self.start[k + 1] as usize] {
+        for &i in &self.items[lo as usize..hi as usize] {
             let image = &self.images[i as usize];
             match image.classify(q, &image.margins) {
                 Verdict::Outside => {}
@@ -549,6 +619,75 @@ impl Binned {
             }
         }
         (!unsure).then_some(true)
+    }
+}
+
+/// What a sample's cell on the light says of it.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+enum Cell {
+    /// No image listed, none covering: unoccluded.
+    #[default]
+    Lit,
+    /// Inside an image certainly occluding: occluded.
+    Dark,
+    /// The cell's images decide, or the ray.
+    Test,
+}
+
+/// The light's grid of cells: `cells[0] × cells[1]` over `[−half, half]²`
+/// in plane coordinates.
+#[derive(Clone, Copy, Debug, Default)]
+struct Grid {
+    half: f64,
+    /// Cells per unit of plane coordinate on each axis.
+    inv_width: [f64; 2],
+    /// The cell counts as `f64`.
+    bounds: [f64; 2],
+    /// Cells along each axis: `[columns, rows]` (one row on a segment).
+    cells: [u32; 2],
+}
+
+impl Grid {
+    /// The index `row · columns + column` of the cell holding `(x, y)`; the
+    /// cell count for a point outside the grid (or NaN).
+    #[inline(always)]
+    fn cell_of(&self, x: f64, y: f64) -> u32 {
+        let (x, y) = (
+            (x + self.half) * self.inv_width[0],
+            (y + self.half) * self.inv_width[1],
+        );
+        let inside = x >= 0.0 && x < self.bounds[0] && y >= 0.0 && y < self.bounds[1];
+        // Truncation is the floor for the non-negative values kept; through
+        // `i32` (one instruction; the values are below 4096).
+        let k = (y as i32 as u32)
+            .wrapping_mul(self.cells[0])
+            .wrapping_add(x as i32 as u32);
+        if inside {
+            k
+        } else {
+            self.cells[0] * self.cells[1]
+        }
+    }
+}
+
+/// The samples' grid cells, plane coordinates and cells on the light
+/// ([`Binned::count_unoccluded`]'s first passes).
+#[allow(clippy::too_many_arguments)]
+#[inline(always)]
+fn locate(
+    replicate: &Replicate,
+    map: &PlaneMap,
+    grid: &Grid,
+    gx: &mut [u32],
+    gy: &mut [u32],
+    qx: &mut [f64],
+    qy: &mut [f64],
+    cell: &mut [u32],
+) {
+    replicate.grids(gx, gy);
+    map.approx_grid(gx, gy, qx, qy);
+    for ((k, &x), &y) in cell.iter_mut().zip(&*qx).zip(&*qy) {
+        *k = grid.cell_of(x, y);
     }
 }
 
@@ -611,6 +750,15 @@ mod tests {
     /// `z`), crossing or beyond the light's plane, behind `p`, tiny and
     /// huge ones, and quads split along a diagonal that sample rays graze.
     fn scene(seed: u64) -> (Light, DVec3, Vec<[DVec3; 3]>, Vec<DVec2>) {
+        scene_on(seed, None)
+    }
+
+    /// [`scene`], its triangles made to sit on the first 1024 points of
+    /// `replicate` where one is given (else on uniform samples).
+    fn scene_on(
+        seed: u64,
+        replicate: Option<&Replicate>,
+    ) -> (Light, DVec3, Vec<[DVec3; 3]>, Vec<DVec2>) {
         let mut rng = SplitMix64(seed);
         let offset = if rng.next() % 2 == 0 {
             DVec3::ZERO
@@ -645,7 +793,10 @@ mod tests {
         .expect("a light");
         let emitter = light.emitter(p).expect("an emitter");
         let samples: Vec<DVec2> = (0..1024)
-            .map(|_| DVec2::new(uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0)))
+            .map(|i| match replicate {
+                Some(replicate) => replicate.point(i),
+                None => DVec2::new(uniform(&mut rng, 0.0, 1.0), uniform(&mut rng, 0.0, 1.0)),
+            })
             .collect();
         let mut triangles = Vec::new();
         for _ in 0..(rng.next() % 60 + 1) {
@@ -749,7 +900,7 @@ mod tests {
         let mut decided = 0;
         for &s in &samples {
             // The answer for every sample where one holds, else its own.
-            let known = binned.all.or_else(|| binned.decide(&map, map.approx(s)));
+            let known = binned.all.or_else(|| binned.decide(map.approx(s)));
             if let Some(unoccluded) = known {
                 decided += 1;
                 check(
@@ -778,6 +929,46 @@ mod tests {
             });
             prop_assert_eq!(wrong, None);
         }
+    }
+
+    /// A replicate's count of unoccluded samples is the rays' count, on
+    /// scenes whose triangles sit on its own sample points (their corners,
+    /// edges and rays through them), for every kind of emitter and for
+    /// sample counts that end inside a run of the sequence's table.
+    #[test]
+    fn counts_are_the_rays_counts() {
+        let (mut built, mut pending) = ([0; 3], 0);
+        for seed in 0..400 {
+            let replicate = Replicate::new(&mut SplitMix64(seed ^ 0x5EED));
+            let (light, p, triangles, _) = scene_on(seed, Some(&replicate));
+            let bvh = Bvh::new(Occluders::from_triangles(triangles));
+            let emitter = light.emitter(p).expect("an emitter");
+            let mut binned = Binned::default();
+            if !binned.build(&bvh, &emitter, p, 1 << 12, 16) {
+                continue;
+            }
+            built[match emitter {
+                Emitter::Disk(_) => 0,
+                Emitter::Rect(_) => 1,
+                _ => 2,
+            }] += 1;
+            for m in [1024, 300, 33] {
+                let rays = (0..m)
+                    .filter(|&i| bvh.segment_unoccluded(p, emitter.point_at(replicate.point(i))))
+                    .count() as u32;
+                let cast = std::cell::Cell::new(0);
+                let counted = binned.count_unoccluded(&replicate, m, |s| {
+                    cast.set(cast.get() + 1);
+                    bvh.segment_unoccluded(p, emitter.point_at(s))
+                });
+                assert_eq!(counted, rays, "seed {seed}, {m} samples");
+                pending += cast.get();
+            }
+        }
+        // Every kind set up many times, and rays cast where the plane
+        // left samples undecided.
+        assert!(built.iter().all(|&n| n >= 40), "{built:?}");
+        assert!(pending >= 1000, "{pending} rays");
     }
 
     /// Every sample point lies in the pyramid the candidates are culled to
@@ -921,8 +1112,11 @@ mod tests {
             let exact = DVec2::new(x.dot(map.axes[0]), x.dot(map.axes[1]));
             // At the sample and at the centre of its cell on the 2³² grid,
             // where `count_unoccluded` takes it.
-            let centre = (s * 4_294_967_296.0).floor() + 0.5;
-            for q in [map.approx(s), map.approx(centre / 4_294_967_296.0)] {
+            let cell = (s * 4_294_967_296.0).floor().as_uvec2();
+            let mut at_centre = [0.0; 2];
+            let (x, y) = at_centre.split_at_mut(1);
+            map.approx_grid(&[cell.x], &[cell.y], x, y);
+            for q in [map.approx(s), DVec2::from(at_centre)] {
                 worst = worst.max((q - exact).abs().max_element());
                 assert!(q.abs().max_element() <= map.half, "{s:?}");
             }
