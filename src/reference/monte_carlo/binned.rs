@@ -151,9 +151,10 @@ pub(super) struct Binned {
     images: Vec<Image>,
     /// The light's grid of cells.
     grid: Grid,
-    /// `start[k]..start[k + 1]` indexes `items` for cell `k`.
-    start: Vec<u32>,
-    items: Vec<u32>,
+    /// Per cell, its first entry in `links` ([`NONE`] for none): the
+    /// images listed in the cell, as a linked list, latest first.
+    head: Vec<u32>,
+    links: Vec<Link>,
     /// Cells inside one image certainly occluded.
     covered: Vec<bool>,
     candidates: Vec<u32>,
@@ -162,10 +163,6 @@ pub(super) struct Binned {
     /// The pyramid the candidates were culled to: the receiver, then the
     /// base's corners in order around it.
     hull: [DVec3; 5],
-    /// `(cell, image)` pairs before the counting sort.
-    pairs: Vec<(u32, u32)>,
-    /// The counting sort's cursors.
-    next: Vec<u32>,
     /// The cells' centres on each axis.
     centers: [Vec<f64>; 2],
     /// One row's verdicts.
@@ -307,7 +304,7 @@ impl Binned {
         let reach_q =
             (d.abs() + c.abs()).max_element() * (dual[0].abs() + dual[1].abs()).max_element();
         self.images.clear();
-        self.pairs.clear();
+        self.links.clear();
         let grid = if segment {
             [cells * cells, 1]
         } else {
@@ -326,6 +323,8 @@ impl Binned {
         let n = grid[0] * grid[1];
         self.covered.clear();
         self.covered.resize(n, false);
+        self.head.clear();
+        self.head.resize(n, NONE);
         let mut uncovered = n;
         let triangles = bvh.occluders().triangles();
         for &id in &self.candidates {
@@ -452,44 +451,27 @@ impl Binned {
                             uncovered -= usize::from(!self.covered[k]);
                             self.covered[k] = true;
                         }
-                        Verdict::Unsure => self.pairs.push((k as u32, index)),
+                        Verdict::Unsure => {
+                            let next =
+                                std::mem::replace(&mut self.head[k], self.links.len() as u32);
+                            self.links.push(Link { image: index, next });
+                        }
                     }
                 }
             }
             self.images.push(image);
         }
 
-        // Counting sort of the pairs by cell, images in candidate order
-        // (a covered cell needs no list).
-        self.pairs.retain(|&(k, _)| !self.covered[k as usize]);
-        self.start.clear();
-        self.start.resize(n + 1, 0);
-        for &(k, _) in &self.pairs {
-            self.start[k as usize + 1] += 1;
-        }
-        for k in 0..n {
-            self.start[k + 1] += self.start[k];
-        }
-        self.items.clear();
-        self.items.resize(self.start[n] as usize, 0);
-        self.next.clear();
-        self.next.extend_from_slice(&self.start[..n]);
-        for &(k, image) in &self.pairs {
-            let at = &mut self.next[k as usize];
-            self.items[*at as usize] = image;
-            *at += 1;
-        }
         self.grid = Grid {
             half,
             inv_width: grid.map(|n| n as f64 / (2.0 * half)),
             bounds: grid.map(|n| n as f64),
-            cells: grid.map(|n| n as u32),
         };
         self.state.clear();
         self.state.extend((0..n).map(|k| {
             if self.covered[k] {
                 Cell::Dark
-            } else if self.start[k] == self.start[k + 1] {
+            } else if self.head[k] == NONE {
                 Cell::Lit
             } else {
                 Cell::Test
@@ -504,7 +486,7 @@ impl Binned {
         // need be computed.
         self.all = if uncovered == 0 {
             Some(false)
-        } else if self.items.is_empty() && uncovered == n {
+        } else if uncovered == n && !self.state[..n].contains(&Cell::Test) {
             Some(true)
         } else {
             None
@@ -544,7 +526,7 @@ impl Binned {
         }
         // A segment's points depend on `s.x` alone: its second grid
         // coordinate is left at 0.
-        let gy = if self.grid.cells[1] == 1 {
+        let gy = if self.grid.bounds[1] == 1.0 {
             s.gy.fill(0);
             &mut [][..]
         } else {
@@ -605,21 +587,30 @@ impl Binned {
     /// cell's images tested.
     #[inline]
     fn test_cell(&self, k: u32, q: DVec2) -> Option<bool> {
-        let k = k as usize;
-        let (Some(&lo), Some(&hi)) = (self.start.get(k), self.start.get(k + 1)) else {
-            return None;
-        };
+        let mut at = *self.head.get(k as usize)?;
         let mut unsure = false;
-        for &i in &self.items[lo as usize..hi as usize] {
-            let image = &self.images[i as usize];
+        while let Some(link) = self.links.get(at as usize) {
+            let image = &self.images[link.image as usize];
             match image.classify(q, &image.margins) {
                 Verdict::Outside => {}
                 Verdict::Inside => return Some(false),
                 Verdict::Unsure => unsure = true,
             }
+            at = link.next;
         }
         (!unsure).then_some(true)
     }
+}
+
+/// The end of a cell's list of images.
+const NONE: u32 = u32::MAX;
+
+/// An entry of a cell's list of images: the image, and the list's next
+/// entry.
+#[derive(Clone, Copy, Debug)]
+struct Link {
+    image: u32,
+    next: u32,
 }
 
 /// What a sample's cell on the light says of it.
@@ -641,10 +632,9 @@ struct Grid {
     half: f64,
     /// Cells per unit of plane coordinate on each axis.
     inv_width: [f64; 2],
-    /// The cell counts as `f64`.
+    /// Cells along each axis, `[columns, rows]` (one row on a segment), as
+    /// `f64`.
     bounds: [f64; 2],
-    /// Cells along each axis: `[columns, rows]` (one row on a segment).
-    cells: [u32; 2],
 }
 
 impl Grid {
@@ -656,17 +646,28 @@ impl Grid {
             (x + self.half) * self.inv_width[0],
             (y + self.half) * self.inv_width[1],
         );
-        let inside = x >= 0.0 && x < self.bounds[0] && y >= 0.0 && y < self.bounds[1];
-        // Truncation is the floor for the non-negative values kept; through
-        // `i32` (one instruction; the values are below 4096).
-        let k = (y as i32 as u32)
-            .wrapping_mul(self.cells[0])
-            .wrapping_add(x as i32 as u32);
-        if inside {
-            k
+        // Without branches or conversion instructions, so that loops of it
+        // vectorise (`&`, not `&&`; a float-to-integer conversion, which
+        // must saturate, does not). For `0 ≤ v < 2⁵¹`, adding and
+        // subtracting `2⁵²` rounds `v` to an integer, exactly; one less
+        // where that rounded up is the floor; and an integer below `2³²`
+        // plus `2⁵²` holds it in its low bits.
+        const TWO_52: f64 = 4_503_599_627_370_496.0;
+        let floor = |v: f64| {
+            let r = (v + TWO_52) - TWO_52;
+            if r > v {
+                r - 1.0
+            } else {
+                r
+            }
+        };
+        let inside = (x >= 0.0) & (x < self.bounds[0]) & (y >= 0.0) & (y < self.bounds[1]);
+        let k = if inside {
+            floor(y) * self.bounds[0] + floor(x)
         } else {
-            self.cells[0] * self.cells[1]
-        }
+            self.bounds[0] * self.bounds[1]
+        };
+        (k + TWO_52).to_bits() as u32
     }
 }
 
