@@ -5,6 +5,7 @@
 use super::node::{Node, EMPTY, LEAF, WIDTH};
 use super::ray::NodeStack;
 use super::{in_f32_range, Bvh};
+use crate::kernel::lanes;
 use glam::DVec3;
 
 impl Bvh {
@@ -46,6 +47,15 @@ impl Bvh {
         out: &mut Vec<u32>,
         cap: usize,
     ) -> bool {
+        lanes::vectorized(
+            #[inline(always)]
+            |_| self.meeting_hull_at_most(points, out, cap),
+        )
+    }
+
+    /// [`Bvh::triangles_meeting_hull_at_most`], compiled where it is called.
+    #[inline(always)]
+    fn meeting_hull_at_most(&self, points: &[DVec3], out: &mut Vec<u32>, cap: usize) -> bool {
         out.clear();
         if points.is_empty() {
             return true;
@@ -64,9 +74,9 @@ impl Bvh {
         while top > 0 {
             top -= 1;
             let n = &self.nodes[stack[top] as usize];
-            for lane in 0..WIDTH {
-                let child = n.child[lane];
-                if child == EMPTY || hull.separated(n, lane) {
+            let separated = hull.separated(n);
+            for (&child, separated) in n.child.iter().zip(separated) {
+                if child == EMPTY || separated {
                     continue;
                 }
                 if child & LEAF == 0 {
@@ -187,12 +197,13 @@ impl Hull {
         }
     }
 
-    /// Whether lane `lane` of `n` is certainly disjoint from the hull.
-    fn separated(&self, n: &Node, lane: usize) -> bool {
-        let (lo, hi) = n.lane_box(lane);
-        if lo.cmpgt(self.hi).any() || hi.cmplt(self.lo).any() {
-            return true;
-        }
+    /// Whether each lane of `n` is certainly disjoint from the hull: the
+    /// four lanes side by side, in straight loops the compiler vectorises.
+    #[inline(always)]
+    fn separated(&self, n: &Node) -> [bool; WIDTH] {
+        let (lo, hi) = (n.planes(0), n.planes(1));
+        let (hull_lo, hull_hi) = (self.lo.to_array(), self.hi.to_array());
+        let origin = self.origin.to_array();
         // The box as its centre `c` and half-extent `e`, each rounded once
         // (the box lies within `(e + u |c|)/(1 − u)` of `c` on each axis),
         // and along each axis the interval `n · (c − a) ± |n| · e`, widened
@@ -200,16 +211,32 @@ impl Hull {
         // `c`, `e`, `c − a`, the two dot products and the sum
         // (`γ₃ + γ₅`); the final comparisons need none (a rounded
         // `s − r > h` implies the exact one).
-        let c = (lo + hi) * 0.5;
-        let e = (hi - lo) * 0.5;
-        let d = c - self.origin;
-        let slack = d.abs() + e + c.abs();
-        self.axes.iter().any(|&(normal, abs_normal, l, h)| {
-            let s = normal.dot(d);
-            let r = abs_normal.dot(e) + GAMMA10 * abs_normal.dot(slack);
-            // NaN (never expected with finite inputs) compares false: kept.
-            s - r > h || s + r < l
-        })
+        let mut out = [false; WIDTH];
+        let (mut d, mut e, mut slack) = ([[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3], [[0.0; WIDTH]; 3]);
+        for axis in 0..3 {
+            for lane in 0..WIDTH {
+                let (l, h) = (lo[axis][lane], hi[axis][lane]);
+                // Beyond the hull's bounding box (exact comparisons).
+                out[lane] |= (l > hull_hi[axis]) | (h < hull_lo[axis]);
+                let c = (l + h) * 0.5;
+                e[axis][lane] = (h - l) * 0.5;
+                d[axis][lane] = c - origin[axis];
+                slack[axis][lane] = d[axis][lane].abs() + e[axis][lane] + c.abs();
+            }
+        }
+        // The dot products summed in `DVec3::dot`'s order.
+        let dot = |n: DVec3, v: &[[f64; WIDTH]; 3], lane: usize| {
+            n.x * v[0][lane] + n.y * v[1][lane] + n.z * v[2][lane]
+        };
+        for &(normal, abs_normal, l, h) in &self.axes {
+            for (lane, out) in out.iter_mut().enumerate() {
+                let s = dot(normal, &d, lane);
+                let r = dot(abs_normal, &e, lane) + GAMMA10 * dot(abs_normal, &slack, lane);
+                // NaN (never expected with finite inputs) compares false: kept.
+                *out |= (s - r > h) | (s + r < l);
+            }
+        }
+        out
     }
 }
 

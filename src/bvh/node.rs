@@ -1,8 +1,6 @@
 //! The node of the 4-wide tree: four child boxes quantised outward to 8
 //! bits per plane, and the decoding the build and the traversals share.
 
-use glam::DVec3;
-
 /// Children per node of our tree.
 pub(super) const WIDTH: usize = 4;
 /// `child` of an empty lane.
@@ -108,23 +106,29 @@ impl Node {
         node
     }
 
+    /// The decoded planes of every lane on side `side` (0 the minima, 1
+    /// the maxima): `[axis][lane]`.
+    #[inline(always)]
+    pub(super) fn planes(&self, side: usize) -> [[f64; WIDTH]; 3] {
+        core::array::from_fn(|axis| {
+            core::array::from_fn(|lane| {
+                f64::from(decode(
+                    self.origin[axis],
+                    self.q[side][axis][lane],
+                    self.scale[axis],
+                ))
+            })
+        })
+    }
+
     /// The decoded box of `lane`: `(lo, hi)`.
-    pub(super) fn lane_box(&self, lane: usize) -> (DVec3, DVec3) {
-        let plane = |q: &[[u8; WIDTH]; 3], axis: usize| {
-            f64::from(decode(self.origin[axis], q[axis][lane], self.scale[axis]))
-        };
-        (
-            DVec3::new(
-                plane(&self.q[0], 0),
-                plane(&self.q[0], 1),
-                plane(&self.q[0], 2),
-            ),
-            DVec3::new(
-                plane(&self.q[1], 0),
-                plane(&self.q[1], 1),
-                plane(&self.q[1], 2),
-            ),
-        )
+    #[cfg(test)]
+    pub(super) fn lane_box(&self, lane: usize) -> (glam::DVec3, glam::DVec3) {
+        let [lo, hi] = [0, 1].map(|side| {
+            let p = self.planes(side);
+            glam::DVec3::new(p[0][lane], p[1][lane], p[2][lane])
+        });
+        (lo, hi)
     }
 }
 
