@@ -110,13 +110,17 @@ enum Verdict {
     Unsure,
 }
 
-/// One candidate's image on the light's plane.
+/// One candidate's image on the light's plane: its edges in four lanes,
+/// the three edges and one that holds everywhere (`F = 1`, margin 0), so
+/// that a verdict is one vector operation per coefficient.
 #[derive(Clone, Copy, Debug)]
 struct Image {
-    /// Per edge `[a, b, c]`: `F(q) = a + b q.x + c q.y`, positive inside.
-    edges: [[f64; 3]; 3],
+    /// Per edge, `F(q) = a + b q.x + c q.y`, positive inside.
+    a: [f64; 4],
+    b: [f64; 4],
+    c: [f64; 4],
     /// Per edge, the margin `m` beyond which the sign of `F` is certain.
-    margins: [f64; 3],
+    margins: [f64; 4],
     /// Every corner certainly between the receiver and the light.
     between: bool,
 }
@@ -127,12 +131,12 @@ impl Image {
     /// around `q` for every point of the cell. Without branches, so that
     /// loops of it vectorise.
     #[inline(always)]
-    fn classify(&self, q: DVec2, margins: &[f64; 3]) -> Verdict {
+    fn classify(&self, q: DVec2, margins: &[f64; 4]) -> Verdict {
         let (mut outside, mut inside) = (false, self.between);
-        for ([a, b, c], m) in self.edges.into_iter().zip(margins) {
-            let f = a + b * q.x + c * q.y;
-            outside |= f < -m;
-            inside &= f > *m;
+        for e in 0..4 {
+            let f = self.a[e] + self.b[e] * q.x + self.c[e] * q.y;
+            outside |= f < -margins[e];
+            inside &= f > margins[e];
         }
         if outside {
             Verdict::Outside
@@ -196,6 +200,22 @@ impl Binned {
     /// of the light, a set-up past its budget): then every sample casts
     /// its ray.
     pub(super) fn build(
+        &mut self,
+        bvh: &Bvh,
+        emitter: &Emitter,
+        p: DVec3,
+        samples: u32,
+        cells: usize,
+    ) -> bool {
+        lanes::vectorized(
+            #[inline(always)]
+            |_| self.build_here(bvh, emitter, p, samples, cells),
+        )
+    }
+
+    /// [`Binned::build`], compiled where it is called.
+    #[inline(always)]
+    fn build_here(
         &mut self,
         bvh: &Bvh,
         emitter: &Emitter,
@@ -356,8 +376,14 @@ impl Binned {
                 continue;
             }
             let between = depth.iter().all(|z| z.1 < depth_lo);
-            let (mut edges, mut margins) = ([[0.0; 3]; 3], [0.0; 3]);
-            for (k, (edge, margin)) in edges.iter_mut().zip(&mut margins).enumerate() {
+            let mut image = Image {
+                a: [1.0; 4],
+                b: [0.0; 4],
+                c: [0.0; 4],
+                margins: [0.0; 4],
+                between,
+            };
+            for k in 0..3 {
                 let (a, b) = (rel[k], rel[(k + 1) % 3]);
                 let n = a.cross(b) * sigma;
                 let (aa, ba) = (a.abs(), b.abs());
@@ -369,7 +395,7 @@ impl Binned {
                 );
                 let (fa, fb, fc) = (n.dot(d), n.dot(ex), n.dot(ey));
                 let axes = nn.dot(ex.abs() + ey.abs());
-                *margin = 2.0
+                image.margins[k] = 2.0
                     * (G16
                         * (fa.abs()
                             + (fb.abs() + fc.abs()) * half
@@ -377,21 +403,15 @@ impl Binned {
                             + 2.0 * axes * half
                             + 2.0 * (nn.dot(c.abs()) + axes * half))
                         + 2.0 * axes * map.error);
-                *edge = [fa, fb, fc];
+                (image.a[k], image.b[k], image.c[k]) = (fa, fb, fc);
             }
-            if !edges
+            if ![image.a, image.b, image.c, image.margins]
                 .iter()
                 .flatten()
-                .chain(&margins)
                 .all(|x| x.is_finite())
             {
                 return false;
             }
-            let image = Image {
-                edges,
-                margins,
-                between,
-            };
             let index = self.images.len() as u32;
             // The cells to test: around the corners' projections where
             // every corner is well in front of `p` (the image is their
@@ -429,8 +449,8 @@ impl Binned {
             budget -= tested;
             let strip = x0 == x1 || (y0 == y1 && !segment);
             // Each margin widened by the most `F` varies over a cell.
-            let mut cell_margins = margins;
-            for (m, [_, b, c]) in cell_margins.iter_mut().zip(edges) {
+            let mut cell_margins = image.margins;
+            for ((m, b), c) in cell_margins.iter_mut().zip(image.b).zip(image.c) {
                 *m += b.abs() * h.x + c.abs() * h.y;
             }
             let columns = &self.centers[0][x0..=x1];
@@ -510,12 +530,28 @@ impl Binned {
         if let Some(unoccluded) = self.all {
             return if unoccluded { m } else { 0 };
         }
+        lanes::vectorized(
+            #[inline(always)]
+            |_| self.count_here(&map, replicate, m, &ray),
+        )
+    }
+
+    /// [`Binned::count_unoccluded`] on the plane, compiled where it is
+    /// called.
+    #[inline(always)]
+    fn count_here(
+        &mut self,
+        map: &PlaneMap,
+        replicate: &Replicate,
+        m: u32,
+        ray: &impl Fn(DVec2) -> bool,
+    ) -> u32 {
         // In passes, each a loop without branches on the data: the samples'
         // cells on the `2³²` grid, their plane coordinates (at the centre
-        // of that cell: `PlaneMap::approx_grid` allows for it) and their cells on
-        // the light; then the samples whose cell decides them counted, and
-        // the others listed for their images' tests. The sample's own
-        // point, jitter and all, only where its ray is cast.
+        // of that cell: `PlaneMap::approx_grid` allows for it) and their
+        // cells on the light; then the samples whose cell decides them
+        // counted, and the others listed for their images' tests. The
+        // sample's own point, jitter and all, only where its ray is cast.
         let n = m as usize;
         let s = &mut self.scratch;
         for v in [&mut s.gx, &mut s.gy, &mut s.cell, &mut s.pending] {
@@ -532,22 +568,11 @@ impl Binned {
         } else {
             &mut s.gy[..n]
         };
-        let grid = &self.grid;
-        lanes::vectorized(
-            #[inline(always)]
-            |_| {
-                locate(
-                    replicate,
-                    &map,
-                    grid,
-                    &mut s.gx[..n],
-                    gy,
-                    &mut s.qx[..n],
-                    &mut s.qy[..n],
-                    &mut s.cell[..n],
-                );
-            },
-        );
+        replicate.grids(&mut s.gx[..n], gy);
+        map.approx_grid(&s.gx[..n], gy, &mut s.qx[..n], &mut s.qy[..n]);
+        for ((k, &x), &y) in s.cell[..n].iter_mut().zip(&s.qx[..n]).zip(&s.qy[..n]) {
+            *k = self.grid.cell_of(x, y);
+        }
         let mut visible = 0;
         let mut listed = 0;
         for (j, &k) in (0..).zip(&s.cell[..n]) {
@@ -585,7 +610,7 @@ impl Binned {
     /// [`Binned::decide`] for a sample in cell `k` (the grid's cell count
     /// for one outside it) that its cell alone does not decide: its
     /// cell's images tested.
-    #[inline]
+    #[inline(always)]
     fn test_cell(&self, k: u32, q: DVec2) -> Option<bool> {
         let mut at = *self.head.get(k as usize)?;
         let mut unsure = false;
@@ -668,27 +693,6 @@ impl Grid {
             self.bounds[0] * self.bounds[1]
         };
         (k + TWO_52).to_bits() as u32
-    }
-}
-
-/// The samples' grid cells, plane coordinates and cells on the light
-/// ([`Binned::count_unoccluded`]'s first passes).
-#[allow(clippy::too_many_arguments)]
-#[inline(always)]
-fn locate(
-    replicate: &Replicate,
-    map: &PlaneMap,
-    grid: &Grid,
-    gx: &mut [u32],
-    gy: &mut [u32],
-    qx: &mut [f64],
-    qy: &mut [f64],
-    cell: &mut [u32],
-) {
-    replicate.grids(gx, gy);
-    map.approx_grid(gx, gy, qx, qy);
-    for ((k, &x), &y) in cell.iter_mut().zip(&*qx).zip(&*qy) {
-        *k = grid.cell_of(x, y);
     }
 }
 
