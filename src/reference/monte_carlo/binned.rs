@@ -60,6 +60,23 @@
 //! cell is such, no further candidate matters. A sample tests only its
 //! cell's list.
 //!
+//! # Evaluation
+//!
+//! The work is laid out for vector instructions, compiled for AVX2 where
+//! the processor has it (`lanes::vectorized`), the answers the same on
+//! every path. Each cell keeps its candidates as a linked list, written as
+//! they are found, and one verdict: *lit* (no list, not covered), *dark*
+//! (covered) or *to test*. A candidate's three edge functions and margins
+//! fill four lanes (the fourth `F = 1`, margin 0), so a verdict is one
+//! vector operation per coefficient; the cells of one row of its box are
+//! classified in one loop. A replicate's samples go through passes: their
+//! cells on the `2³²` grid (the scrambled Sobol' points, computed
+//! side by side), their approximate plane coordinates at those cells'
+//! centres, and their cells on the light (floor and integer by adding
+//! `2⁵²`, so that no conversion instruction stops the vectorising); then
+//! the cells' verdicts are counted, and only the samples in cells to test
+//! are tested against their cell's list, or cast their ray.
+//!
 //! Where this would cost more than it saves — more than `samples/2`
 //! candidates, or more than 8 cell tests per sample — [`Binned::build`]
 //! declines and every sample casts its ray.
