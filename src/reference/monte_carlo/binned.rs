@@ -148,6 +148,9 @@ impl Image {
     /// around `q` for every point of the cell. Without branches, so that
     /// loops of it vectorise.
     #[inline(always)]
+    // Indexed: zipped array iterators are not always inlined into the
+    // AVX2 code, and a call per lane undoes the lanes.
+    #[allow(clippy::needless_range_loop)]
     fn classify(&self, q: DVec2, margins: &[f64; 4]) -> Verdict {
         let (mut outside, mut inside) = (false, self.between);
         for e in 0..4 {
@@ -372,10 +375,10 @@ impl Binned {
             let Some(t) = triangles.get(id as usize) else {
                 continue;
             };
-            if !t.iter().all(|&v| v.is_finite()) {
+            if each3(t, |v| v.is_finite()) != [true; 3] {
                 continue;
             }
-            if !t.iter().all(|&v| in_domain(v)) {
+            if each3(t, in_domain) != [true; 3] {
                 return false;
             }
             let sigma = match orient3d(t[0], t[1], t[2], p) {
@@ -383,8 +386,8 @@ impl Binned {
                 Sign::Positive => 1.0,
                 Sign::Negative => -1.0,
             };
-            let rel = t.map(|v| v - p);
-            let depth = rel.map(|r| {
+            let rel = each3(t, |v| v - p);
+            let depth = each3(&rel, |r| {
                 let e = 2.0 * G16 * w.abs().dot(r.abs());
                 let z = w.dot(r);
                 (z - e, z + e)
@@ -422,11 +425,13 @@ impl Binned {
                         + 2.0 * axes * map.error);
                 (image.a[k], image.b[k], image.c[k]) = (fa, fb, fc);
             }
-            if ![image.a, image.b, image.c, image.margins]
-                .iter()
-                .flatten()
-                .all(|x| x.is_finite())
-            {
+            // Every coefficient finite, tested on their sum: with every
+            // coordinate within `BIG`, a finite one is below `10¹⁰⁰`, so
+            // the sum overflows only where a term is not finite.
+            let sum: f64 = (0..4)
+                .map(|e| image.a[e] + image.b[e] + image.c[e] + image.margins[e])
+                .sum();
+            if !sum.is_finite() {
                 return false;
             }
             let index = self.images.len() as u32;
@@ -466,11 +471,10 @@ impl Binned {
             budget -= tested;
             let strip = x0 == x1 || (y0 == y1 && !segment);
             // Each margin widened by the most `F` varies over a cell.
-            let mut cell_margins = image.margins;
-            for ((m, b), c) in cell_margins.iter_mut().zip(image.b).zip(image.c) {
-                *m += b.abs() * h.x + c.abs() * h.y;
-            }
-            let columns = &self.centers[0][x0..=x1];
+            let cell_margins: [f64; 4] = std::array::from_fn(|e| {
+                image.margins[e] + (image.b[e].abs() * h.x + image.c[e].abs() * h.y)
+            });
+            let columns = &self.centers[0][x0..x1 + 1];
             let verdicts = &mut self.verdicts[..columns.len()];
             for iy in y0..=y1 {
                 let y = self.centers[1][iy];
@@ -713,11 +717,18 @@ impl Grid {
     }
 }
 
+/// `f` of each of three values (written out: a generic helper the
+/// compiler keeps apart would cost a call in the AVX2 code).
+#[inline(always)]
+fn each3<T: Copy, U>(v: &[T; 3], f: impl Fn(T) -> U) -> [U; 3] {
+    [f(v[0]), f(v[1]), f(v[2])]
+}
+
 /// Finite, and each coordinate `0` or within `[TINY, BIG]` in magnitude.
+#[inline(always)]
 fn in_domain(v: DVec3) -> bool {
-    v.to_array()
-        .iter()
-        .all(|x| *x == 0.0 || (x.abs() >= TINY && x.abs() <= BIG))
+    let in_range = |x: f64| x == 0.0 || (x.abs() >= TINY && x.abs() <= BIG);
+    in_range(v.x) && in_range(v.y) && in_range(v.z)
 }
 
 /// The cells `(x0, x1), (y0, y1)` (inclusive) a box `[lo, hi]` of plane
