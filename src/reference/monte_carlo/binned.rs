@@ -628,9 +628,10 @@ impl Binned {
         }
     }
 
-    /// [`Binned::decide`] for a sample in cell `k` (the grid's cell count
-    /// for one outside it) that its cell alone does not decide: its
-    /// cell's images tested.
+    /// Whether a sample at approximate plane coordinates `q` in cell `k`
+    /// (the grid's cell count for one outside it) that its cell alone
+    /// does not decide is unoccluded, from its cell's images; `None` when
+    /// its ray must decide.
     #[inline(always)]
     fn test_cell(&self, k: u32, q: DVec2) -> Option<bool> {
         let mut at = *self.head.get(k as usize)?;
@@ -671,8 +672,8 @@ enum Cell {
     Test,
 }
 
-/// The light's grid of cells: `cells[0] × cells[1]` over `[−half, half]²`
-/// in plane coordinates.
+/// The light's grid of cells: `bounds[0] × bounds[1]` cells over
+/// `[−half, half]²` in plane coordinates.
 #[derive(Clone, Copy, Debug, Default)]
 struct Grid {
     half: f64,
