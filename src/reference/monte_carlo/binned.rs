@@ -968,7 +968,8 @@ mod tests {
     /// A replicate's count of unoccluded samples is the rays' count, on
     /// scenes whose triangles sit on its own sample points (their corners,
     /// edges and rays through them), for every kind of emitter and for
-    /// sample counts that end inside a run of the sequence's table.
+    /// sample counts that end inside a run of the sequence's table; with
+    /// the run-time dispatch to AVX2 and without it.
     #[test]
     fn counts_are_the_rays_counts() {
         let (mut built, mut pending) = ([0; 3], 0);
@@ -978,9 +979,15 @@ mod tests {
             let bvh = Bvh::new(Occluders::from_triangles(triangles));
             let emitter = light.emitter(p).expect("an emitter");
             let mut binned = Binned::default();
-            if !binned.build(&bvh, &emitter, p, 1 << 12, 16) {
+            // The same set-up compiled for the build's target, without the
+            // run-time dispatch to AVX2: the same decisions.
+            let mut plain = Binned::default();
+            let ready = binned.build(&bvh, &emitter, p, 1 << 12, 16);
+            assert_eq!(plain.build_here(&bvh, &emitter, p, 1 << 12, 16), ready);
+            if !ready {
                 continue;
             }
+            assert_eq!(plain.all, binned.all, "seed {seed}");
             built[match emitter {
                 Emitter::Disk(_) => 0,
                 Emitter::Rect(_) => 1,
@@ -997,6 +1004,11 @@ mod tests {
                 });
                 assert_eq!(counted, rays, "seed {seed}, {m} samples");
                 pending += cast.get();
+                if let (Some(map), None) = (plain.map, plain.all) {
+                    let ray = |s| bvh.segment_unoccluded(p, emitter.point_at(s));
+                    let plain_count = plain.count_here(&map, &replicate, m, &ray);
+                    assert_eq!(plain_count, rays, "seed {seed}, {m} samples");
+                }
             }
         }
         // Every kind set up many times, and rays cast where the plane
