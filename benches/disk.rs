@@ -208,6 +208,20 @@ fn disk_vs_ray(c: &mut Criterion) {
             sum
         })
     });
+    let mut occlusions = Vec::with_capacity(N);
+    group.bench_function("circle_segment_occlusions/f64", |b| {
+        b.iter(|| {
+            k64::circle_segment_occlusions(black_box(&clipped), &mut occlusions);
+            black_box(&occlusions);
+        })
+    });
+    let mut occlusions32 = Vec::with_capacity(N);
+    group.bench_function("circle_segment_occlusions/f32", |b| {
+        b.iter(|| {
+            k32::circle_segment_occlusions(black_box(&clipped32), &mut occlusions32);
+            black_box(&occlusions32);
+        })
+    });
     group.finish();
 
     // Whole polygons: projected triangles (3 edges each) in the box.

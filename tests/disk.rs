@@ -294,6 +294,91 @@ fn segment_disk_areas_is_segment_disk_area_bit_for_bit() {
     assert!(checked > 10_000, "{checked} edges checked");
 }
 
+/// Edges for `circle_segment_occlusion` the batch must leave to the scalar
+/// path or get exactly right: `d` zero of either sign, at or past ±1, at
+/// and around the safe range's floor of both precisions, non-finite input,
+/// zero-length and reversed chords, endpoints far beyond the chord, a thin
+/// full chord.
+fn awkward_occlusions() -> Vec<(f64, f64, f64)> {
+    let thin = 1.0 - 1e-15;
+    let half = (1.0f64 - thin * thin).sqrt();
+    vec![
+        (0.0, 1.0, 1.0),
+        (-0.0, 1.0, 1.0),
+        (0.0, 0.0, 1.0),
+        (1.0, 0.0, 0.0),
+        (-1.0, 5.0, 5.0),
+        (1.0 - f64::EPSILON, 1.0, 1.0),
+        (-3.0, 5.0, 5.0),
+        (1e-61, 0.5, 0.5),
+        (1e-60, 0.5, 0.5),
+        (1e-59, 0.5, -0.25),
+        (1e-7, 0.5, 0.5),
+        (1e-6, 0.5, 0.5),
+        (1e-300, 1e-300, 1e-300),
+        (f64::NAN, 0.5, 0.5),
+        (0.5, f64::INFINITY, 0.5),
+        (0.5, 0.5, f64::NEG_INFINITY),
+        (0.5, 0.25, -0.25),
+        (-0.5, -0.25, 0.25),
+        (0.5, -0.6, 0.1),
+        (0.5, 1e300, 1e300),
+        (-0.5, -1e300, 0.0),
+        (thin, half, half),
+        (-thin, half, -0.5 * half),
+        (0.5, -0.0, 0.0),
+    ]
+}
+
+/// `circle_segment_occlusions` is `circle_segment_occlusion` edge by edge,
+/// bit for bit (both precisions): random clipped edges, the awkward ones
+/// above in every lane position, every remainder length. On a processor
+/// with AVX2 this runs the vector path.
+#[test]
+fn circle_segment_occlusions_is_circle_segment_occlusion_bit_for_bit() {
+    let mut rng = Rng::new(0x0cc1);
+    let (mut out64, mut out32) = (Vec::new(), Vec::new());
+    let mut checked = 0usize;
+    macro_rules! same_bits {
+        ($k:ident, $edges:expr, $out:expr) => {
+            $k::circle_segment_occlusions($edges, $out);
+            assert_eq!($out.len(), $edges.len());
+            for (&(d, w0, w1), &got) in $edges.iter().zip($out.iter()) {
+                let want = $k::circle_segment_occlusion(d, w0, w1);
+                assert_eq!(
+                    got.to_bits(),
+                    want.to_bits(),
+                    "{} d={d:?} w0={w0:?} w1={w1:?}: {got} vs {want}",
+                    stringify!($k)
+                );
+            }
+        };
+    }
+    let mut check = |edges: &[(f64, f64, f64)]| {
+        same_bits!(k64, edges, &mut out64);
+        let edges32: Vec<(f32, f32, f32)> = edges
+            .iter()
+            .map(|&(d, w0, w1)| (d as f32, w0 as f32, w1 as f32))
+            .collect();
+        same_bits!(k32, &edges32, &mut out32);
+        checked += edges.len();
+    };
+    let awkward = awkward_occlusions();
+    for _ in 0..samples(60) {
+        let mut edges: Vec<(f64, f64, f64)> = (0..200).map(|_| clipped_edge(&mut rng)).collect();
+        check(&edges);
+        for (i, &e) in awkward.iter().enumerate() {
+            edges[i % 16] = e;
+            edges[100 + i] = e;
+        }
+        check(&edges);
+        for n in 0..=17 {
+            check(&edges[..n]);
+        }
+    }
+    assert!(checked > 10_000, "{checked} edges checked");
+}
+
 #[test]
 fn polygon_disk_area_accuracy() {
     let mut ctx = Ctx::new();

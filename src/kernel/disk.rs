@@ -13,8 +13,9 @@
 //! - [`f64::polygon_disk_area`]: that sum, compensated.
 //! - [`f64::circle_segment_occlusion`]: Johnson et al.'s eq. 3 (SISM), the
 //!   signed normalised area of the circular segment cut by one clipped edge.
-//! - [`f64::segment_disk_areas`]: [`f64::segment_disk_area`] of many edges at
-//!   once, bit for bit, several edges per instruction.
+//! - [`f64::segment_disk_areas`], [`f64::circle_segment_occlusions`]: the
+//!   two of many edges at once, bit for bit, several edges per
+//!   instruction.
 //!
 //! All exist in `f32` and `f64` ([`mod@f32`], [`mod@f64`]) from one body.
 //!
@@ -131,14 +132,14 @@ macro_rules! disk_kernels {
         /// the first omitted term, `θ²¹/21!`, is below 2⁻⁶⁵ of the sum on
         /// that interval. (No libm `sin`: the result is the same on every
         /// platform.)
-        #[inline]
-        fn theta_minus_sin(theta: $T) -> $T {
+        #[inline(always)]
+        fn theta_minus_sin<R: Real<Scalar = $T>>(theta: R) -> R {
             let x2 = theta * theta;
-            let mut s: $T = 1.0;
+            let mut s = R::splat(1.0);
             for &c in SINE_RATIOS.iter().rev() {
-                s = 1.0 - x2 * c * s;
+                s = R::splat(1.0) - x2 * R::splat(c) * s;
             }
-            theta * x2 / 6.0 * s
+            theta * x2 / R::splat(6.0) * s
         }
 
         /// Signed area of the triangle `(0, a, b)` intersected with the disk
@@ -665,31 +666,194 @@ macro_rules! disk_kernels {
             // θ − ρ sin θ with c = ρ sin θ: split as (θ − sin θ) + (1 − ρ) sin θ
             // when θ is small and both terms are small; directly otherwise.
             let value = if abs_theta < 1.0 {
-                let r0 = d * d + w0 * w0;
-                let r1 = d * d + w1 * w1;
-                // 1 − ρ² = a0 + a1 − a0 a1, with a = 1 − |p|² = s² − w²
-                // = (s − w)(s + w): no cancellation near the circle.
-                let a0 = (s - w0.abs()) * (s + w0.abs());
-                let a1 = (s - w1.abs()) * (s + w1.abs());
-                let one_minus_rho2 = (a0 + a1 - a0 * a1).max(0.0);
-                let rho = (r0 * r1).sqrt();
+                let (rho, one_minus_rho2) = rho_of(d, w0, w1, s);
                 // c = ρ sin θ; ρ underflows only for endpoints at the centre.
                 let sin_theta = if rho > 0.0 {
                     c.abs() / rho
                 } else {
                     abs_theta.sin()
                 };
-                let rest = one_minus_rho2 / (1.0 + rho) * sin_theta;
-                (theta_minus_sin(abs_theta) + rest).copysign(theta)
+                thin_value(theta, sin_theta, rho, one_minus_rho2)
             } else {
                 theta - c
             };
             sign * value / (2.0 * PI)
         }
 
+        /// `ρ = |p0||p1|` for the clipped endpoints `p0 = (d, −w0)`, `p1 =
+        /// (d, w1)`, and `1 − ρ²` without cancellation near the circle (`s`
+        /// the half chord).
+        #[inline(always)]
+        fn rho_of<R: Real<Scalar = $T>>(d: R, w0: R, w1: R, s: R) -> (R, R) {
+            let r0 = d * d + w0 * w0;
+            let r1 = d * d + w1 * w1;
+            // 1 − ρ² = a0 + a1 − a0 a1, with a = 1 − |p|² = s² − w²
+            // = (s − w)(s + w): no cancellation near the circle.
+            let a0 = (s - w0.abs()) * (s + w0.abs());
+            let a1 = (s - w1.abs()) * (s + w1.abs());
+            let one_minus_rho2 = (a0 + a1 - a0 * a1).max(R::splat(0.0));
+            ((r0 * r1).sqrt(), one_minus_rho2)
+        }
+
+        /// `θ − ρ sin θ` for `|θ| < 1`, as `(θ − sin θ) + (1 − ρ) sin θ`.
+        #[inline(always)]
+        fn thin_value<R: Real<Scalar = $T>>(
+            theta: R,
+            sin_theta: R,
+            rho: R,
+            one_minus_rho2: R,
+        ) -> R {
+            let rest = one_minus_rho2 / (R::splat(1.0) + rho) * sin_theta;
+            (theta_minus_sin(theta.abs()) + rest).copysign(theta)
+        }
+
+        /// [`circle_segment_occlusion`] of many edges: `out` is replaced by
+        /// one value per edge, `out[i]` equal to
+        /// `circle_segment_occlusion(d, w0, w1)` of `edges[i] = (d, w0, w1)`
+        /// bit for bit (same domain, accuracy and special values).
+        ///
+        /// Faster per edge than a loop over [`circle_segment_occlusion`]:
+        /// the edges are evaluated without branches, several at once, as in
+        /// [`segment_disk_areas`] (AVX2 where the processor has it, with the
+        /// `simd` feature). Edges the branch-free form does not cover
+        /// (non-finite input, `|d|` at least 1 or nonzero below the
+        /// kernel's safe range, an edge of zero length after clipping) are
+        /// evaluated by [`circle_segment_occlusion`] itself.
+        /// `benches/README.md` gives the measured cost.
+        pub fn circle_segment_occlusions(edges: &[($T, $T, $T)], out: &mut Vec<$T>) {
+            // Every entry is overwritten: only new ones are zeroed first.
+            out.truncate(edges.len());
+            out.resize(edges.len(), 0.0);
+            let marked = lanes::vectorized(
+                #[inline(always)]
+                |_| occlusions_branch_free(edges, out),
+            );
+            if marked {
+                for (o, &(d, w0, w1)) in out.iter_mut().zip(edges) {
+                    if o.is_nan() {
+                        *o = circle_segment_occlusion(d, w0, w1);
+                    }
+                }
+            }
+        }
+
+        /// [`circle_segment_occlusions`]' loop, [`LANES`] edges at a time
+        /// (the last group padded with a regular edge); `out` as long as
+        /// `edges`; the answer is whether any entry was left `NaN` for the
+        /// scalar path.
+        #[inline(always)]
+        fn occlusions_branch_free(edges: &[($T, $T, $T)], out: &mut [$T]) -> bool {
+            type L = Lanes<$T, LANES>;
+            #[inline(always)]
+            fn group(e: &[($T, $T, $T)]) -> L {
+                let lane = |pick: fn(&($T, $T, $T)) -> $T| {
+                    Lanes(core::array::from_fn(|i| e.get(i).map_or(0.5, pick)))
+                };
+                occlusion_lanes::<L>(lane(|e| e.0), lane(|e| e.1), lane(|e| e.2))
+            }
+            let mut marked = <L as Real>::Mask::default();
+            for (o, e) in out.chunks_mut(LANES).zip(edges.chunks(LANES)) {
+                let values = group(e);
+                marked = marked | !values.eq(values);
+                o.copy_from_slice(&values.0[..o.len()]);
+            }
+            L::any(marked)
+        }
+
+        /// [`circle_segment_occlusion`] side by side, as straight-line code;
+        /// `NaN` for an edge the scalar path must take (see
+        /// [`circle_segment_occlusions`]).
+        #[inline(always)]
+        fn occlusion_lanes<R: Real<Scalar = $T>>(d: R, w0: R, w1: R) -> R {
+            let k = |x: $T| R::splat(x);
+            // Finite: `x − x` is 0 exactly then.
+            let finite = (d - d).eq(k(0.0)) & (w0 - w0).eq(k(0.0)) & (w1 - w1).eq(k(0.0));
+            let sign = R::select(d.is_sign_negative(), k(-1.0), k(1.0));
+            let d = d.abs();
+            let s = ((k(1.0) - d) * (k(1.0) + d)).sqrt();
+            // `clamp(−s, s)`, the order of `f64::clamp` (`w` itself unless
+            // beyond a bound).
+            let clamp = |w: R| R::select(w.lt(-s), -s, R::select(w.gt(s), s, w));
+            let (w0, w1) = (clamp(w0), clamp(w1));
+            let length = w0 + w1;
+            let c = d * length;
+            let (y, x) = (d * (w0 + w1), d * d - w0 * w1);
+            let (num, den, swap, regular) = angle::reduce(y, x);
+            let theta = angle::core(num, den, swap, x, y);
+            let (rho, one_minus_rho2) = rho_of(d, w0, w1, s);
+            let thin = thin_value(theta, c.abs() / rho, rho, one_minus_rho2);
+            let value = R::select(theta.abs().lt(k(1.0)), thin, theta - c);
+            // `d = 0`: each endpoint's angle from the perpendicular is ±π/2
+            // (0 at the centre itself).
+            let half_turns = |w: R| R::select(w.eq(k(0.0)), k(0.0), k(0.5) * k(1.0).copysign(w));
+            let at_centre = d.eq(k(0.0));
+            let value = R::select(
+                at_centre,
+                sign * (half_turns(w0) + half_turns(w1)) * k(0.5),
+                sign * value / k(2.0 * PI),
+            );
+            // In range: `|d| < 1`, a chord of nonzero length, and `d = 0` or
+            // `d ≥ SAFE_LO` (no rescaling, one `atan2`) with a regular
+            // angle and `ρ > 0`.
+            let valid = finite
+                & d.lt(k(1.0))
+                & !length.eq(k(0.0))
+                & (at_centre | (d.ge(k(SAFE_LO)) & regular & rho.gt(k(0.0))));
+            R::select(valid, value, k(<$T>::NAN))
+        }
+
         #[cfg(test)]
         mod tests {
             use super::*;
+
+            /// The branch-free occlusion, compiled for the build's target
+            /// (the form a processor without AVX2 runs), gives
+            /// `circle_segment_occlusion`'s bits wherever it does not leave
+            /// the edge to the scalar path, and leaves exactly the edges
+            /// outside its range (`tests/disk.rs` checks the public entry).
+            #[test]
+            fn branch_free_occlusion_is_the_scalar_kernel() {
+                let mut state = 0x2545_f491_4f6c_dd1du64;
+                let mut unit = move || {
+                    state = state
+                        .wrapping_mul(6_364_136_223_846_793_005)
+                        .wrapping_add(1_442_695_040_888_963_407);
+                    (state >> 11) as $T / (1u64 << 53) as $T
+                };
+                let mut edges: Vec<($T, $T, $T)> = (0..4001)
+                    .map(|i| {
+                        let d = [0.3, 0.9, 0.999, 1e-3][i % 4] * (2.0 * unit() - 1.0);
+                        let w = [0.5, 1.0, 3.0][i % 3];
+                        (d, w * (2.0 * unit() - 1.0), w * (2.0 * unit() - 1.0))
+                    })
+                    .collect();
+                edges.extend([
+                    (0.0, 1.0, 1.0),
+                    (-0.0, 0.0, 1.0),
+                    (0.0, -0.5, 0.0),
+                    (<$T>::NAN, 0.5, 0.5),
+                    (0.5, 0.25, -0.25),
+                    (1.0, 0.0, 0.0),
+                    (SAFE_LO / 2.0, 0.5, 0.5),
+                ]);
+                let mut out = vec![0.0; edges.len()];
+                assert!(occlusions_branch_free(&edges, &mut out));
+                let mut vector = 0;
+                for (&(d, w0, w1), &got) in edges.iter().zip(&out) {
+                    let want = circle_segment_occlusion(d, w0, w1);
+                    let s = ((1.0 - d.abs()) * (1.0 + d.abs())).max(0.0).sqrt();
+                    let length = w0.clamp(-s, s) + w1.clamp(-s, s);
+                    let in_range = d.is_finite()
+                        && (d == 0.0 || (SAFE_LO..1.0).contains(&d.abs()))
+                        && length != 0.0;
+                    assert_eq!(got.is_nan(), !in_range, "d={d} w0={w0} w1={w1}");
+                    if !got.is_nan() {
+                        assert_eq!(got.to_bits(), want.to_bits(), "d={d} w0={w0} w1={w1}");
+                        vector += 1;
+                    }
+                }
+                assert!(vector >= 3000, "{vector} edges on the vector path");
+            }
 
             /// Both forms of the branch-free loop — products by FMA and by
             /// Dekker's split — give `segment_disk_area`'s bits on edges of
