@@ -806,6 +806,17 @@ macro_rules! disk_kernels {
         mod tests {
             use super::*;
 
+            /// Uniform values in `[0, 1)` from a 64-bit LCG seeded with
+            /// `state`.
+            fn uniform(mut state: u64) -> impl FnMut() -> $T {
+                move || {
+                    state = state
+                        .wrapping_mul(6_364_136_223_846_793_005)
+                        .wrapping_add(1_442_695_040_888_963_407);
+                    (state >> 11) as $T / (1u64 << 53) as $T
+                }
+            }
+
             /// The branch-free occlusion, compiled for the build's target
             /// (the form a processor without AVX2 runs), gives
             /// `circle_segment_occlusion`'s bits wherever it does not leave
@@ -813,13 +824,7 @@ macro_rules! disk_kernels {
             /// outside its range (`tests/disk.rs` checks the public entry).
             #[test]
             fn branch_free_occlusion_is_the_scalar_kernel() {
-                let mut state = 0x2545_f491_4f6c_dd1du64;
-                let mut unit = move || {
-                    state = state
-                        .wrapping_mul(6_364_136_223_846_793_005)
-                        .wrapping_add(1_442_695_040_888_963_407);
-                    (state >> 11) as $T / (1u64 << 53) as $T
-                };
+                let mut unit = uniform(0x2545_f491_4f6c_dd1d);
                 let mut edges: Vec<($T, $T, $T)> = (0..4001)
                     .map(|i| {
                         let d = [0.3, 0.9, 0.999, 1e-3][i % 4] * (2.0 * unit() - 1.0);
@@ -862,13 +867,7 @@ macro_rules! disk_kernels {
             /// (`tests/disk.rs` checks the public entry on stiff edges.)
             #[test]
             fn both_branch_free_forms_are_the_scalar_kernel() {
-                let mut state = 0x9e37_79b9_7f4a_7c15u64;
-                let mut unit = move || {
-                    state = state
-                        .wrapping_mul(6_364_136_223_846_793_005)
-                        .wrapping_add(1_442_695_040_888_963_407);
-                    (state >> 11) as $T / (1u64 << 53) as $T
-                };
+                let mut unit = uniform(0x9e37_79b9_7f4a_7c15);
                 let mut edges: Vec<($V2, $V2)> = (0..997)
                     .map(|i| {
                         // Boxes from well inside the unit disk to far outside.
