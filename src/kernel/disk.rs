@@ -291,36 +291,51 @@ macro_rules! disk_kernels {
         /// measured cost.
         pub fn segment_disk_areas(r: $T, edges: &[($V2, $V2)], out: &mut Vec<$T>) {
             if (SAFE_LO..=SAFE_HI).contains(&r) {
-                // Every entry is overwritten: only new ones are zeroed first.
-                out.truncate(edges.len());
-                out.resize(edges.len(), 0.0);
-                if areas_dispatch(r, edges, out) {
-                    // The lanes the branch-free form left (marked NaN, which
-                    // `segment_disk_area` never returns).
-                    for (o, &(a, b)) in out.iter_mut().zip(edges) {
-                        if o.is_nan() {
-                            *o = segment_disk_area(r, a, b);
+                batch(
+                    edges,
+                    out,
+                    #[inline(always)]
+                    |fma, edges, out| {
+                        if fma {
+                            areas_branch_free::<true>(r, edges, out)
+                        } else {
+                            areas_branch_free::<false>(r, edges, out)
                         }
-                    }
-                }
+                    },
+                    |(a, b)| segment_disk_area(r, a, b),
+                );
             } else {
                 out.clear();
                 out.extend(edges.iter().map(|&(a, b)| segment_disk_area(r, a, b)));
             }
         }
 
-        /// The branch-free loop, in AVX2 and FMA where the processor has them.
-        fn areas_dispatch(r: $T, edges: &[($V2, $V2)], out: &mut [$T]) -> bool {
-            lanes::vectorized(
+        /// `out` replaced by one value per input: `branch_free(fma, inputs,
+        /// out)` (compiled for AVX2 and FMA where the processor has them,
+        /// `fma` saying whether it is; the answer whether it left any entry
+        /// `NaN`), then `one` for each entry so left — which the one-input
+        /// kernels never return.
+        #[inline(always)]
+        fn batch<E: Copy>(
+            inputs: &[E],
+            out: &mut Vec<$T>,
+            branch_free: impl FnOnce(bool, &[E], &mut [$T]) -> bool,
+            one: impl Fn(E) -> $T,
+        ) {
+            // Every entry is overwritten: only new ones are zeroed first.
+            out.truncate(inputs.len());
+            out.resize(inputs.len(), 0.0);
+            let marked = lanes::vectorized(
                 #[inline(always)]
-                |fma| {
-                    if fma {
-                        areas_branch_free::<true>(r, edges, out)
-                    } else {
-                        areas_branch_free::<false>(r, edges, out)
+                |fma| branch_free(fma, inputs, out),
+            );
+            if marked {
+                for (o, &e) in out.iter_mut().zip(inputs) {
+                    if o.is_nan() {
+                        *o = one(e);
                     }
-                },
-            )
+                }
+            }
         }
 
         /// Edges per block of [`areas_branch_free`]: its scratch array stays
@@ -721,20 +736,13 @@ macro_rules! disk_kernels {
         /// evaluated by [`circle_segment_occlusion`] itself.
         /// `benches/README.md` gives the measured cost.
         pub fn circle_segment_occlusions(edges: &[($T, $T, $T)], out: &mut Vec<$T>) {
-            // Every entry is overwritten: only new ones are zeroed first.
-            out.truncate(edges.len());
-            out.resize(edges.len(), 0.0);
-            let marked = lanes::vectorized(
+            batch(
+                edges,
+                out,
                 #[inline(always)]
-                |_| occlusions_branch_free(edges, out),
+                |_, edges, out| occlusions_branch_free(edges, out),
+                |(d, w0, w1)| circle_segment_occlusion(d, w0, w1),
             );
-            if marked {
-                for (o, &(d, w0, w1)) in out.iter_mut().zip(edges) {
-                    if o.is_nan() {
-                        *o = circle_segment_occlusion(d, w0, w1);
-                    }
-                }
-            }
         }
 
         /// [`circle_segment_occlusions`]' loop, [`LANES`] edges at a time
@@ -776,10 +784,11 @@ macro_rules! disk_kernels {
             let clamp = |w: R| R::select(w.lt(-s), -s, R::select(w.gt(s), s, w));
             let (w0, w1) = (clamp(w0), clamp(w1));
             let length = w0 + w1;
+            // `atan2(c, d² − w0 w1)`: `c = d (w0 + w1)` is its first part.
             let c = d * length;
-            let (y, x) = (d * (w0 + w1), d * d - w0 * w1);
-            let (num, den, swap, regular) = angle::reduce(y, x);
-            let theta = angle::core(num, den, swap, x, y);
+            let x = d * d - w0 * w1;
+            let (num, den, swap, regular) = angle::reduce(c, x);
+            let theta = angle::core(num, den, swap, x, c);
             let (rho, one_minus_rho2) = rho_of(d, w0, w1, s);
             let thin = thin_value(theta, c.abs() / rho, rho, one_minus_rho2);
             let value = R::select(theta.abs().lt(k(1.0)), thin, theta - c);

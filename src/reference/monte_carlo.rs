@@ -329,8 +329,8 @@ impl Replicate {
     #[inline]
     fn grid(&self, i: u32) -> [u32; 2] {
         [
-            self.grid_first(i),
-            owen_scramble_reversed(sobol_second_reversed(i), self.scramble[1]) ^ self.shift[1],
+            self.scrambled(0, i),
+            self.scrambled(1, sobol_second_reversed(i)),
         ]
     }
 
@@ -342,24 +342,25 @@ impl Replicate {
     #[inline(always)]
     fn grids(&self, x: &mut [u32], y: &mut [u32]) {
         for (i, g) in (0..).zip(x.iter_mut()) {
-            *g = owen_scramble_reversed(i, self.scramble[0]) ^ self.shift[0];
+            *g = self.scrambled(0, i);
         }
         // Sobol's table of the low byte, XORed with the higher bytes' entry
         // shared by each run of 256 points.
         for (run, g) in (0..).zip(y.chunks_mut(256)) {
             let high = sobol_second_reversed(run << 8);
             for (g, &low) in g.iter_mut().zip(&SOBOL_SECOND_REVERSED[0]) {
-                *g = owen_scramble_reversed(low ^ high, self.scramble[1]) ^ self.shift[1];
+                *g = self.scrambled(1, low ^ high);
             }
         }
     }
 
-    /// The first coordinate of [`Replicate::grid`] (the digits
-    /// bit-reversed, as `owen_scramble` hashes them: van der Corput's are
-    /// `i` itself).
-    #[inline]
-    fn grid_first(&self, i: u32) -> u32 {
-        owen_scramble_reversed(i, self.scramble[0]) ^ self.shift[0]
+    /// Dimension `d` of [`Replicate::grid`] from its digits bit-reversed
+    /// (as `owen_scramble` hashes them: van der Corput's are `i` itself,
+    /// Sobol's second dimension [`sobol_second_reversed`]): scrambled and
+    /// shifted.
+    #[inline(always)]
+    fn scrambled(&self, d: usize, digits: u32) -> u32 {
+        owen_scramble_reversed(digits, self.scramble[d]) ^ self.shift[d]
     }
 
     /// Point `i`, whose grid cell is `grid` ([`Replicate::grid`]).
