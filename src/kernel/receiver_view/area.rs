@@ -433,7 +433,8 @@ impl Image {
             }
         };
         for k in 0..self.len {
-            let j = (k + 1) % self.len;
+            // The next vertex, without a division.
+            let j = if k + 1 == self.len { 0 } else { k + 1 };
             let (a, fa, b, fb) = (self.v[k], f[k], self.v[j], f[j]);
             if fa >= 0.0 {
                 push(a);

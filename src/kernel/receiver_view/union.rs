@@ -653,8 +653,11 @@ impl Level {
     /// The cells `x0..=x1`, `y0..=y1` the box `lo..hi` overlaps (clamped:
     /// rounding may put a clipped vertex a hair outside the square).
     fn range(&self, lo: DVec2, hi: DVec2, half: f64) -> (usize, usize, usize, usize) {
+        // Truncation is the floor where it is taken (`c ≥ 0`; a NaN gives
+        // 0): no call to `floor`, which the baseline target lacks as an
+        // instruction.
         let cell = |v: f64| {
-            let c = ((v + half) * self.inv_cell).floor();
+            let c = (v + half) * self.inv_cell;
             if c >= 0.0 {
                 (c as usize).min(self.n - 1)
             } else {
