@@ -520,14 +520,15 @@ impl Binned {
         }));
         self.state.push(Cell::Test);
         self.map = Some(map);
-        // No image listed and no cell covered: every sample is unoccluded;
-        // every cell covered: every sample is occluded (a sample on the
-        // grid's far edge, which `decide` leaves to its ray, lies in the
-        // last cell's widened box all the same). Either way no sample
+        // No image listed and no cell covered: every sample is unoccluded
+        // (with no cell covered, every listing is still in its cell's
+        // list); every cell covered: every sample is occluded (a sample on
+        // the grid's far edge, which `decide` leaves to its ray, lies in
+        // the last cell's widened box all the same). Either way no sample
         // need be computed.
         self.all = if uncovered == 0 {
             Some(false)
-        } else if uncovered == n && !self.state[..n].contains(&Cell::Test) {
+        } else if uncovered == n && self.links.is_empty() {
             Some(true)
         } else {
             None
