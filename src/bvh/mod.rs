@@ -100,6 +100,9 @@ pub struct Bvh {
     /// The exact bounding box `(lo, hi)` of every finite triangle (in the
     /// tree or not); `None` when there is none.
     bounds: Option<(DVec3, DVec3)>,
+    /// Each occluder's unit geometric normal, computed on the first
+    /// closest-hit query (see [`Bvh::closest_hit`]'s `Hit::normal`).
+    normals: std::sync::OnceLock<Vec<DVec3>>,
 }
 
 /// The largest coordinate magnitude a triangle in the tree may have, 2⁶⁰:
@@ -206,6 +209,7 @@ impl Bvh {
             outliers,
             outlier_ids,
             bounds,
+            normals: std::sync::OnceLock::new(),
         };
         if kept.len() >= LEAF as usize {
             // Beyond the leaf encoding (2³¹ triangles, 144 GiB of corners):
