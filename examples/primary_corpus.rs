@@ -1,4 +1,4 @@
-//! Primary-ray corpus and throughput of [`Bvh::closest_hit`] on the default
+//! Primary-ray corpus and throughput of [`Bvh::closest_hits`] on the default
 //! scene: the Rust half of the opt-in closest-hit comparison with Intel
 //! Embree 4 (`benches/compare_embree_primary.sh` runs both halves; not part
 //! of CI).
@@ -44,8 +44,9 @@
 //! # Timing
 //!
 //! The BVH is built once (its build time is printed); then, on a rayon pool
-//! of exactly 2 threads, `closest_hit` runs for every pixel, rayon over
-//! rows as a renderer calls it (one `Hit` stored per pixel), once to warm up
+//! of exactly 2 threads, [`Bvh::closest_hits`] runs for every image row,
+//! rayon over rows, as the renderer calls it (one `Hit` stored per pixel;
+//! the same answers as [`Bvh::closest_hit`] per ray), once to warm up
 //! and 7 more times; the median wall time gives rays/s, and the median CPU
 //! time of the process over each repetition (Linux schedstat, all threads)
 //! rays per CPU-second. One line starting with `RESULT` is meant for
@@ -154,9 +155,7 @@ fn main() {
             hits.par_chunks_mut(width as usize)
                 .zip(rays.par_chunks(width as usize))
                 .for_each(|(out, row)| {
-                    for (h, &(o, d)) in out.iter_mut().zip(row) {
-                        *h = bvh.closest_hit(o, d, f64::INFINITY);
-                    }
+                    out.copy_from_slice(&bvh.closest_hits(row, f64::INFINITY));
                 });
         });
     });

@@ -1,7 +1,8 @@
 //! `Bvh::closest_hit`: against brute force over every triangle (bit for
 //! bit), watertightness on closed meshes, agreement with the occlusion
 //! query, the returned normal, `t_max`, non-finite input, the paths without
-//! a tree, and determinism across thread counts.
+//! a tree, determinism across thread counts, and the batch forms
+//! (`closest_hits`, `closest_hit_many`) against one call per ray.
 
 use glam::DVec3;
 use softshadow::arbitrary::mesh::{closed_mesh, icosphere, Mesh as IndexedMesh};
@@ -38,6 +39,8 @@ fn brute_force(bvh: &Bvh, origin: DVec3, direction: DVec3, t_max: f64) -> Option
 /// hit is well formed.
 fn check(bvh: &Bvh, origin: DVec3, direction: DVec3, t_max: f64) -> Option<Hit> {
     let hit = bvh.closest_hit(origin, direction, t_max);
+    // The batch, compiled apart (for AVX2 where present): the same bits.
+    assert_eq!(bvh.closest_hits(&[(origin, direction)], t_max), vec![hit]);
     let expected = brute_force(bvh, origin, direction, t_max);
     assert_eq!(
         hit.map(|h| (h.t, h.triangle)),
@@ -484,6 +487,7 @@ fn primary_rays_of_the_default_scene_match_brute_force_on_any_thread_count() {
     let a = one.install(|| bvh.closest_hit_many(&rays, f64::INFINITY));
     let b = two.install(|| bvh.closest_hit_many(&rays, f64::INFINITY));
     assert_eq!(a, b);
+    assert_eq!(a, bvh.closest_hits(&rays, f64::INFINITY));
     let (mut floor, mut bunny, mut sky) = (0, 0, 0);
     for (&(o, d), hit) in rays.iter().zip(&a) {
         assert_eq!(*hit, check(&bvh, o, d, f64::INFINITY));

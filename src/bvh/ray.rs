@@ -167,6 +167,7 @@ pub(super) const T_SLACK: f32 = 1.0 + 1.0 / (1u32 << 20) as f32;
 
 impl Ray32 {
     /// `None` when `p` or `x` leaves the `f32` range.
+    #[inline(always)]
     pub(super) fn new(p: DVec3, x: DVec3) -> Option<Ray32> {
         if !(in_f32_range(p) && in_f32_range(x)) {
             return None;

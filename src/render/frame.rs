@@ -60,9 +60,11 @@ impl Frame {
             .into_par_iter()
             .map(|row| {
                 let (mut cols, mut found) = (Vec::new(), Vec::new());
-                for col in 0..width {
-                    let (eye, d) = camera.primary_ray(col, row);
-                    let Some(hit) = bvh.closest_hit(eye, d, f64::INFINITY) else {
+                let rays: Vec<(DVec3, DVec3)> =
+                    (0..width).map(|col| camera.primary_ray(col, row)).collect();
+                let hits = bvh.closest_hits(&rays, f64::INFINITY);
+                for ((col, &(eye, d)), hit) in (0..width).zip(&rays).zip(hits) {
+                    let Some(hit) = hit else {
                         continue;
                     };
                     let p = eye + d * hit.t;
