@@ -136,16 +136,17 @@ impl Bvh {
     }
 
     /// [`Bvh::closest_hit`] for every `(origin, direction)` of `rays`, in
-    /// order, in the calling thread: for callers that spread their own work
-    /// over threads (the renderer calls it per image row). The same answers
-    /// as one call per ray, bit for bit; faster, since the whole batch is
-    /// compiled for AVX2 where the processor has it (feature `simd`; one
-    /// dispatch per batch: per ray it costs more than it saves).
-    #[must_use]
-    pub fn closest_hits(&self, rays: &[(DVec3, DVec3)], t_max: f64) -> Vec<Option<Hit>> {
-        let mut out = vec![None; rays.len()];
-        self.closest_hits_into(rays, t_max, &mut out);
-        out
+    /// the calling thread: `out` is replaced by one answer per ray, in
+    /// order (its allocation reused). For callers that spread their own
+    /// work over threads (the renderer calls it per image row). The same
+    /// answers as one call per ray, bit for bit; faster, since the whole
+    /// batch is compiled for AVX2 where the processor has it (feature
+    /// `simd`; one dispatch per batch: per ray it costs more than it
+    /// saves).
+    pub fn closest_hits(&self, rays: &[(DVec3, DVec3)], t_max: f64, out: &mut Vec<Option<Hit>>) {
+        out.clear();
+        out.resize(rays.len(), None);
+        self.closest_hits_into(rays, t_max, out);
     }
 
     /// [`Bvh::closest_hits`] into `out` (as many rays as both hold).

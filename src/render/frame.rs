@@ -62,7 +62,8 @@ impl Frame {
                 let (mut cols, mut found) = (Vec::new(), Vec::new());
                 let rays: Vec<(DVec3, DVec3)> =
                     (0..width).map(|col| camera.primary_ray(col, row)).collect();
-                let hits = bvh.closest_hits(&rays, f64::INFINITY);
+                let mut hits = Vec::new();
+                bvh.closest_hits(&rays, f64::INFINITY, &mut hits);
                 for ((col, &(eye, d)), hit) in (0..width).zip(&rays).zip(hits) {
                     let Some(hit) = hit else {
                         continue;
