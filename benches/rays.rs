@@ -15,7 +15,9 @@
 //!
 //! - `closest/primary`: the renderer's primary rays, one per pixel of the
 //!   default scene's 512 × 512 camera (pinhole through pixel centres, as in
-//!   `examples/primary_corpus.rs`), rayon over rows;
+//!   `examples/primary_corpus.rs`), rayon over rows, one call per ray;
+//! - `closest/primary_rows`: the same rays, one [`Bvh::closest_hits`] batch
+//!   per row, as the renderer calls it;
 //! - `closest/soup`, `closest/sphere`: the occlusion rays above as rays
 //!   (origin `p`, direction `x − p`, `t_max = 1`).
 //!
@@ -172,6 +174,19 @@ fn closest(c: &mut Criterion) {
         .sample_size(20);
     group.bench_function("primary", |b| {
         b.iter(|| pool.install(|| count_hits(&bvh, black_box(&primary), f64::INFINITY, width)))
+    });
+    group.bench_function("primary_rows", |b| {
+        b.iter(|| {
+            pool.install(|| {
+                black_box(&primary)
+                    .par_chunks(width)
+                    .map_init(Vec::new, |hits, row| {
+                        bvh.closest_hits(row, f64::INFINITY, hits);
+                        hits.iter().filter(|h| h.is_some()).count()
+                    })
+                    .sum::<usize>()
+            })
+        })
     });
     let segments: Vec<(DVec3, DVec3)> = rays().into_iter().map(|(p, x)| (p, x - p)).collect();
     group.throughput(Throughput::Elements(RAYS as u64));
