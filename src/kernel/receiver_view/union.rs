@@ -216,18 +216,7 @@ pub(super) fn union_area_sweeping_from(
                     // Past [`TRACKED`] spans, the others are followed at
                     // every power of two of their number instead, which
                     // keeps an edge with thousands of spans `O(m log m)`.
-                    scratch.intervals.push(span);
-                    let n = scratch.intervals.len();
-                    if span.0 <= reach {
-                        reach = reach.max(span.1);
-                        if n <= TRACKED {
-                            reach = covered_from(reach, &mut scratch.intervals);
-                        }
-                    }
-                    if n > TRACKED && n.is_power_of_two() {
-                        reach = covered_from(reach, &mut scratch.intervals);
-                    }
-                    whole = reach >= 1.0;
+                    whole = add_span(span, &mut reach, &mut scratch.intervals);
                 }
                 !whole
             });
@@ -686,6 +675,26 @@ impl Level {
 /// `benches/references.rs` collects about 20 at 4096 images; at 16384,
 /// where edges collect more, 64 cost 13 % more time than 128).
 const TRACKED: usize = 128;
+
+/// Adds `span` to an edge's `spans`, which cover `[0, reach]`, and
+/// extends `reach` (see [`union_area`]'s search); whether they now cover
+/// `[0, 1]`. Kept out of the search's loop, which most candidates leave
+/// without a span.
+#[inline(never)]
+fn add_span(span: (f64, f64), reach: &mut f64, spans: &mut Vec<(f64, f64)>) -> bool {
+    spans.push(span);
+    let n = spans.len();
+    if span.0 <= *reach {
+        *reach = reach.max(span.1);
+        if n <= TRACKED {
+            *reach = covered_from(*reach, spans);
+        }
+    }
+    if n > TRACKED && n.is_power_of_two() {
+        *reach = covered_from(*reach, spans);
+    }
+    *reach >= 1.0
+}
 
 /// How far from 0 the closed intervals cover `[0, ∞)` without a gap, given
 /// that they cover `[0, reach]`: `reach` extended by every interval that
