@@ -26,6 +26,7 @@
 //! Non-finite input (NaN or ±∞ in any coordinate) has no meaningful side: the
 //! predicates return [`Sign::Zero`] for it, the documented total answer.
 
+use super::lanes::{Lanes, Real};
 use glam::{DVec2, DVec3};
 
 /// The sign of an orientation determinant.
@@ -135,15 +136,59 @@ pub fn orient2d_value(a: DVec2, b: DVec2, c: DVec2) -> f64 {
 pub(crate) fn orient2d_value_finite(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     debug_assert!(a.is_finite() && b.is_finite() && c.is_finite());
     let (det, detleft, detright, exact_zero) = orient2d_rounded(a, b, c);
-    // |det − exact| ≤ bound, so the relative error is below 2⁻⁴⁰ here.
-    let bound = CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) * (1u64 << 40) as f64;
-    if det > bound || -det > bound {
+    if value_is_rounded(det, detleft, detright) {
         return det;
     }
     if exact_zero {
         return 0.0;
     }
     orient2d_expansion(a, b, c).approximate()
+}
+
+/// Whether the rounded determinant is within `2⁻⁴⁰` of the exact one,
+/// relatively: its error is at most the filter's bound, and the bound is
+/// `2⁻⁴⁰` of it.
+#[inline(always)]
+fn value_is_rounded<R: Real<Scalar = f64>>(det: R, detleft: R, detright: R) -> R::Mask {
+    let bound = R::splat(CCW_ERR_BOUND_A)
+        * (detleft.abs() + detright.abs())
+        * R::splat((1u64 << 40) as f64);
+    det.gt(bound) | (-det).gt(bound)
+}
+
+/// [`orient2d_value_finite`]`(a_l, b_l, c_l)` for the lanes `l` of
+/// `a = [ax, ay]`, `b` and `c` alike: the same values bit for bit, the
+/// rounded determinants of all lanes evaluated side by side (the exact
+/// expansion, rarely needed, lane by lane).
+#[inline(always)]
+pub(crate) fn orient2d_values_finite<const N: usize>(
+    a: [[f64; N]; 2],
+    b: [[f64; N]; 2],
+    c: [[f64; N]; 2],
+) -> [f64; N] {
+    let (det, detleft, detright, _) = orient2d_products(
+        [Lanes(a[0]), Lanes(a[1])],
+        [Lanes(b[0]), Lanes(b[1])],
+        [Lanes(c[0]), Lanes(c[1])],
+    );
+    let rounded = value_is_rounded(det, detleft, detright);
+    let mut value = det.0;
+    if Lanes::<f64, N>::any(!rounded) {
+        for (l, v) in value.iter_mut().enumerate() {
+            if rounded.0[l] == 0 {
+                // This lane as `orient2d_value_finite` goes on.
+                let point = |p: [[f64; N]; 2]| DVec2::new(p[0][l], p[1][l]);
+                let (a, b, c) = (point(a), point(b), point(c));
+                let (_, _, _, exact_zero) = orient2d_rounded(a, b, c);
+                *v = if exact_zero {
+                    0.0
+                } else {
+                    orient2d_expansion(a, b, c).approximate()
+                };
+            }
+        }
+    }
+    value
 }
 
 /// The sign of the determinant `| a−d ; b−d ; c−d |` (rows): [`Sign::Positive`]
@@ -270,11 +315,21 @@ impl<const N: usize> Expansion<N> {
 /// then skip the expansion.
 #[inline]
 fn orient2d_rounded(a: DVec2, b: DVec2, c: DVec2) -> (f64, f64, f64, bool) {
-    let (acx, bcy, acy, bcx) = (a.x - c.x, b.y - c.y, a.y - c.y, b.x - c.x);
+    let (det, detleft, detright, [acx, bcy, acy, bcx]) =
+        orient2d_products([a.x, a.y], [b.x, b.y], [c.x, c.y]);
+    let exact_zero = (acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0);
+    (det, detleft, detright, exact_zero)
+}
+
+/// The rounded `(a − c) × (b − c)`, its two products and the four
+/// differences, on one value or on lanes (points as `[x, y]`): the
+/// arithmetic of [`orient2d_rounded`].
+#[inline(always)]
+fn orient2d_products<R: Real>(a: [R; 2], b: [R; 2], c: [R; 2]) -> (R, R, R, [R; 4]) {
+    let (acx, bcy, acy, bcx) = (a[0] - c[0], b[1] - c[1], a[1] - c[1], b[0] - c[0]);
     let detleft = acx * bcy;
     let detright = acy * bcx;
-    let exact_zero = (acx == 0.0 || bcy == 0.0) && (acy == 0.0 || bcx == 0.0);
-    (detleft - detright, detleft, detright, exact_zero)
+    (detleft - detright, detleft, detright, [acx, bcy, acy, bcx])
 }
 
 /// The rounded determinant of [`orient3d`] and its permanent (the sum of
@@ -439,5 +494,56 @@ mod tests {
         );
         assert_eq!(orient2d_exact(p, q, r), orient2d(p, q, r));
         assert_eq!(orient2d_exact(q, p, r), orient2d(q, p, r));
+    }
+
+    /// Each lane of [`orient2d_values_finite`] is [`orient2d_value_finite`]
+    /// of that lane's points, bit for bit, on the paths the scalar function
+    /// takes: clear signs (the rounded value), points a few ulps off a line
+    /// (the expansion), exact zeros (a shared point, collinear points on an
+    /// axis), mixed in one call.
+    #[test]
+    fn lanes_of_values_are_the_scalar_values() {
+        let mut rng = crate::arbitrary::Rng::new(97);
+        let mut point = |rng: &mut crate::arbitrary::Rng| {
+            DVec2::new(rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0))
+        };
+        let (mut rounded, mut expanded, mut zero) = (0, 0, 0);
+        for _ in 0..4000 {
+            let lanes: [(DVec2, DVec2, DVec2); 4] = core::array::from_fn(|_| {
+                let (a, b) = (point(&mut rng), point(&mut rng));
+                let c = match rng.below(4) {
+                    // On the line through a and b, or an ulp or two off it.
+                    0 => {
+                        let t = rng.uniform(-1.0, 2.0);
+                        let c = a + (b - a) * t;
+                        DVec2::new(c.x, f64::from_bits(c.y.to_bits() + rng.below(3)))
+                    }
+                    1 => a,
+                    2 => DVec2::new(rng.uniform(-2.0, 2.0), a.y),
+                    _ => point(&mut rng),
+                };
+                let b = if rng.chance(0.3) { DVec2::new(b.x, a.y) } else { b };
+                (a, b, c)
+            });
+            let coords = |f: fn(&(DVec2, DVec2, DVec2)) -> DVec2| {
+                [lanes.map(|l| f(&l).x), lanes.map(|l| f(&l).y)]
+            };
+            let got = orient2d_values_finite(coords(|l| l.0), coords(|l| l.1), coords(|l| l.2));
+            for (l, &(a, b, c)) in lanes.iter().enumerate() {
+                let want = orient2d_value_finite(a, b, c);
+                assert_eq!(got[l].to_bits(), want.to_bits(), "{a} {b} {c}");
+                let (det, left, right, exact_zero) = orient2d_rounded(a, b, c);
+                let bound = CCW_ERR_BOUND_A * (left.abs() + right.abs()) * (1u64 << 40) as f64;
+                if det > bound || -det > bound {
+                    rounded += 1;
+                } else if exact_zero {
+                    zero += 1;
+                } else {
+                    expanded += 1;
+                }
+            }
+        }
+        // Every path was taken often.
+        assert!(rounded > 1000 && expanded > 1000 && zero > 1000, "{rounded} {expanded} {zero}");
     }
 }

@@ -4,7 +4,7 @@
 //! the [parent module's documentation](super)).
 
 use crate::kernel::disk::f64::segment_disk_area;
-use crate::kernel::predicate::{orient2d, orient2d_value_finite, Sign};
+use crate::kernel::predicate::{orient2d, orient2d_value_finite, orient2d_values_finite, Sign};
 use glam::DVec2;
 
 /// A projected triangle, counter-clockwise, with its bounds; its corners
@@ -762,40 +762,66 @@ fn add_uncovered(
 /// other side, or on the same side and `t_first` (it comes first in index
 /// order).
 fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
-    let (mut t0, mut t1) = (0.0_f64, 1.0_f64);
-    for k in 0..3 {
-        let (f0, f1) = t.edge(k);
-        // Signed areas with exact signs and accurate values: the cut of
-        // this edge by `f` and the cut of `f` by this edge land on the same
-        // point even for nearly parallel edges.
-        let (va, vb) = (
-            orient2d_value_finite(f0, f1, a),
-            orient2d_value_finite(f0, f1, b),
-        );
-        match (Sign::of(va), Sign::of(vb)) {
-            (Sign::Zero, Sign::Zero) => {
-                let same_side = (b - a).dot(f1 - f0) > 0.0;
-                if same_side && !t_first {
-                    return None;
-                }
-            }
-            (Sign::Negative, Sign::Negative | Sign::Zero) | (Sign::Zero, Sign::Negative) => {
+    let mut span = (0.0_f64, 1.0_f64);
+    // Signed areas with exact signs and accurate values: the cut of this
+    // edge by an edge `f` of `t` and the cut of `f` by this edge land on
+    // the same point even for nearly parallel edges. The first edge of `t`
+    // alone (most triangles the search meets end there), then the other
+    // two at both ends side by side.
+    let (f0, f1) = t.edge(0);
+    let (va, vb) = (
+        orient2d_value_finite(f0, f1, a),
+        orient2d_value_finite(f0, f1, b),
+    );
+    cut_by_edge(&mut span, va, vb, a, b, (f0, f1), t_first)?;
+    let [v0, v1, v2] = t.v;
+    let v = orient2d_values_finite(
+        [[v1.x, v1.x, v2.x, v2.x], [v1.y, v1.y, v2.y, v2.y]],
+        [[v2.x, v2.x, v0.x, v0.x], [v2.y, v2.y, v0.y, v0.y]],
+        [[a.x, b.x, a.x, b.x], [a.y, b.y, a.y, b.y]],
+    );
+    cut_by_edge(&mut span, v[0], v[1], a, b, (v1, v2), t_first)?;
+    cut_by_edge(&mut span, v[2], v[3], a, b, (v2, v0), t_first)?;
+    (span.0 < span.1).then_some(span)
+}
+
+/// Narrows `span` (parameters of the edge `a → b`) to the inner side of
+/// the triangle's edge `f`, given the signed areas `va`, `vb` of `a` and
+/// `b` against it; `None` when nothing of positive length is left on that
+/// side (see [`covered_span`]).
+#[inline(always)]
+fn cut_by_edge(
+    span: &mut (f64, f64),
+    va: f64,
+    vb: f64,
+    a: DVec2,
+    b: DVec2,
+    (f0, f1): (DVec2, DVec2),
+    t_first: bool,
+) -> Option<()> {
+    match (Sign::of(va), Sign::of(vb)) {
+        (Sign::Zero, Sign::Zero) => {
+            let same_side = (b - a).dot(f1 - f0) > 0.0;
+            if same_side && !t_first {
                 return None;
             }
-            (Sign::Positive | Sign::Zero, Sign::Positive | Sign::Zero) => {}
-            (sa, _) => {
-                // A strict crossing: va and vb have opposite signs, so
-                // va − vb does not cancel.
-                let s = (va / (va - vb)).clamp(0.0, 1.0);
-                if sa == Sign::Negative {
-                    t0 = t0.max(s);
-                } else {
-                    t1 = t1.min(s);
-                }
+        }
+        (Sign::Negative, Sign::Negative | Sign::Zero) | (Sign::Zero, Sign::Negative) => {
+            return None;
+        }
+        (Sign::Positive | Sign::Zero, Sign::Positive | Sign::Zero) => {}
+        (sa, _) => {
+            // A strict crossing: va and vb have opposite signs, so
+            // va − vb does not cancel.
+            let s = (va / (va - vb)).clamp(0.0, 1.0);
+            if sa == Sign::Negative {
+                span.0 = span.0.max(s);
+            } else {
+                span.1 = span.1.min(s);
             }
         }
     }
-    (t0 < t1).then_some((t0, t1))
+    Some(())
 }
 
 /// Neumaier's compensated sum.
