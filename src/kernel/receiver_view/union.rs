@@ -4,7 +4,7 @@
 //! the [parent module's documentation](super)).
 
 use crate::kernel::disk::f64::segment_disk_area;
-use crate::kernel::predicate::{orient2d, orient2d_value_finite, orient2d_values_finite, Sign};
+use crate::kernel::predicate::{orient2d, orient2d_values_finite, Sign};
 use glam::DVec2;
 
 /// A projected triangle, counter-clockwise, with its bounds; its corners
@@ -766,15 +766,15 @@ fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)
     // Signed areas with exact signs and accurate values: the cut of this
     // edge by an edge `f` of `t` and the cut of `f` by this edge land on
     // the same point even for nearly parallel edges. The first edge of `t`
-    // alone (most triangles the search meets end there), then the other
-    // two at both ends side by side.
-    let (f0, f1) = t.edge(0);
-    let (va, vb) = (
-        orient2d_value_finite(f0, f1, a),
-        orient2d_value_finite(f0, f1, b),
-    );
-    cut_by_edge(&mut span, va, vb, a, b, (f0, f1), t_first)?;
+    // at both ends side by side (most triangles the search meets end
+    // there), then the other two at both ends.
     let [v0, v1, v2] = t.v;
+    let w = orient2d_values_finite(
+        [[v0.x, v0.x], [v0.y, v0.y]],
+        [[v1.x, v1.x], [v1.y, v1.y]],
+        [[a.x, b.x], [a.y, b.y]],
+    );
+    cut_by_edge(&mut span, w[0], w[1], a, b, (v0, v1), t_first)?;
     let v = orient2d_values_finite(
         [[v1.x, v1.x, v2.x, v2.x], [v1.y, v1.y, v2.y, v2.y]],
         [[v2.x, v2.x, v0.x, v0.x], [v2.y, v2.y, v0.y, v0.y]],
