@@ -195,7 +195,7 @@ pub(super) fn union_area_sweeping_from(
             }
             let (lo, hi) = (a.min(b), a.max(b));
             scratch.intervals.clear();
-            let mut reach = 0.0_f64;
+            let mut cover = Cover::default();
             let mut whole = false;
             grid.for_each_near(lo, hi, |j| {
                 let j = j as usize;
@@ -211,17 +211,17 @@ pub(super) fn union_area_sweeping_from(
                     // Spans that together cover the edge settle it: nothing
                     // of it is on the boundary. Most edges are covered
                     // whole, and their search ends at the span that
-                    // completes the cover: `[0, reach]` is covered, and
-                    // each span that extends it is followed by the others.
-                    // Past [`TRACKED`] spans, the others are followed at
-                    // every power of two of their number instead, which
-                    // keeps an edge with thousands of spans `O(m log m)`.
-                    whole = add_span(span, &mut reach, &mut scratch.intervals);
+                    // completes the cover (see [`Cover`]).
+                    whole = cover.add(span, &mut scratch.intervals);
                 }
                 !whole
             });
             edge_id = edge_id.wrapping_add(1);
             if !whole {
+                // The covered start as one interval: the same pieces.
+                if cover.reach > 0.0 {
+                    scratch.intervals.push((0.0, cover.reach));
+                }
                 add_uncovered(a, b, &mut scratch.intervals, measure, &mut sum);
             }
         }
@@ -670,57 +670,84 @@ impl Level {
     }
 }
 
-/// The most spans of an edge whose cover is followed span by span (see
-/// [`union_area`]'s search; ours: an edge of the pile of images in
-/// `benches/references.rs` collects about 20 at 4096 images; at 16384,
-/// where edges collect more, 64 cost 13 % more time than 128).
-const TRACKED: usize = 128;
-
-/// Adds `span` to an edge's `spans`, which cover `[0, reach]`, and
-/// extends `reach` (see [`union_area`]'s search); whether they now cover
-/// `[0, 1]`. Kept out of the search's loop, which most candidates leave
-/// without a span.
-#[inline(never)]
-fn add_span(span: (f64, f64), reach: &mut f64, spans: &mut Vec<(f64, f64)>) -> bool {
-    spans.push(span);
-    let n = spans.len();
-    if span.0 <= *reach {
-        *reach = reach.max(span.1);
-        if n <= TRACKED {
-            *reach = covered_from(*reach, spans);
-        }
-    }
-    if n > TRACKED && n.is_power_of_two() {
-        *reach = covered_from(*reach, spans);
-    }
-    *reach >= 1.0
+/// The cover of an edge by the spans its search has found so far:
+/// `[0, reach]` is covered, and the spans not within it are kept apart
+/// (`pending`, which [`add_uncovered`] then takes with `(0, reach)`: the
+/// same pieces as from every span, since `reach` is the largest end of the
+/// spans it stands for). Each span that extends `reach` takes in the
+/// pending spans it reaches, so the search ends at the span that completes
+/// the cover. Past [`Cover::TRACKED`] spans, the pending ones are taken in
+/// at every power of two of their number instead, which keeps an edge with
+/// thousands of spans `O(m log m)`.
+#[derive(Debug, Default)]
+struct Cover {
+    reach: f64,
+    spans: usize,
 }
 
-/// How far from 0 the closed intervals cover `[0, ∞)` without a gap, given
-/// that they cover `[0, reach]`: `reach` extended by every interval that
-/// starts within the covered part, until none does. Up to four passes in
-/// the intervals' order, then (a longer chain in reverse order) one sweep
-/// after sorting them: `O(m log m)`.
-fn covered_from(mut reach: f64, intervals: &mut [(f64, f64)]) -> f64 {
-    for _ in 0..4 {
-        let before = reach;
-        for &(s, e) in intervals.iter() {
-            if s <= reach && e > reach {
-                reach = e;
+impl Cover {
+    /// The most spans of an edge followed span by span (ours: an edge of
+    /// the pile of images in `benches/references.rs` collects about 20 at
+    /// 4096 images; at 16384, where edges collect more, 64 cost 13 % more
+    /// time than 128).
+    const TRACKED: usize = 128;
+
+    /// Takes `span` (pending spans in `pending`); whether the edge is now
+    /// covered whole. Kept out of the search's loop, which most candidates
+    /// leave without a span.
+    #[inline(never)]
+    fn add(&mut self, span: (f64, f64), pending: &mut Vec<(f64, f64)>) -> bool {
+        self.spans += 1;
+        if span.0 <= self.reach {
+            self.reach = self.reach.max(span.1);
+            if self.spans <= Cover::TRACKED {
+                self.take_in(pending);
+            }
+        } else {
+            pending.push(span);
+        }
+        if self.spans > Cover::TRACKED && self.spans.is_power_of_two() {
+            self.take_in_sorted(pending);
+        }
+        self.reach >= 1.0
+    }
+
+    /// Takes in every pending span that starts within `[0, reach]`, until
+    /// none does: up to four passes in their order, then (a longer chain in
+    /// reverse order) one after sorting them.
+    fn take_in(&mut self, pending: &mut Vec<(f64, f64)>) {
+        for _ in 0..4 {
+            let before = pending.len();
+            let mut k = 0;
+            while k < pending.len() {
+                let (s, e) = pending[k];
+                if s <= self.reach {
+                    self.reach = self.reach.max(e);
+                    pending.swap_remove(k);
+                } else {
+                    k += 1;
+                }
+            }
+            if pending.len() == before {
+                return;
             }
         }
-        if reach == before {
-            return reach;
-        }
+        self.take_in_sorted(pending);
     }
-    intervals.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
-    for &(s, e) in intervals.iter() {
-        if s > reach {
-            break;
+
+    /// [`Cover::take_in`] by sorting the pending spans: `O(m log m)`.
+    fn take_in_sorted(&mut self, pending: &mut Vec<(f64, f64)>) {
+        pending.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        let mut taken = 0;
+        for &(s, e) in pending.iter() {
+            if s > self.reach {
+                break;
+            }
+            self.reach = self.reach.max(e);
+            taken += 1;
         }
-        reach = reach.max(e);
+        pending.drain(..taken);
     }
-    reach
 }
 
 /// Adds the pieces of `a → b` outside every interval of `intervals`.
@@ -952,42 +979,73 @@ mod tests {
         }
     }
 
-    /// [`covered_from`] is the covered prefix a brute-force scan finds:
-    /// interval ends on a grid of sixteenths, the union tested at every
-    /// grid point and between neighbours, the intervals in random order and
-    /// in chains of decreasing start (which take the sorting path), from
-    /// `reach = 0` and from a prefix known to be covered.
+    /// [`Cover`] against a brute-force scan: span ends on a grid of
+    /// sixteenths, the union tested at every grid point and between
+    /// neighbours. Fed one span at a time (in random order, and in chains of
+    /// decreasing start, which take the sorting path), its `reach` is the
+    /// covered prefix of the spans so far and it says "whole" exactly when
+    /// they cover `[0, 1]`; past [`Cover::TRACKED`] spans `reach` may lag
+    /// but never exceeds the prefix. At the end, the pending spans with
+    /// `(0, reach)` cover the same points as all the spans.
     #[test]
-    fn the_covered_prefix_is_that_of_a_scan() {
+    fn the_cover_is_that_of_a_scan() {
         let mut rng = Rng::new(43);
-        for case in 0..2000 {
-            let n = 1 + rng.below(40) as usize;
+        let grid_points = |spans: &[(f64, f64)]| -> Vec<bool> {
+            (0..=32)
+                .map(|k| {
+                    let t = k as f64 / 32.0;
+                    spans.iter().any(|&(s, e)| s <= t && t <= e)
+                })
+                .collect()
+        };
+        // The largest `g` on the grid with `[0, g]` in the union, 0 without
+        // a span at 0.
+        let prefix = |spans: &[(f64, f64)]| -> f64 {
+            let inside = grid_points(spans);
+            if !inside[0] {
+                return 0.0;
+            }
+            let run = inside.iter().take_while(|&&x| x).count();
+            ((run - 1) / 2 * 2) as f64 / 32.0
+        };
+        for case in 0..3000 {
+            let n = if case % 10 == 9 {
+                300
+            } else {
+                1 + rng.below(40) as usize
+            };
             let mut spans: Vec<(f64, f64)> = (0..n)
                 .map(|_| {
-                    let s = rng.below(17) as f64 / 16.0;
-                    let e = (s + rng.below(5) as f64 / 16.0).min(1.0);
+                    let s = rng.below(16) as f64 / 16.0;
+                    let e = (s + (1 + rng.below(4)) as f64 / 16.0).min(1.0);
                     (s, e)
                 })
                 .collect();
             if case % 3 == 0 {
                 spans.sort_by(|x, y| y.0.total_cmp(&x.0));
             }
-            // The largest grid point `g` with `[0, g]` in the union.
-            let inside = |t: f64| spans.iter().any(|&(s, e)| s <= t && t <= e);
-            let mut scan = 0.0;
-            for k in 0..=16 {
-                let t = k as f64 / 16.0;
-                let between = k == 0 || inside(t - 1.0 / 32.0);
-                if !(between && inside(t)) {
+            let mut cover = Cover::default();
+            let mut pending = Vec::new();
+            for m in 1..=n {
+                let whole = cover.add(spans[m - 1], &mut pending);
+                let scan = prefix(&spans[..m]);
+                if m <= Cover::TRACKED {
+                    assert_eq!(cover.reach, scan, "case {case}: {:?}", &spans[..m]);
+                    assert_eq!(whole, scan >= 1.0, "case {case}");
+                } else {
+                    assert!(cover.reach <= scan, "case {case}");
+                }
+                if whole {
                     break;
                 }
-                scan = t;
             }
-            // Without an interval at 0, nothing is covered (`reach` 0).
-            let want = if inside(0.0) { scan } else { 0.0 };
-            let start = if rng.chance(0.5) { 0.0 } else { want };
-            let reach = covered_from(start, &mut spans.clone());
-            assert_eq!(reach, want, "case {case}: {spans:?} from {start}");
+            if cover.reach < 1.0 {
+                let mut kept = pending.clone();
+                if cover.reach > 0.0 {
+                    kept.push((0.0, cover.reach));
+                }
+                assert_eq!(grid_points(&kept), grid_points(&spans), "case {case}");
+            }
         }
     }
 
