@@ -522,7 +522,11 @@ mod tests {
                     2 => DVec2::new(rng.uniform(-2.0, 2.0), a.y),
                     _ => point(&mut rng),
                 };
-                let b = if rng.chance(0.3) { DVec2::new(b.x, a.y) } else { b };
+                let b = if rng.chance(0.3) {
+                    DVec2::new(b.x, a.y)
+                } else {
+                    b
+                };
                 (a, b, c)
             });
             let coords = |f: fn(&(DVec2, DVec2, DVec2)) -> DVec2| {
@@ -544,6 +548,9 @@ mod tests {
             }
         }
         // Every path was taken often.
-        assert!(rounded > 1000 && expanded > 1000 && zero > 1000, "{rounded} {expanded} {zero}");
+        assert!(
+            rounded > 1000 && expanded > 1000 && zero > 1000,
+            "{rounded} {expanded} {zero}"
+        );
     }
 }
