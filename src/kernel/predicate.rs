@@ -504,7 +504,7 @@ mod tests {
     #[test]
     fn lanes_of_values_are_the_scalar_values() {
         let mut rng = crate::arbitrary::Rng::new(97);
-        let mut point = |rng: &mut crate::arbitrary::Rng| {
+        let point = |rng: &mut crate::arbitrary::Rng| {
             DVec2::new(rng.uniform(-2.0, 2.0), rng.uniform(-2.0, 2.0))
         };
         let (mut rounded, mut expanded, mut zero) = (0, 0, 0);
