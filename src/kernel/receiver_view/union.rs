@@ -121,10 +121,14 @@ impl Measure {
 /// every coordinate (the clip square's half-width): the triangles are
 /// binned in grids over it (a fine grid, and coarse levels for the large
 /// triangles) so that an edge is tested only against triangles sharing a
-/// cell with its bounds. The order of the search decides only how soon an
-/// edge is found covered whole; an edge that is not collects the span of
-/// every triangle it meets, the same set in any order, so the area does
-/// not depend on it. An edge whose reverse is an edge of another triangle
+/// cell with its bounds. An edge's search ends as soon as the spans it has
+/// found cover it whole ([`Cover`]), so the order of the search decides
+/// only how soon; an edge that is not covered collects the span of every
+/// triangle it meets (its covered start as one interval), the same union
+/// in any order, so the area does not depend on it. A span test computes
+/// its signed areas two and four at a time
+/// ([`orient2d_values_finite`], each lane the one-at-a-time value). An
+/// edge whose reverse is an edge of another triangle
 /// (two images sharing a mesh edge, their corners the same bits) lies
 /// between the two and is dropped before any search ([`Edges`]), as the
 /// search would find: on a mesh's images most edges are shared.
