@@ -830,26 +830,27 @@ fn cut_by_edge(
     (f0, f1): (DVec2, DVec2),
     t_first: bool,
 ) -> Option<()> {
-    match (Sign::of(va), Sign::of(vb)) {
-        (Sign::Zero, Sign::Zero) => {
-            let same_side = (b - a).dot(f1 - f0) > 0.0;
-            if same_side && !t_first {
-                return None;
-            }
-        }
-        (Sign::Negative, Sign::Negative | Sign::Zero) | (Sign::Zero, Sign::Negative) => {
+    // The signs' cases by comparisons (a NaN counts as zero, as `Sign`
+    // has it; the values are finite).
+    let (a_in, a_out, b_in, b_out) = (va > 0.0, va < 0.0, vb > 0.0, vb < 0.0);
+    if !a_in && !b_in {
+        if a_out || b_out {
+            // Outside, touching the line at most at one end.
             return None;
         }
-        (Sign::Positive | Sign::Zero, Sign::Positive | Sign::Zero) => {}
-        (sa, _) => {
-            // A strict crossing: va and vb have opposite signs, so
-            // va − vb does not cancel.
-            let s = (va / (va - vb)).clamp(0.0, 1.0);
-            if sa == Sign::Negative {
-                span.0 = span.0.max(s);
-            } else {
-                span.1 = span.1.min(s);
-            }
+        // Along the line.
+        let same_side = (b - a).dot(f1 - f0) > 0.0;
+        if same_side && !t_first {
+            return None;
+        }
+    } else if (a_out && b_in) || (a_in && b_out) {
+        // A strict crossing: va and vb have opposite signs, so va − vb
+        // does not cancel.
+        let s = (va / (va - vb)).clamp(0.0, 1.0);
+        if a_out {
+            span.0 = span.0.max(s);
+        } else {
+            span.1 = span.1.min(s);
         }
     }
     Some(())
