@@ -681,8 +681,8 @@ impl Level {
 /// spans it stands for). Each span that extends `reach` takes in the
 /// pending spans it reaches, so the search ends at the span that completes
 /// the cover. Past [`Cover::TRACKED`] spans, the pending ones are taken in
-/// at every power of two of their number instead, which keeps an edge with
-/// thousands of spans `O(m log m)`.
+/// only when the number of spans is a power of two, which keeps an edge
+/// with thousands of spans `O(m log m)`.
 #[derive(Debug, Default)]
 struct Cover {
     reach: f64,
