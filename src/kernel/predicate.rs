@@ -537,8 +537,7 @@ mod tests {
                 let want = orient2d_value_finite(a, b, c);
                 assert_eq!(got[l].to_bits(), want.to_bits(), "{a} {b} {c}");
                 let (det, left, right, exact_zero) = orient2d_rounded(a, b, c);
-                let bound = CCW_ERR_BOUND_A * (left.abs() + right.abs()) * (1u64 << 40) as f64;
-                if det > bound || -det > bound {
+                if value_is_rounded(det, left, right) {
                     rounded += 1;
                 } else if exact_zero {
                     zero += 1;
