@@ -137,7 +137,10 @@ impl Measure {
 /// edge whose reverse is an edge of another triangle
 /// (two images sharing a mesh edge, their corners the same bits) lies
 /// between the two and is dropped before any search ([`Edges`]), as the
-/// search would find: on a mesh's images most edges are shared.
+/// search would find: on a mesh's images most edges are shared. Under a
+/// deep pile of images, so is an edge whose every point lies in a cell of
+/// a raster marked as inside some image ([`Interior`]), and the fine grid
+/// lists its images by decreasing area.
 ///
 /// An edge lying on a side of the clip square can be covered only by the
 /// edges of other triangles on that side (every triangle lies in the closed
