@@ -184,7 +184,10 @@ pub(super) fn union_area_sweeping_from(
 }
 
 /// [`union_area_sweeping_from`], with `DEEP` whether [`Interior`] is built
-/// (and the grid lists the fine level by area).
+/// (and the grid lists the fine level by area). The helpers it calls per
+/// edge, per candidate and per triangle are `#[inline(always)]`: with two
+/// copies of this loop the compiler kept them out of line, and the
+/// built-in scenes' exact frames took up to 4 % more instructions.
 fn union_area_in<const DEEP: bool>(
     tris: &[Tri],
     measure: Measure,
