@@ -579,8 +579,13 @@ impl Grid {
     /// made building it quadratic, each many fine cells wide, go up).
     const LARGE: f64 = 4.0;
 
+    /// The fine grid's cells a side for `n` triangles.
+    fn side(n: usize) -> usize {
+        ((n as f64).sqrt().ceil() as usize).clamp(1, Grid::MAX_SIDE)
+    }
+
     fn build<const BY_AREA: bool>(&mut self, tris: &[Tri], half: f64) {
-        let side = ((tris.len() as f64).sqrt().ceil() as usize).clamp(1, Grid::MAX_SIDE);
+        let side = Grid::side(tris.len());
         self.half = half;
         // The coarse levels' sides are the powers of two below the fine
         // grid's.
@@ -949,9 +954,10 @@ impl Sum {
     }
 }
 
-/// Under a deep pile of images (at least [`Interior::FEWEST`] triangles,
-/// their areas summing to at least [`Interior::DEPTH`] times their common
-/// bounds), a raster over the square `[−half, half]²` of the cells that lie
+/// Under a deep pile of small images (at least [`Interior::FEWEST`]
+/// triangles, their areas summing to at least [`Interior::DEPTH`] times
+/// their common bounds, their mean width within [`Grid::LARGE`] cells of
+/// the fine grid), a raster over the square `[−half, half]²` of the cells that lie
 /// inside some triangle with a margin: an edge whose every point is in such
 /// a cell is covered whole, and is dropped before any search
 /// ([`Interior::covers`]).
@@ -1043,6 +1049,14 @@ impl Interior {
             return false;
         }
         let mean = width / Interior::SAMPLES as f64;
+        // Large images go to the grid's coarse levels, where an edge meets
+        // the largest first and its search ends soon: the raster saves
+        // little there, and marking costs as much (ours: near-coincident
+        // and nested images of `benches/references.rs`'s `degenerate`
+        // group, 2.7 to 4.2 times the time with it).
+        if mean * Grid::side(tris.len()) as f64 > Grid::LARGE * 2.0 * half {
+            return false;
+        }
         let want = (2.0 * half / mean * Interior::ACROSS).clamp(64.0, Interior::MOST as f64);
         // `want` is at least 64 (a NaN clamps to 64 too).
         let n = (want as usize).div_ceil(64) * 64;
@@ -1521,17 +1535,17 @@ mod tests {
         assert!((all - one).abs() <= 1e-14, "{all} against {one}");
     }
 
-    /// A pile with holes: `n` random triangles about `[−0.8 h, 0.8 h]²`,
+    /// A pile with holes: `n` random triangles about `[−0.3 h, 0.3 h]²`
+    /// (small against the grid's cells, as images piled over a light are),
     /// sized for about `depth` layers (a random triangle in a square of
     /// side `2 s` has a mean area of about `0.3 s²`, and the pile's bounds
-    /// are about `(2.2 h)²`), corners clamped to the square, a fifth
-    /// sharing an edge with the one before (reversed, as adjacent images
-    /// have).
+    /// are about `(0.9 h)²`), a fifth sharing an edge with the one before
+    /// (reversed, as adjacent images have).
     fn deep_pile(rng: &mut Rng, n: usize, depth: f64, h: f64) -> Vec<Tri> {
-        let size = (depth * 2.2 * 2.2 / (0.3 * n as f64)).sqrt();
+        let size = (depth * 0.9 * 0.9 / (0.3 * n as f64)).sqrt();
         let mut tris: Vec<Tri> = Vec::new();
         while tris.len() < n {
-            let c = DVec2::new(rng.uniform(-0.8, 0.8), rng.uniform(-0.8, 0.8)) * h;
+            let c = DVec2::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)) * h;
             let shared = rng.chance(0.2);
             let mut corner = || {
                 (c + DVec2::new(rng.uniform(-size, size), rng.uniform(-size, size)) * h)
