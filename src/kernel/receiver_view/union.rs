@@ -732,18 +732,21 @@ impl Level {
     /// The cells `x0..=x1`, `y0..=y1` the box `lo..hi` overlaps (clamped:
     /// rounding may put a clipped vertex a hair outside the square).
     fn range(&self, lo: DVec2, hi: DVec2, half: f64) -> (usize, usize, usize, usize) {
-        // Truncation is the floor where it is taken (`c ≥ 0`; a NaN gives
-        // 0): no call to `floor`, which the baseline target lacks as an
-        // instruction.
-        let cell = |v: f64| {
-            let c = (v + half) * self.inv_cell;
-            if c >= 0.0 {
-                (c as usize).min(self.n - 1)
-            } else {
-                0
-            }
-        };
+        let cell = |v: f64| cell_of(v, half, self.inv_cell, self.n);
         (cell(lo.x), cell(lo.y), cell(hi.x), cell(hi.y))
+    }
+}
+
+/// The row or column, of `n`, of the coordinate `v` in cells of width
+/// `1 / inv_cell` from `−half`, clamped. Truncation is the floor where it
+/// is taken (`c ≥ 0`; a NaN gives 0): no call to `floor`, which the
+/// baseline target lacks as an instruction.
+fn cell_of(v: f64, half: f64, inv_cell: f64, n: usize) -> usize {
+    let c = (v + half) * inv_cell;
+    if c >= 0.0 {
+        (c as usize).min(n - 1)
+    } else {
+        0
     }
 }
 
@@ -957,9 +960,9 @@ impl Sum {
 /// Under a deep pile of small images (at least [`Interior::FEWEST`]
 /// triangles, their areas summing to at least [`Interior::DEPTH`] times
 /// their common bounds, their mean width within [`Grid::LARGE`] cells of
-/// the fine grid), a raster over the square `[−half, half]²` of the cells that lie
-/// inside some triangle with a margin: an edge whose every point is in such
-/// a cell is covered whole, and is dropped before any search
+/// the fine grid), a raster over the square `[−half, half]²` of the cells
+/// that lie inside some triangle with a margin: an edge whose every point
+/// is in such a cell is covered whole, and is dropped before any search
 /// ([`Interior::covers`]).
 ///
 /// That is the search's own answer, so the area is the same bit for bit. A
@@ -1107,12 +1110,7 @@ impl Interior {
 
     /// The row or column of the coordinate `v` (clamped).
     fn cell(&self, v: f64) -> usize {
-        let c = (v + self.half) * self.inv_w;
-        if c >= 0.0 {
-            (c as usize).min(self.n - 1)
-        } else {
-            0
-        }
+        cell_of(v, self.half, self.inv_w, self.n)
     }
 
     /// Row `r`'s words and, per word, the mask of the cells `k0..=k1`.
