@@ -2,6 +2,7 @@
 //! traversal, the segment a ray is decided on, and the [`Hit`] it returns.
 
 use super::node::{LEAF, WIDTH};
+use super::packet::PACKET;
 use super::ray::{Ray32, STACK, T_SLACK};
 use super::{f32_up, Bvh};
 use crate::kernel::lanes;
@@ -114,7 +115,7 @@ impl Bvh {
     /// instead of a square root and a division per hit (measured: 10 % of
     /// the time of the renderer's primary rays). Only closest-hit queries
     /// pay its 24 bytes per triangle.
-    fn normals(&self) -> &[DVec3] {
+    pub(super) fn normals(&self) -> &[DVec3] {
         self.normals.get_or_init(|| {
             self.occluders
                 .triangles()
@@ -156,8 +157,13 @@ impl Bvh {
         lanes::vectorized(
             #[inline(always)]
             |_| {
-                for (o, &(origin, direction)) in out.iter_mut().zip(rays) {
-                    *o = self.closest_hit_here(origin, direction, t_max);
+                for (out, rays) in out.chunks_mut(PACKET).zip(rays.chunks(PACKET)) {
+                    if self.closest_packet(rays, t_max, out) {
+                        continue;
+                    }
+                    for (o, &(origin, direction)) in out.iter_mut().zip(rays) {
+                        *o = self.closest_hit_here(origin, direction, t_max);
+                    }
                 }
             },
         );
@@ -189,7 +195,7 @@ impl Bvh {
 
     /// See [`Bvh::ray_segment`].
     #[inline(always)]
-    fn probe(&self, origin: DVec3, direction: DVec3) -> Option<Probe> {
+    pub(super) fn probe(&self, origin: DVec3, direction: DVec3) -> Option<Probe> {
         if !(origin.is_finite() && direction.is_finite()) {
             return None;
         }
@@ -325,15 +331,16 @@ pub struct Hit {
 }
 
 /// The segment a closest-hit query decides on (see [`Bvh::ray_segment`]).
-struct Probe {
-    o: DVec3,
+#[derive(Clone, Copy)]
+pub(super) struct Probe {
+    pub(super) o: DVec3,
     /// The far point.
-    x: DVec3,
+    pub(super) x: DVec3,
     /// `x − o`, rounded, and its max-norm.
-    d: DVec3,
-    d_norm: f64,
+    pub(super) d: DVec3,
+    pub(super) d_norm: f64,
     /// The ray parameter of `x`: a crossing at `u` is the hit `u · scale`.
-    scale: f64,
+    pub(super) scale: f64,
 }
 
 impl Probe {
@@ -346,7 +353,7 @@ impl Probe {
 /// A bound on the relative error of a crossing's `u` (what
 /// [`segment_crossing`](crate::kernel::segment::segment_crossing)
 /// promises), for culling.
-const U_SLACK: f64 = 1.0 / (1u64 << 23) as f64;
+pub(super) const U_SLACK: f64 = 1.0 / (1u64 << 23) as f64;
 
 /// The best crossing so far of a closest-hit query.
 struct Best {
@@ -409,7 +416,7 @@ fn unit_normal(t: &[DVec3; 3]) -> DVec3 {
 /// itself, so that a caller evaluating it finds it `≤ 0`. Where `n` is
 /// zero, `−direction` normalised.
 #[inline(always)]
-fn facing(n: DVec3, direction: DVec3) -> DVec3 {
+pub(super) fn facing(n: DVec3, direction: DVec3) -> DVec3 {
     let n = if n == DVec3::ZERO {
         (-direction / direction.abs().max_element()).normalize()
     } else {

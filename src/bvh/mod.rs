@@ -55,6 +55,7 @@ mod hull;
 mod nested;
 mod node;
 mod occluders;
+mod packet;
 mod ray;
 #[cfg(test)]
 mod tests;

@@ -265,6 +265,98 @@ fn crossing_filtered(p: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]) -> Option<
     Some(Some((fp / sum).max(f64::from_bits(1))))
 }
 
+/// What [`crossings_filtered`] found for one lane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Filtered {
+    /// Certainly no crossing.
+    Miss,
+    /// The crossing at the lane's `u`.
+    Hit,
+    /// Not decided: [`crossing`] decides.
+    Unsure,
+}
+
+/// [`crossing_filtered`] for `N` segments against one triangle, lane `l`
+/// the segment from `(p[0][l], p[1][l], p[2][l])` along `d` (its max-norm
+/// `d_norm[l]`): each lane's verdict and `u` (meaningful where
+/// [`Filtered::Hit`]) are the scalar function's — `Some(None)` a miss,
+/// `Some(Some(u))` a hit, `None` unsure — the same operations on the same
+/// values in the same order, every rule evaluated and the first that
+/// applies, in the scalar function's order, taken. (The scalar function's
+/// first rule, two edges certainly opposite, is a case of its second.)
+#[inline(always)]
+pub(crate) fn crossings_filtered<const N: usize>(
+    p: &[[f64; N]; 3],
+    d: &[[f64; N]; 3],
+    d_norm: &[f64; N],
+    t: &[DVec3; 3],
+) -> ([Filtered; N], [f64; N]) {
+    let [a, b, c] = *t;
+    let less = |v: DVec3, i: usize| [v.x - p[0][i], v.y - p[1][i], v.z - p[2][i]];
+    // glam's `max_element`: the larger by `>`.
+    let max = |x: f64, y: f64| if x > y { x } else { y };
+    let norm = |v: [f64; 3]| max(max(v[0].abs(), v[1].abs()), v[2].abs());
+    let cross = |u: [f64; 3], v: [f64; 3]| {
+        [
+            u[1] * v[2] - v[1] * u[2],
+            u[2] * v[0] - v[2] * u[0],
+            u[0] * v[1] - v[0] * u[1],
+        ]
+    };
+    let dot = |u: [f64; 3], v: [f64; 3]| (u[0] * v[0]) + (u[1] * v[1]) + (u[2] * v[2]);
+    let mut verdict = [Filtered::Unsure; N];
+    let mut u = [0.0; N];
+    for i in 0..N {
+        let (pa, pb, pc) = (less(a, i), less(b, i), less(c, i));
+        let (ma, mb, mc) = (norm(pa), norm(pb), norm(pc));
+        let di = [d[0][i], d[1][i], d[2][i]];
+        let cbc = cross(pb, pc);
+        let cab = cross(pa, pb);
+        let cca = cross(pc, pa);
+        let (e0, e1, e2) = (dot(di, cab), dot(di, cbc), dot(di, cca));
+        let dn = d_norm[i];
+        let b0 = DET3_BOUND * (dn * ma) * mb + DET3_FLOOR;
+        let b1 = DET3_BOUND * (dn * mb) * mc + DET3_FLOOR;
+        let b2 = DET3_BOUND * (dn * mc) * ma + DET3_FLOOR;
+        let pos = u8::from(e0 > b0) | u8::from(e1 > b1) << 1 | u8::from(e2 > b2) << 2;
+        let neg = u8::from(e0 < -b0) | u8::from(e1 < -b1) << 1 | u8::from(e2 < -b2) << 2;
+        let sum = e0 + e1 + e2;
+        let sum_bound = (b0 + b1 + b2) * (1.0 + f64::EPSILON) + sum.abs() * (2.0 * f64::EPSILON);
+        let fp = dot(pa, cbc);
+        let fp_bound = DET3_BOUND * (ma * mb) * mc + DET3_FLOOR;
+        let both = (sum_bound + fp_bound) * (1.0 + f64::EPSILON);
+        let gap = (sum.abs() - fp.abs()) * (1.0 - f64::EPSILON);
+        let beyond = (fp.abs() - sum.abs()) * (1.0 - f64::EPSILON) > both;
+        // The rules from the last to the first: an earlier one overrides.
+        let mut v = Filtered::Hit;
+        if fp_bound > fp.abs() * CROSSING_REL || sum_bound > sum.abs() * CROSSING_REL {
+            v = Filtered::Unsure;
+        }
+        if gap.is_nan() || gap <= both {
+            v = if beyond {
+                Filtered::Miss
+            } else {
+                Filtered::Unsure
+            };
+        }
+        if (fp > 0.0) != (sum > 0.0) {
+            v = Filtered::Miss;
+        }
+        if fp.abs() <= fp_bound {
+            v = Filtered::Unsure;
+        }
+        if pos != 7 && neg != 7 {
+            v = Filtered::Unsure;
+        }
+        if pos != 0 && neg != 0 {
+            v = Filtered::Miss;
+        }
+        verdict[i] = v;
+        u[i] = (fp / sum).max(f64::from_bits(1));
+    }
+    (verdict, u)
+}
+
 /// `u` for a segment known to cross the triangle, from the two plane values
 /// of [`orient3d_value`] (opposite signs, each within `2⁻⁴⁰` relative).
 fn crossing_accurate(p: DVec3, x: DVec3, t: &[DVec3; 3]) -> f64 {

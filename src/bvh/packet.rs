@@ -1,0 +1,342 @@
+//! Closest hits of [`PACKET`] rays through one walk of the tree
+//! ([`Bvh::closest_packet`]), for the batch query: each node's boxes tested
+//! against all the packet's rays side by side, each leaf's triangle
+//! against the rays that reach it side by side
+//! ([`crossings_filtered`]).
+
+use super::closest::{facing, U_SLACK};
+use super::node::{decode, EMPTY, LEAF, WIDTH};
+use super::ray::{STACK, T_SLACK};
+use super::{f32_up, Bvh, Hit};
+use crate::kernel::segment::{crossing, crossings_filtered, Filtered};
+use glam::DVec3;
+
+/// Rays per packet.
+pub(super) const PACKET: usize = 8;
+
+/// One `f32` per ray of a packet.
+type Lanes32 = [f32; PACKET];
+
+impl Bvh {
+    /// [`Bvh::closest_hit`] of each of the [`PACKET`] `rays` into `out`,
+    /// the same answers bit for bit; `false` (and `out` untouched) where
+    /// the packet is left to one query per ray: triangles kept out of the
+    /// tree, no tree, a ray the query refuses or whose segment leaves the
+    /// `f32` range, or a tree deeper than the packet's stack.
+    ///
+    /// The walk visits a node for the rays whose slab test kept it in its
+    /// parent (each ray's own conservative test, limited by its own
+    /// nearest hit so far, see [`Bvh::closest_hit`]), and a leaf's
+    /// triangle is decided for those rays exactly as one query decides it:
+    /// [`crossings_filtered`] gives each ray the verdict and `u` of the
+    /// one-ray filter, and a ray it leaves unsure is decided by
+    /// [`crossing`]. A ray's answer is the least `(u, triangle)` over the
+    /// triangles it reached, which hold every triangle it crosses within
+    /// its limit: the answer of testing every triangle, as for one query.
+    #[inline(always)]
+    pub(super) fn closest_packet(
+        &self,
+        rays: &[(DVec3, DVec3)],
+        t_max: f64,
+        out: &mut [Option<Hit>],
+    ) -> bool {
+        if rays.len() != PACKET
+            || out.len() != PACKET
+            || !self.outliers.is_empty()
+            || self.nodes.is_empty()
+            || self.stack_need > STACK
+            || t_max.is_nan()
+            || t_max <= 0.0
+        {
+            return false;
+        }
+        let Some(Setup {
+            o,
+            x,
+            d,
+            d_norm,
+            scale,
+            near,
+            far,
+            inv,
+            back,
+        }) = self.setup(rays)
+        else {
+            return false;
+        };
+        // The entry side of each axis where every ray has the same.
+        let sides: Option<[usize; 3]> = (0..3)
+            .all(|k| back[k].iter().all(|&m| m == back[k][0]))
+            .then(|| core::array::from_fn(|k| usize::from(back[k][0] != 0)));
+        let mut limit: Lanes32 = core::array::from_fn(|l| {
+            if t_max < f64::INFINITY {
+                1.0f32.min(f32_up(t_max / scale[l] * (1.0 + U_SLACK)))
+            } else {
+                1.0
+            }
+        });
+        let mut best_u = [f64::INFINITY; PACKET];
+        let mut best_id = [u32::MAX; PACKET];
+
+        let mut stack = [(0u32, 0u8); STACK];
+        let mut top = 0;
+        let (mut node, mut rays_in) = (0u32, u8::MAX);
+        loop {
+            let n = &self.nodes[node as usize];
+            // Per lane of the node: the rays that may meet its box, and
+            // their least entry (the order of the visit).
+            let mut kept = [(f32::INFINITY, 0u8, 0usize); WIDTH];
+            let mut count = 0;
+            for lane in 0..WIDTH {
+                if n.child[lane] == EMPTY {
+                    continue;
+                }
+                let mut t_near = [0.0f32; PACKET];
+                let mut t_far = limit;
+                for k in 0..3 {
+                    let plane = |side: usize| decode(n.origin[k], n.q[side][k][lane], n.scale[k]);
+                    let mut axis = |entry: &dyn Fn(usize) -> f32, exit: &dyn Fn(usize) -> f32| {
+                        for l in 0..PACKET {
+                            let a = (entry(l) - near[k][l]) * inv[k][l];
+                            let b = (exit(l) - far[k][l]) * inv[k][l];
+                            t_near[l] = if a > t_near[l] { a } else { t_near[l] };
+                            t_far[l] = if b < t_far[l] { b } else { t_far[l] };
+                        }
+                    };
+                    if let Some(side) = sides {
+                        // Every ray enters by the same plane (most packets).
+                        let (entry, exit) = (plane(side[k]), plane(1 - side[k]));
+                        axis(&|_| entry, &|_| exit);
+                    } else {
+                        let (lo, hi) = (plane(0).to_bits(), plane(1).to_bits());
+                        let m = &back[k];
+                        axis(&|l| f32::from_bits((hi & m[l]) | (lo & !m[l])), &|l| {
+                            f32::from_bits((lo & m[l]) | (hi & !m[l]))
+                        });
+                    }
+                }
+                let mut hit = 0u8;
+                let mut first = f32::INFINITY;
+                for l in 0..PACKET {
+                    let h = t_near[l] <= t_far[l] * T_SLACK;
+                    hit |= u8::from(h) << l;
+                    first = if h && t_near[l] < first {
+                        t_near[l]
+                    } else {
+                        first
+                    };
+                }
+                let hit = hit & rays_in;
+                if hit == 0 {
+                    continue;
+                }
+                // By least entry (insertion: at most four).
+                let mut k = count;
+                let mut item = (first, hit, lane);
+                while k > 0 && kept[k - 1].0 > item.0 {
+                    (kept[k], item) = (kept[k - 1], item);
+                    k -= 1;
+                }
+                kept[k] = item;
+                count += 1;
+            }
+            let mut inner = [(0u32, 0u8); WIDTH];
+            let mut inner_count = 0;
+            for &(_, hit, lane) in &kept[..count] {
+                let child = n.child[lane];
+                if child & LEAF == 0 {
+                    inner[inner_count] = (child, hit);
+                    inner_count += 1;
+                    continue;
+                }
+                let i = (child & !LEAF) as usize;
+                let t = &self.triangles[i];
+                let id = self.ids[i];
+                let (verdict, u) = crossings_filtered(&o, &d, &d_norm, t);
+                let mut rest = hit;
+                while rest != 0 {
+                    let l = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    let u = match verdict[l] {
+                        Filtered::Miss => continue,
+                        Filtered::Hit => u[l],
+                        Filtered::Unsure => {
+                            let at = |v: &[[f64; PACKET]; 3]| DVec3::new(v[0][l], v[1][l], v[2][l]);
+                            match crossing(at(&o), at(&x), at(&d), d_norm[l], t) {
+                                Some(u) => u,
+                                None => continue,
+                            }
+                        }
+                    };
+                    if (u < best_u[l] || (u == best_u[l] && id < best_id[l]))
+                        && u * scale[l] <= t_max
+                    {
+                        best_u[l] = u;
+                        best_id[l] = id;
+                        limit[l] = limit[l].min(f32_up(u));
+                    }
+                }
+            }
+            // Farthest first, so that the nearest is popped next.
+            for &entry in inner[..inner_count].iter().rev() {
+                stack[top] = entry;
+                top += 1;
+            }
+            if top == 0 {
+                break;
+            }
+            top -= 1;
+            (node, rays_in) = stack[top];
+        }
+        for l in 0..PACKET {
+            out[l] = (best_id[l] != u32::MAX).then(|| {
+                let id = best_id[l];
+                Hit {
+                    t: (best_u[l] * scale[l]).clamp(f64::from_bits(1), t_max.min(f64::MAX)),
+                    triangle: id,
+                    object: self.occluders.objects()[id as usize],
+                    normal: facing(self.normals()[id as usize], rays[l].1),
+                }
+            });
+        }
+        true
+    }
+}
+
+/// The packet's rays as [`Bvh::probe`] and [`Ray32::new`] make them, in
+/// structure-of-arrays form (`[axis][ray]`).
+struct Setup {
+    o: [F64s; 3],
+    x: [F64s; 3],
+    d: [F64s; 3],
+    d_norm: F64s,
+    scale: F64s,
+    near: [Lanes32; 3],
+    far: [Lanes32; 3],
+    inv: [Lanes32; 3],
+    /// All ones where the ray enters a box by its upper plane.
+    back: [[u32; PACKET]; 3],
+}
+
+/// One `f64` per ray of a packet.
+type F64s = [f64; PACKET];
+
+/// `f(l)` for every ray `l`.
+#[inline(always)]
+fn each<T>(f: impl FnMut(usize) -> T) -> [T; PACKET] {
+    core::array::from_fn(f)
+}
+
+impl Bvh {
+    /// [`Bvh::probe`] and [`Ray32::new`] of every ray of the packet, the
+    /// same operations lane by lane (so the same bits, in vector
+    /// registers); `None` where either refuses a ray.
+    #[inline(always)]
+    fn setup(&self, rays: &[(DVec3, DVec3)]) -> Option<Setup> {
+        let (lo, hi) = self.bounds?;
+        let axes = |f: &dyn Fn(usize, usize) -> f64| -> [F64s; 3] {
+            core::array::from_fn(|k| each(|l| f(k, l)))
+        };
+        let origin = axes(&|k, l| rays[l].0[k]);
+        let direction = axes(&|k, l| rays[l].1[k]);
+        // glam's `max_element` (the values are finite where it matters).
+        let norm = |v: &[F64s; 3]| -> F64s {
+            each(|l| {
+                let max = |a: f64, b: f64| if a > b { a } else { b };
+                max(max(v[0][l].abs(), v[1][l].abs()), v[2][l].abs())
+            })
+        };
+        let mut refused = false;
+        for k in 0..3 {
+            for l in 0..PACKET {
+                refused |= !(origin[k][l].is_finite() && direction[k][l].is_finite());
+            }
+        }
+        let m = norm(&direction);
+        let inv_m = each(|l| 1.0 / m[l]);
+        let by_inverse = each(|l| (1e-300..=1e300).contains(&m[l]));
+        let s = axes(&|k, l| {
+            if by_inverse[l] {
+                direction[k][l] * inv_m[l]
+            } else {
+                direction[k][l] / m[l]
+            }
+        });
+        let far = each(|l| {
+            let gap = |k: usize| (hi[k] - origin[k][l]).max(origin[k][l] - lo[k]);
+            let max = |a: f64, b: f64| if a > b { a } else { b };
+            max(max(gap(0), gap(1)), gap(2))
+        });
+        let o_norm = norm(&origin);
+        let reach = each(|l| 2.0 * far[l].max(o_norm[l]));
+        let x = axes(&|k, l| origin[k][l] + s[k][l] * reach[l]);
+        let d = axes(&|k, l| x[k][l] - origin[k][l]);
+        let d_norm = norm(&d);
+        let scale = each(|l| {
+            if by_inverse[l] {
+                reach[l] * inv_m[l]
+            } else {
+                reach[l] / m[l]
+            }
+        });
+        let x_norm = norm(&x);
+        for l in 0..PACKET {
+            refused |= m[l] == 0.0 || reach[l].is_nan() || reach[l] <= 0.0;
+            refused |= !(x[0][l].is_finite() && x[1][l].is_finite() && x[2][l].is_finite());
+            // `Ray32::new`'s range.
+            refused |= !(o_norm[l] <= f64::from(f32::MAX) && x_norm[l] <= f64::from(f32::MAX));
+        }
+        if refused {
+            return None;
+        }
+        // `Ray32::new`, axis by axis.
+        const TINY: f32 = 1.0 / (1u128 << 100) as f32;
+        let (mut near, mut far, mut inv) = (
+            [[0.0f32; PACKET]; 3],
+            [[0.0f32; PACKET]; 3],
+            [[0.0f32; PACKET]; 3],
+        );
+        let mut back = [[0u32; PACKET]; 3];
+        for k in 0..3 {
+            let (p, d) = (&origin[k], &d[k]);
+            let o = each(|l| f64::from(p[l] as f32));
+            let di = each(|l| {
+                let di = d[l] as f32;
+                let tiny = if d[l] < 0.0 { -TINY } else { TINY };
+                if di.abs() < TINY {
+                    tiny
+                } else {
+                    di
+                }
+            });
+            let wide = each(|l| {
+                let delta = (p[l].abs() + d[l].abs()) * (1.0 / f64::from(1u32 << 21))
+                    + 4.0 * f64::from(TINY);
+                delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o[l].abs() / f64::from(1u32 << 23)
+            });
+            let up = each(|l| ((o[l] + wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
+            let down = each(|l| ((o[l] - wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
+            for l in 0..PACKET {
+                let backward = di[l] < 0.0;
+                inv[k][l] = 1.0 / di[l];
+                (near[k][l], far[k][l]) = if backward {
+                    (down[l], up[l])
+                } else {
+                    (up[l], down[l])
+                };
+                back[k][l] = 0u32.wrapping_sub(u32::from(backward));
+            }
+        }
+        Some(Setup {
+            o: origin,
+            x,
+            d,
+            d_norm,
+            scale,
+            near,
+            far,
+            inv,
+            back,
+        })
+    }
+}
