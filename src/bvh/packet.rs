@@ -116,20 +116,15 @@ impl Bvh {
                     }
                 }
                 let mut hit = 0u8;
-                let mut first = f32::INFINITY;
                 for l in 0..PACKET {
-                    let h = t_near[l] <= t_far[l] * T_SLACK;
-                    hit |= u8::from(h) << l;
-                    first = if h && t_near[l] < first {
-                        t_near[l]
-                    } else {
-                        first
-                    };
+                    hit |= u8::from(t_near[l] <= t_far[l] * T_SLACK) << l;
                 }
                 let hit = hit & rays_in;
                 if hit == 0 {
                     continue;
                 }
+                // The order of the visit: the entry of the first ray kept.
+                let first = t_near[hit.trailing_zeros() as usize];
                 // By least entry (insertion: at most four).
                 let mut k = count;
                 let mut item = (first, hit, lane);
@@ -188,16 +183,19 @@ impl Bvh {
             top -= 1;
             (node, rays_in) = stack[top];
         }
-        for l in 0..PACKET {
-            out[l] = (best_id[l] != u32::MAX).then(|| {
-                let id = best_id[l];
-                Hit {
+        let (normals, objects) = (self.normals(), self.occluders.objects());
+        for (l, out) in out.iter_mut().enumerate() {
+            let id = best_id[l];
+            *out = if id == u32::MAX {
+                None
+            } else {
+                Some(Hit {
                     t: (best_u[l] * scale[l]).clamp(f64::from_bits(1), t_max.min(f64::MAX)),
                     triangle: id,
-                    object: self.occluders.objects()[id as usize],
-                    normal: facing(self.normals()[id as usize], rays[l].1),
-                }
-            });
+                    object: objects[id as usize],
+                    normal: facing(normals[id as usize], rays[l].1),
+                })
+            };
         }
         true
     }
