@@ -78,7 +78,15 @@ impl Bvh {
         let mut best_u = [f64::INFINITY; PACKET];
         let mut best_id = [u32::MAX; PACKET];
 
-        let mut stack = [(0u32, 0u8); STACK];
+        // Only the stack the tree needs is cleared (as `closest_in_tree`).
+        let (mut small, mut large);
+        let stack: &mut [(u32, u8)] = if self.stack_need <= STACK / 2 {
+            small = [(0u32, 0u8); STACK / 2];
+            &mut small
+        } else {
+            large = [(0u32, 0u8); STACK];
+            &mut large
+        };
         let mut top = 0;
         let (mut node, mut rays_in) = (0u32, u8::MAX);
         loop {
@@ -115,11 +123,11 @@ impl Bvh {
                         });
                     }
                 }
-                let mut hit = 0u8;
-                for l in 0..PACKET {
-                    hit |= u8::from(t_near[l] <= t_far[l] * T_SLACK) << l;
-                }
-                let hit = hit & rays_in;
+                // Each ray's bit in place, then one reduction (a form the
+                // compiler keeps in vector registers).
+                let bits: [u32; PACKET] =
+                    core::array::from_fn(|l| u32::from(t_near[l] <= t_far[l] * T_SLACK) << l);
+                let hit = bits.iter().fold(0, |a, b| a | b) as u8 & rays_in;
                 if hit == 0 {
                     continue;
                 }

@@ -318,8 +318,8 @@ pub(crate) fn crossings_filtered<const N: usize>(
         let b0 = DET3_BOUND * (dn * ma) * mb + DET3_FLOOR;
         let b1 = DET3_BOUND * (dn * mb) * mc + DET3_FLOOR;
         let b2 = DET3_BOUND * (dn * mc) * ma + DET3_FLOOR;
-        let pos = u8::from(e0 > b0) | u8::from(e1 > b1) << 1 | u8::from(e2 > b2) << 2;
-        let neg = u8::from(e0 < -b0) | u8::from(e1 < -b1) << 1 | u8::from(e2 < -b2) << 2;
+        let (p0, p1, p2) = (e0 > b0, e1 > b1, e2 > b2);
+        let (n0, n1, n2) = (e0 < -b0, e1 < -b1, e2 < -b2);
         let sum = e0 + e1 + e2;
         let sum_bound = (b0 + b1 + b2) * (1.0 + f64::EPSILON) + sum.abs() * (2.0 * f64::EPSILON);
         let fp = dot(pa, cbc);
@@ -327,30 +327,24 @@ pub(crate) fn crossings_filtered<const N: usize>(
         let both = (sum_bound + fp_bound) * (1.0 + f64::EPSILON);
         let gap = (sum.abs() - fp.abs()) * (1.0 - f64::EPSILON);
         let beyond = (fp.abs() - sum.abs()) * (1.0 - f64::EPSILON) > both;
-        // The rules from the last to the first: an earlier one overrides.
-        let mut v = Filtered::Hit;
-        if fp_bound > fp.abs() * CROSSING_REL || sum_bound > sum.abs() * CROSSING_REL {
-            v = Filtered::Unsure;
-        }
-        if gap.is_nan() || gap <= both {
-            v = if beyond {
-                Filtered::Miss
-            } else {
-                Filtered::Unsure
-            };
-        }
-        if (fp > 0.0) != (sum > 0.0) {
-            v = Filtered::Miss;
-        }
-        if fp.abs() <= fp_bound {
-            v = Filtered::Unsure;
-        }
-        if pos != 7 && neg != 7 {
-            v = Filtered::Unsure;
-        }
-        if pos != 0 && neg != 0 {
-            v = Filtered::Miss;
-        }
+        // The scalar function's rules in its order, without branches (so
+        // that the lanes run side by side): the first that applies decides.
+        let opposite = (p0 | p1 | p2) & (n0 | n1 | n2);
+        let mixed = !(p0 & p1 & p2) & !(n0 & n1 & n2);
+        let flat = fp.abs() <= fp_bound;
+        let behind = (fp > 0.0) != (sum > 0.0);
+        let near_x = gap.is_nan() | (gap <= both);
+        let loose = (fp_bound > fp.abs() * CROSSING_REL) | (sum_bound > sum.abs() * CROSSING_REL);
+        let open = !opposite & !mixed & !flat;
+        let miss = opposite | (open & (behind | (near_x & beyond)));
+        let hit = open & !behind & !near_x & !loose;
+        let v = if hit {
+            Filtered::Hit
+        } else if miss {
+            Filtered::Miss
+        } else {
+            Filtered::Unsure
+        };
         verdict[i] = v;
         u[i] = (fp / sum).max(f64::from_bits(1));
     }
