@@ -183,6 +183,71 @@ fn matches_brute_force_on_closed_meshes() {
     }
 }
 
+/// Rays from one origin within a narrow cone, as a camera's are: the batch
+/// query traces eight such rays through one walk of the tree. Each ray's
+/// answer is checked against brute force and one query per ray; the
+/// directions are aimed at corners, edges and inner points of nearby
+/// triangles (soups with coincident copies and shared edges, and closed
+/// meshes), so ties and watertightness are exercised in packets too.
+#[test]
+fn coherent_batches_match_brute_force() {
+    let mut rng = Rng::new(11);
+    let (mut rays, mut coherent) = (0, 0);
+    for case in 0..240 {
+        let triangles = if case % 2 == 0 {
+            visibility_case(&mut rng, 40).triangles
+        } else {
+            triangles_of(&closed_mesh(&mut rng))
+        };
+        let bvh = bvh_of(triangles.clone());
+        let (lo, hi) = triangles.iter().flatten().fold(
+            (DVec3::splat(f64::INFINITY), DVec3::splat(f64::NEG_INFINITY)),
+            |(lo, hi), &p| (lo.min(p), hi.max(p)),
+        );
+        let (centre, size) = ((lo + hi) * 0.5, (hi - lo).max_element());
+        for _ in 0..6 {
+            let origin = centre + unit(&mut rng) * size * rng.uniform(2.0, 8.0);
+            let n = 8 + rng.below(17) as usize;
+            // Aimed at points of one triangle, or about its centre.
+            let t = &triangles[rng.below(triangles.len() as u64) as usize];
+            let about = ((t[0] + t[1] + t[2]) / 3.0 - origin).normalize();
+            let spread = rng.log_uniform(-4.0, -1.0);
+            let batch: Vec<(DVec3, DVec3)> = (0..n)
+                .map(|_| {
+                    let d = if rng.chance(0.8) {
+                        point_on(&mut rng, t) - origin
+                    } else {
+                        about + unit(&mut rng) * spread
+                    };
+                    (origin, d * rng.log_uniform(-1.0, 1.0))
+                })
+                .collect();
+            let tm = t_max(&mut rng) * size;
+            let mut out = Vec::new();
+            bvh.closest_hits(&batch, tm, &mut out);
+            for (k, (&(o, d), hit)) in batch.iter().zip(&out).enumerate() {
+                assert_eq!(*hit, check(&bvh, o, d, tm), "case {case}, ray {k}");
+            }
+            rays += n;
+            // Packets the batch may trace together (directions within a
+            // quarter of each other in max-norm units).
+            for group in batch.chunks_exact(8) {
+                let s = |d: DVec3| d / d.abs().max_element();
+                let s0 = s(group[0].1);
+                coherent += usize::from(
+                    group
+                        .iter()
+                        .all(|&(_, d)| (s(d) - s0).abs().max_element() <= 0.25),
+                );
+            }
+        }
+    }
+    assert!(
+        coherent > 1500,
+        "{coherent} coherent packets of {rays} rays"
+    );
+}
+
 /// Convex closed meshes with shared, bit-identical corners: UV spheres,
 /// boxes and icospheres at random scales and offsets.
 fn convex_meshes(rng: &mut Rng) -> Vec<(Vec<[DVec3; 3]>, DVec3, f64)> {

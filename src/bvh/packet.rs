@@ -234,6 +234,11 @@ fn each<T>(f: impl FnMut(usize) -> T) -> [T; PACKET] {
 }
 
 impl Bvh {
+    /// The widest spread of a packet's directions, each divided by its
+    /// max-norm: `|s − s₀|∞`, `s₀` the first ray's (ours: 8 adjacent
+    /// pixels of a 32-pixel-wide image of 40° spread about 0.17).
+    const CONE: f64 = 0.25;
+
     /// [`Bvh::probe`] and [`Ray32::new`] of every ray of the packet, the
     /// same operations lane by lane (so the same bits, in vector
     /// registers); `None` where either refuses a ray.
@@ -268,6 +273,19 @@ impl Bvh {
                 direction[k][l] / m[l]
             }
         });
+        // Coherent packets only: one origin, directions within a narrow
+        // cone (`|s − s₀|∞ ≤ 1/4`, `|s|∞ = 1`). Elsewhere a shared walk
+        // visits more than its rays would apart (measured: random rays,
+        // and random directions from one origin, 13–40 % slower).
+        for k in 0..3 {
+            for l in 0..PACKET {
+                refused |= origin[k][l].to_bits() != origin[k][0].to_bits();
+                refused |= !((s[k][l] - s[k][0]).abs() <= Bvh::CONE);
+            }
+        }
+        if refused {
+            return None;
+        }
         let far = each(|l| {
             let gap = |k: usize| (hi[k] - origin[k][l]).max(origin[k][l] - lo[k]);
             let max = |a: f64, b: f64| if a > b { a } else { b };
