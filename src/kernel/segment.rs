@@ -376,7 +376,7 @@ mod tests {
         let mut seen = [0usize; 3];
         for case in 0..4000 {
             let scale = rng.log_uniform(-6.0, 6.0);
-            let mut point = |rng: &mut Rng| {
+            let point = |rng: &mut Rng| {
                 DVec3::new(
                     rng.uniform(-1.0, 1.0),
                     rng.uniform(-1.0, 1.0),
