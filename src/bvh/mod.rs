@@ -42,7 +42,9 @@
 //! boxes the build groups; `node.rs` the quantised 4-wide
 //! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
 //! traversal ([`Bvh::segment_unoccluded`]); `closest.rs` the closest hit
-//! ([`Bvh::closest_hit`], [`Hit`]); `hull.rs` the culling query of the exact
+//! ([`Bvh::closest_hit`], [`Hit`]); `packet.rs` the closest hits of eight
+//! coherent rays through one walk (for [`Bvh::closest_hits`]); `hull.rs`
+//! the culling query of the exact
 //! reference ([`Bvh::triangles_meeting_hull`]); `occluders.rs` the
 //! triangle list. The exact segment–triangle test itself is a kernel,
 //! [`crate::kernel::segment`].

@@ -20,9 +20,10 @@ type Lanes32 = [f32; PACKET];
 impl Bvh {
     /// [`Bvh::closest_hit`] of each of the [`PACKET`] `rays` into `out`,
     /// the same answers bit for bit; `false` (and `out` untouched) where
-    /// the packet is left to one query per ray: triangles kept out of the
-    /// tree, no tree, a ray the query refuses or whose segment leaves the
-    /// `f32` range, or a tree deeper than the packet's stack.
+    /// the packet is left to one query per ray: rays that do not share
+    /// one origin and a narrow cone ([`Bvh::CONE`]), triangles kept out of
+    /// the tree, no tree, a ray the query refuses or whose segment leaves
+    /// the `f32` range, or a tree deeper than the packet's stack.
     ///
     /// The walk visits a node for the rays whose slab test kept it in its
     /// parent (each ray's own conservative test, limited by its own
