@@ -210,7 +210,7 @@ impl Bvh {
     }
 }
 
-/// The packet's rays as [`Bvh::probe`] and [`Ray32::new`] make them, in
+/// The packet's rays as [`Bvh::probe`] and [`Ray32::new`](super::ray::Ray32::new) make them, in
 /// structure-of-arrays form (`[axis][ray]`).
 struct Setup {
     o: [F64s; 3],
@@ -240,7 +240,7 @@ impl Bvh {
     /// pixels of a 32-pixel-wide image of 40° spread about 0.17).
     const CONE: f64 = 0.25;
 
-    /// [`Bvh::probe`] and [`Ray32::new`] of every ray of the packet, the
+    /// [`Bvh::probe`] and [`Ray32::new`](super::ray::Ray32::new) of every ray of the packet, the
     /// same operations lane by lane (so the same bits, in vector
     /// registers); `None` where either refuses a ray.
     #[inline(always)]
