@@ -51,27 +51,16 @@ impl Bvh {
         {
             return false;
         }
-        let Some(Setup {
-            o,
-            x,
-            d,
-            d_norm,
-            scale,
-            near,
-            far,
-            inv,
-            back,
-        }) = self.setup(rays)
-        else {
+        let Some(ray) = self.setup(rays) else {
             return false;
         };
         // The entry side of each axis where every ray has the same.
         let sides: Option<[usize; 3]> = (0..3)
-            .all(|k| back[k].iter().all(|&m| m == back[k][0]))
-            .then(|| core::array::from_fn(|k| usize::from(back[k][0] != 0)));
+            .all(|k| ray.back[k].iter().all(|&m| m == ray.back[k][0]))
+            .then(|| core::array::from_fn(|k| usize::from(ray.back[k][0] != 0)));
         let mut limit: Lanes32 = core::array::from_fn(|l| {
             if t_max < f64::INFINITY {
-                1.0f32.min(f32_up(t_max / scale[l] * (1.0 + U_SLACK)))
+                1.0f32.min(f32_up(t_max / ray.scale[l] * (1.0 + U_SLACK)))
             } else {
                 1.0
             }
@@ -106,8 +95,8 @@ impl Bvh {
                     let plane = |side: usize| decode(n.origin[k], n.q[side][k][lane], n.scale[k]);
                     let mut axis = |entry: &dyn Fn(usize) -> f32, exit: &dyn Fn(usize) -> f32| {
                         for l in 0..PACKET {
-                            let a = (entry(l) - near[k][l]) * inv[k][l];
-                            let b = (exit(l) - far[k][l]) * inv[k][l];
+                            let a = (entry(l) - ray.near[k][l]) * ray.inv[k][l];
+                            let b = (exit(l) - ray.far[k][l]) * ray.inv[k][l];
                             t_near[l] = if a > t_near[l] { a } else { t_near[l] };
                             t_far[l] = if b < t_far[l] { b } else { t_far[l] };
                         }
@@ -118,7 +107,7 @@ impl Bvh {
                         axis(&|_| entry, &|_| exit);
                     } else {
                         let (lo, hi) = (plane(0).to_bits(), plane(1).to_bits());
-                        let m = &back[k];
+                        let m = &ray.back[k];
                         axis(&|l| f32::from_bits((hi & m[l]) | (lo & !m[l])), &|l| {
                             f32::from_bits((lo & m[l]) | (hi & !m[l]))
                         });
@@ -156,7 +145,7 @@ impl Bvh {
                 let i = (child & !LEAF) as usize;
                 let t = &self.triangles[i];
                 let id = self.ids[i];
-                let (verdict, u) = crossings_filtered(&o, &d, &d_norm, t);
+                let (verdict, u) = crossings_filtered(&ray.o, &ray.d, &ray.d_norm, t);
                 let mut rest = hit;
                 while rest != 0 {
                     let l = rest.trailing_zeros() as usize;
@@ -166,14 +155,14 @@ impl Bvh {
                         Filtered::Hit => u[l],
                         Filtered::Unsure => {
                             let at = |v: &[[f64; PACKET]; 3]| DVec3::new(v[0][l], v[1][l], v[2][l]);
-                            match crossing(at(&o), at(&x), at(&d), d_norm[l], t) {
+                            match crossing(at(&ray.o), at(&ray.x), at(&ray.d), ray.d_norm[l], t) {
                                 Some(u) => u,
                                 None => continue,
                             }
                         }
                     };
                     if (u < best_u[l] || (u == best_u[l] && id < best_id[l]))
-                        && u * scale[l] <= t_max
+                        && u * ray.scale[l] <= t_max
                     {
                         best_u[l] = u;
                         best_id[l] = id;
@@ -199,7 +188,7 @@ impl Bvh {
                 None
             } else {
                 Some(Hit {
-                    t: (best_u[l] * scale[l]).clamp(f64::from_bits(1), t_max.min(f64::MAX)),
+                    t: (best_u[l] * ray.scale[l]).clamp(f64::from_bits(1), t_max.min(f64::MAX)),
                     triangle: id,
                     object: objects[id as usize],
                     normal: facing(normals[id as usize], rays[l].1),
