@@ -54,6 +54,8 @@ impl Bvh {
         let Some(ray) = self.setup(rays) else {
             return false;
         };
+        // The rays' one origin (see `setup`).
+        let origin = DVec3::new(ray.o[0][0], ray.o[1][0], ray.o[2][0]);
         // The entry side of each axis where every ray has the same.
         let sides: Option<[usize; 3]> = (0..3)
             .all(|k| ray.back[k].iter().all(|&m| m == ray.back[k][0]))
@@ -145,7 +147,7 @@ impl Bvh {
                 let i = (child & !LEAF) as usize;
                 let t = &self.triangles[i];
                 let id = self.ids[i];
-                let (verdict, u) = crossings_filtered(&ray.o, &ray.d, &ray.d_norm, t);
+                let (verdict, u) = crossings_filtered(origin, &ray.d, &ray.d_norm, t);
                 let mut rest = hit;
                 while rest != 0 {
                     let l = rest.trailing_zeros() as usize;
