@@ -258,13 +258,18 @@ impl Bvh {
         let m = norm(&direction);
         let inv_m = each(|l| 1.0 / m[l]);
         let by_inverse = each(|l| (1e-300..=1e300).contains(&m[l]));
-        let s = axes(&|k, l| {
-            if by_inverse[l] {
-                direction[k][l] * inv_m[l]
-            } else {
-                direction[k][l] / m[l]
-            }
-        });
+        // (The divisions only where some ray needs them.)
+        let s = if by_inverse.iter().all(|&b| b) {
+            axes(&|k, l| direction[k][l] * inv_m[l])
+        } else {
+            axes(&|k, l| {
+                if by_inverse[l] {
+                    direction[k][l] * inv_m[l]
+                } else {
+                    direction[k][l] / m[l]
+                }
+            })
+        };
         // Coherent packets only: one origin, directions within a narrow
         // cone (`|s − s₀|∞ ≤ 1/4`, `|s|∞ = 1`). Elsewhere a shared walk
         // visits more than its rays would apart (measured: random rays,
@@ -289,13 +294,17 @@ impl Bvh {
         let x = axes(&|k, l| origin[k][l] + s[k][l] * reach[l]);
         let d = axes(&|k, l| x[k][l] - origin[k][l]);
         let d_norm = norm(&d);
-        let scale = each(|l| {
-            if by_inverse[l] {
-                reach[l] * inv_m[l]
-            } else {
-                reach[l] / m[l]
-            }
-        });
+        let scale = if by_inverse.iter().all(|&b| b) {
+            each(|l| reach[l] * inv_m[l])
+        } else {
+            each(|l| {
+                if by_inverse[l] {
+                    reach[l] * inv_m[l]
+                } else {
+                    reach[l] / m[l]
+                }
+            })
+        };
         let x_norm = norm(&x);
         for l in 0..PACKET {
             refused |= m[l] == 0.0 || reach[l].is_nan() || reach[l] <= 0.0;
