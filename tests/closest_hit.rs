@@ -219,7 +219,14 @@ fn coherent_batches_match_brute_force() {
                     } else {
                         about + unit(&mut rng) * spread
                     };
-                    (origin, d * rng.log_uniform(-1.0, 1.0))
+                    // Now and then a length outside `[1e-300, 1e300]`,
+                    // where the set-up divides instead.
+                    let length = match rng.below(20) {
+                        0 => 1e-305,
+                        1 => 1e303,
+                        _ => rng.log_uniform(-1.0, 1.0),
+                    };
+                    (origin, d * length)
                 })
                 .collect();
             let tm = t_max(&mut rng) * size;
