@@ -193,6 +193,38 @@ pub(crate) fn crossing(p: DVec3, x: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]
 /// triangles seen from afar, to the expansion arithmetic.)
 const CROSSING_REL: f64 = 1.0 / (1u64 << 25) as f64;
 
+/// What the filtered crossing needs of a triangle seen from the
+/// segment's start `p`, before the segment's direction: the corners less
+/// `p` and their max-norms, and two of the three cross products (the
+/// third, `pc × pa`, is needed only past the filter's first exit).
+struct Seen {
+    pa: DVec3,
+    pc: DVec3,
+    ma: f64,
+    mb: f64,
+    mc: f64,
+    /// `pb × pc`, `pa × pb`.
+    cbc: DVec3,
+    cab: DVec3,
+}
+
+impl Seen {
+    #[inline(always)]
+    fn from(p: DVec3, t: &[DVec3; 3]) -> Seen {
+        let [a, b, c] = *t;
+        let (pa, pb, pc) = (a - p, b - p, c - p);
+        Seen {
+            pa,
+            pc,
+            ma: pa.abs().max_element(),
+            mb: pb.abs().max_element(),
+            mc: pc.abs().max_element(),
+            cbc: pb.cross(pc),
+            cab: pa.cross(pb),
+        }
+    }
+}
+
 /// [`segment_crossing`] by one rounded evaluation of the determinants of
 /// [`segment_blocked_filtered`] (the three edge determinants
 /// `eᵢ = d · (pᵢ × pᵢ₊₁)` with `pᵢ` the corners minus `p`, and
@@ -205,28 +237,20 @@ const CROSSING_REL: f64 = 1.0 / (1u64 << 25) as f64;
 /// exactly, so `f(x) = f(p) − (e₀ + e₁ + e₂)`, and `u = f(p) / Σeᵢ`.
 #[inline(always)]
 fn crossing_filtered(p: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]) -> Option<Option<f64>> {
-    let [a, b, c] = *t;
-    let (pa, pb, pc) = (a - p, b - p, c - p);
-    let (ma, mb, mc) = (
-        pa.abs().max_element(),
-        pb.abs().max_element(),
-        pc.abs().max_element(),
-    );
-    let cbc = pb.cross(pc);
-    let cab = pa.cross(pb);
-    let (e0, e1) = (d.dot(cab), d.dot(cbc));
+    let seen = Seen::from(p, t);
+    let (e0, e1) = (d.dot(seen.cab), d.dot(seen.cbc));
     let (b0, b1) = (
-        DET3_BOUND * (d_norm * ma) * mb + DET3_FLOOR,
-        DET3_BOUND * (d_norm * mb) * mc + DET3_FLOOR,
+        DET3_BOUND * (d_norm * seen.ma) * seen.mb + DET3_FLOOR,
+        DET3_BOUND * (d_norm * seen.mb) * seen.mc + DET3_FLOOR,
     );
     // Two edges certainly opposite: the line passes outside (most boxes
     // the traversal reaches hold a triangle the ray misses).
     if (e0 > b0 && e1 < -b1) || (e0 < -b0 && e1 > b1) {
         return Some(None);
     }
-    let cca = pc.cross(pa);
+    let cca = seen.pc.cross(seen.pa);
     let e2 = d.dot(cca);
-    let b2 = DET3_BOUND * (d_norm * mc) * ma + DET3_FLOOR;
+    let b2 = DET3_BOUND * (d_norm * seen.mc) * seen.ma + DET3_FLOOR;
     let pos = u8::from(e0 > b0) | u8::from(e1 > b1) << 1 | u8::from(e2 > b2) << 2;
     let neg = u8::from(e0 < -b0) | u8::from(e1 < -b1) << 1 | u8::from(e2 < -b2) << 2;
     if pos != 0 && neg != 0 {
@@ -240,8 +264,8 @@ fn crossing_filtered(p: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]) -> Option<
     // same-signed terms (`γ₂`).
     let sum = e0 + e1 + e2;
     let sum_bound = (b0 + b1 + b2) * (1.0 + f64::EPSILON) + sum.abs() * (2.0 * f64::EPSILON);
-    let fp = pa.dot(cbc);
-    let fp_bound = DET3_BOUND * (ma * mb) * mc + DET3_FLOOR;
+    let fp = seen.pa.dot(seen.cbc);
+    let fp_bound = DET3_BOUND * (seen.ma * seen.mb) * seen.mc + DET3_FLOOR;
     if fp.abs() <= fp_bound {
         return None;
     }
@@ -293,28 +317,20 @@ pub(crate) fn crossings_filtered<const N: usize>(
     d_norm: &[f64; N],
     t: &[DVec3; 3],
 ) -> ([Filtered; N], [f64; N]) {
-    let [a, b, c] = *t;
-    let (pa, pb, pc) = (a - p, b - p, c - p);
-    let (ma, mb, mc) = (
-        pa.abs().max_element(),
-        pb.abs().max_element(),
-        pc.abs().max_element(),
-    );
-    let cbc = pb.cross(pc);
-    let cab = pa.cross(pb);
-    let cca = pc.cross(pa);
-    let fp = pa.dot(cbc);
-    let fp_bound = DET3_BOUND * (ma * mb) * mc + DET3_FLOOR;
+    let seen = Seen::from(p, t);
+    let cca = seen.pc.cross(seen.pa);
+    let fp = seen.pa.dot(seen.cbc);
+    let fp_bound = DET3_BOUND * (seen.ma * seen.mb) * seen.mc + DET3_FLOOR;
     let flat = fp.abs() <= fp_bound;
     let dot = |v: DVec3, i: usize| (d[0][i] * v.x) + (d[1][i] * v.y) + (d[2][i] * v.z);
     let mut verdict = [Filtered::Unsure; N];
     let mut u = [0.0; N];
     for i in 0..N {
-        let (e0, e1, e2) = (dot(cab, i), dot(cbc, i), dot(cca, i));
+        let (e0, e1, e2) = (dot(seen.cab, i), dot(seen.cbc, i), dot(cca, i));
         let dn = d_norm[i];
-        let b0 = DET3_BOUND * (dn * ma) * mb + DET3_FLOOR;
-        let b1 = DET3_BOUND * (dn * mb) * mc + DET3_FLOOR;
-        let b2 = DET3_BOUND * (dn * mc) * ma + DET3_FLOOR;
+        let b0 = DET3_BOUND * (dn * seen.ma) * seen.mb + DET3_FLOOR;
+        let b1 = DET3_BOUND * (dn * seen.mb) * seen.mc + DET3_FLOOR;
+        let b2 = DET3_BOUND * (dn * seen.mc) * seen.ma + DET3_FLOOR;
         let (p0, p1, p2) = (e0 > b0, e1 > b1, e2 > b2);
         let (n0, n1, n2) = (e0 < -b0, e1 < -b1, e2 < -b2);
         let sum = e0 + e1 + e2;
