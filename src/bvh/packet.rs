@@ -84,7 +84,7 @@ impl Bvh {
         loop {
             let n = &self.nodes[node as usize];
             // Per lane of the node: the rays that may meet its box, and
-            // their least entry (the order of the visit).
+            // the entry of the first of them (the order of the visit).
             let mut kept = [(f32::INFINITY, 0u8, 0usize); WIDTH];
             let mut count = 0;
             for lane in 0..WIDTH {
@@ -125,7 +125,7 @@ impl Bvh {
                 }
                 // The order of the visit: the entry of the first ray kept.
                 let first = t_near[hit.trailing_zeros() as usize];
-                // By least entry (insertion: at most four).
+                // By that entry (insertion: at most four).
                 let mut k = count;
                 let mut item = (first, hit, lane);
                 while k > 0 && kept[k - 1].0 > item.0 {
