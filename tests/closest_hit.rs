@@ -475,6 +475,18 @@ fn invalid_input_gives_none() {
     ] {
         assert_eq!(bvh.closest_hit(o, d, t), None, "{o:?} {d:?} {t:?}");
         assert_eq!(bvh.closest_hit_many(&[(o, d)], t), vec![None]);
+        // One such ray among seven good ones from one origin (a packet the
+        // batch would otherwise trace together): every answer as one
+        // query's.
+        let good = (DVec3::new(0.1, 0.1, 1.0), -DVec3::Z);
+        let mut batch = vec![good; 8];
+        batch[5] = (o, d);
+        let each: Vec<_> = batch
+            .iter()
+            .map(|&(o, d)| bvh.closest_hit(o, d, t))
+            .collect();
+        assert_eq!(bvh.closest_hit_many(&batch, t), each, "{o:?} {d:?} {t:?}");
+        assert_eq!(each[5], None);
     }
     // No triangle, or only non-finite ones.
     assert_eq!(bvh_of(vec![]).closest_hit(o, d, f64::INFINITY), None);
