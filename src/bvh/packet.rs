@@ -6,7 +6,7 @@
 
 use super::closest::{facing, U_SLACK};
 use super::node::{decode, EMPTY, LEAF, WIDTH};
-use super::ray::{STACK, T_SLACK};
+use super::ray::{Ray32, STACK, T_SLACK};
 use super::{f32_up, Bvh, Hit};
 use crate::kernel::segment::{crossing, crossings_filtered, Filtered};
 use glam::DVec3;
@@ -201,7 +201,7 @@ impl Bvh {
     }
 }
 
-/// The packet's rays as [`Bvh::probe`] and [`Ray32::new`](super::ray::Ray32::new) make them, in
+/// The packet's rays as [`Bvh::probe`] and [`Ray32::new`] make them, in
 /// structure-of-arrays form (`[axis][ray]`).
 struct Setup {
     o: [F64s; 3],
@@ -231,7 +231,7 @@ impl Bvh {
     /// pixels of a 32-pixel-wide image of 40° spread about 0.17).
     const CONE: f64 = 0.25;
 
-    /// [`Bvh::probe`] and [`Ray32::new`](super::ray::Ray32::new) of every ray of the packet, the
+    /// [`Bvh::probe`] and [`Ray32::new`] of every ray of the packet, the
     /// same operations lane by lane (so the same bits, in vector
     /// registers); `None` where either refuses a ray.
     #[inline(always)]
@@ -316,7 +316,6 @@ impl Bvh {
             return None;
         }
         // `Ray32::new`, axis by axis.
-        const TINY: f32 = 1.0 / (1u128 << 100) as f32;
         let (mut near, mut far, mut inv) = (
             [[0.0f32; PACKET]; 3],
             [[0.0f32; PACKET]; 3],
@@ -324,33 +323,10 @@ impl Bvh {
         );
         let mut back = [[0u32; PACKET]; 3];
         for k in 0..3 {
-            let (p, d) = (&origin[k], &d[k]);
-            let o = each(|l| f64::from(p[l] as f32));
-            let di = each(|l| {
-                let di = d[l] as f32;
-                let tiny = if d[l] < 0.0 { -TINY } else { TINY };
-                if di.abs() < TINY {
-                    tiny
-                } else {
-                    di
-                }
-            });
-            let wide = each(|l| {
-                let delta = (p[l].abs() + d[l].abs()) * (1.0 / f64::from(1u32 << 21))
-                    + 4.0 * f64::from(TINY);
-                delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o[l].abs() / f64::from(1u32 << 23)
-            });
-            let up = each(|l| ((o[l] + wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
-            let down = each(|l| ((o[l] - wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
             for l in 0..PACKET {
-                let backward = di[l] < 0.0;
-                inv[k][l] = 1.0 / di[l];
-                (near[k][l], far[k][l]) = if backward {
-                    (down[l], up[l])
-                } else {
-                    (up[l], down[l])
-                };
-                back[k][l] = 0u32.wrapping_sub(u32::from(backward));
+                let axis = Ray32::axis(origin[k][l], d[k][l]);
+                (near[k][l], far[k][l], inv[k][l]) = (axis.near, axis.far, axis.inv);
+                back[k][l] = 0u32.wrapping_sub(u32::from(axis.backward));
             }
         }
         Some(Setup {

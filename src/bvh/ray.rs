@@ -155,10 +155,18 @@ pub(super) struct Ray32 {
     /// The origin subtracted from the exit plane of each axis.
     pub(super) far: [f32; 3],
     /// `1/d` per axis.
-    pub(super) inv: [f32; 3],
+    inv: [f32; 3],
     /// The side (index of [`Node::q`]) of the entry plane of each axis: `1`
     /// (the maximum) where `dᵢ < 0`.
     pub(super) entry: [usize; 3],
+}
+
+/// One axis of a [`Ray32`] ([`Ray32::axis`]).
+pub(super) struct Axis32 {
+    pub(super) near: f32,
+    pub(super) far: f32,
+    pub(super) inv: f32,
+    pub(super) backward: bool,
 }
 
 /// `1 + 2⁻²⁰`: covers the `(1 + γ₃)/(1 − γ₃)` of three roundings on each side
@@ -172,7 +180,6 @@ impl Ray32 {
         if !(in_f32_range(p) && in_f32_range(x)) {
             return None;
         }
-        const TINY: f32 = 1.0 / (1u128 << 100) as f32;
         let d = x - p;
         let mut ray = Ray32 {
             near: [0.0; 3],
@@ -181,24 +188,39 @@ impl Ray32 {
             entry: [0; 3],
         };
         for i in 0..3 {
-            let o = f64::from(p[i] as f32);
-            let mut di = d[i] as f32;
-            if di.abs() < TINY {
-                di = if d[i] < 0.0 { -TINY } else { TINY };
-            }
-            let delta =
-                (p[i].abs() + d[i].abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
-            // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
-            // (see `Bvh::segment_unoccluded`): no branch per rounding.
-            let wide =
-                delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o.abs() / f64::from(1u32 << 23);
-            let up = ((o + wide) as f32).clamp(-f32::MAX, f32::MAX);
-            let down = ((o - wide) as f32).clamp(-f32::MAX, f32::MAX);
-            ray.entry[i] = usize::from(di < 0.0);
-            ray.inv[i] = 1.0 / di;
-            (ray.near[i], ray.far[i]) = if di < 0.0 { (down, up) } else { (up, down) };
+            let axis = Ray32::axis(p[i], d[i]);
+            ray.entry[i] = usize::from(axis.backward);
+            (ray.near[i], ray.far[i], ray.inv[i]) = (axis.near, axis.far, axis.inv);
         }
         Some(ray)
+    }
+
+    /// One axis of [`Ray32::new`]: from the coordinate `p` of the
+    /// segment's start and `d` of its direction (both within the `f32`
+    /// range), the origins subtracted from the entry and exit planes, the
+    /// reciprocal of the direction, and whether the ray runs toward lower
+    /// values (enters by the upper plane). The packets of closest hits
+    /// call it lane by lane, so that their bits are a single ray's.
+    #[inline(always)]
+    pub(super) fn axis(p: f64, d: f64) -> Axis32 {
+        const TINY: f32 = 1.0 / (1u128 << 100) as f32;
+        let o = f64::from(p as f32);
+        let (di, tiny) = (d as f32, if d < 0.0 { -TINY } else { TINY });
+        let di = if di.abs() < TINY { tiny } else { di };
+        let delta = (p.abs() + d.abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
+        // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
+        // (see `Bvh::segment_unoccluded`): no branch per rounding.
+        let wide = delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o.abs() / f64::from(1u32 << 23);
+        let up = ((o + wide) as f32).clamp(-f32::MAX, f32::MAX);
+        let down = ((o - wide) as f32).clamp(-f32::MAX, f32::MAX);
+        let backward = di < 0.0;
+        let (near, far) = if backward { (down, up) } else { (up, down) };
+        Axis32 {
+            near,
+            far,
+            inv: 1.0 / di,
+            backward,
+        }
     }
 
     /// The lanes of `n` whose box the segment may meet, as a bit mask.
