@@ -201,7 +201,7 @@ impl Bvh {
 
     /// See [`Bvh::ray_segment`].
     #[inline(always)]
-    pub(super) fn probe(&self, origin: DVec3, direction: DVec3) -> Option<Probe> {
+    fn probe(&self, origin: DVec3, direction: DVec3) -> Option<Probe> {
         if !(origin.is_finite() && direction.is_finite()) {
             return None;
         }
@@ -337,16 +337,15 @@ pub struct Hit {
 }
 
 /// The segment a closest-hit query decides on (see [`Bvh::ray_segment`]).
-#[derive(Clone, Copy)]
-pub(super) struct Probe {
-    pub(super) o: DVec3,
+struct Probe {
+    o: DVec3,
     /// The far point.
-    pub(super) x: DVec3,
+    x: DVec3,
     /// `x − o`, rounded, and its max-norm.
-    pub(super) d: DVec3,
-    pub(super) d_norm: f64,
+    d: DVec3,
+    d_norm: f64,
     /// The ray parameter of `x`: a crossing at `u` is the hit `u · scale`.
-    pub(super) scale: f64,
+    scale: f64,
 }
 
 impl Probe {
