@@ -54,8 +54,6 @@ impl Bvh {
         let Some(ray) = self.setup(rays) else {
             return false;
         };
-        // The rays' one origin (see `setup`).
-        let origin = DVec3::new(ray.o[0][0], ray.o[1][0], ray.o[2][0]);
         // The entry side of each axis where every ray has the same.
         let sides: Option<[usize; 3]> = (0..3)
             .all(|k| ray.back[k].iter().all(|&m| m == ray.back[k][0]))
@@ -147,7 +145,7 @@ impl Bvh {
                 let i = (child & !LEAF) as usize;
                 let t = &self.triangles[i];
                 let id = self.ids[i];
-                let (verdict, u) = crossings_filtered(origin, &ray.d, &ray.d_norm, t);
+                let (verdict, u) = crossings_filtered(ray.origin, &ray.d, &ray.d_norm, t);
                 let mut rest = hit;
                 while rest != 0 {
                     let l = rest.trailing_zeros() as usize;
@@ -157,7 +155,7 @@ impl Bvh {
                         Filtered::Hit => u[l],
                         Filtered::Unsure => {
                             let at = |v: &[[f64; PACKET]; 3]| DVec3::new(v[0][l], v[1][l], v[2][l]);
-                            match crossing(at(&ray.o), at(&ray.x), at(&ray.d), ray.d_norm[l], t) {
+                            match crossing(ray.origin, at(&ray.x), at(&ray.d), ray.d_norm[l], t) {
                                 Some(u) => u,
                                 None => continue,
                             }
@@ -204,7 +202,8 @@ impl Bvh {
 /// The packet's rays as [`Bvh::probe`] and [`Ray32::new`] make them, in
 /// structure-of-arrays form (`[axis][ray]`).
 struct Setup {
-    o: [F64s; 3],
+    /// The rays' one origin (a packet's rays share it).
+    origin: DVec3,
     x: [F64s; 3],
     d: [F64s; 3],
     d_norm: F64s,
@@ -330,7 +329,7 @@ impl Bvh {
             }
         }
         Some(Setup {
-            o: origin,
+            origin: rays[0].0,
             x,
             d,
             d_norm,
