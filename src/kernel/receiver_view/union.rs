@@ -1854,8 +1854,8 @@ mod tests {
             assert!(with > 0.0, "case {case}");
         }
         assert!(2 * dropped > edges, "{dropped} of {edges} edges dropped");
-        // The searches left most of their cells out, so the bits above
-        // were compared with that at work.
+        // The searched edges took more than one covered passage each on
+        // average, so the bits above were compared with that at work.
         assert!(
             left_out > searched,
             "{left_out} covered passages over {searched} searched edges"
