@@ -1094,11 +1094,12 @@ impl Sum {
 /// units in the last place of `half` or of the cell index, about `2⁻⁴²` of
 /// a cell.
 ///
-/// The walk is taken only where needed: blocks of 8 × 8 cells all marked
-/// are listed, and an edge whose bounds (grown by the walk's margin) lie
-/// in such blocks is covered, as every point of it lies in its bounds. On
-/// the pile of 4096 images below the blocks decide 8,591 of the 25,277
-/// questions (edges, and passages of [`searched_cells`]).
+/// The walk is first taken over blocks of [`Interior::BLOCK`] cells a
+/// side, those all marked listed ([`Interior::blocks_cover`]): where every
+/// block along the course is all marked, so is every cell the walk over
+/// the cells would take, and that walk is left out. On the pile of 4096
+/// images below the blocks decide 9,945 of the 25,277 questions (edges,
+/// and passages of [`searched_cells`]), at 16384 images 48,255 of 53,238.
 ///
 /// Measured on the pile of 4096 images in `benches/references.rs`: of its
 /// 12,138 edges, 9,143 of the 10,336 covered whole are dropped here,
@@ -1145,6 +1146,9 @@ impl Interior {
 
     /// The most cells a side.
     const MOST: usize = 1024;
+
+    /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
+    const BLOCK: usize = 8;
 
     /// The triangles the depth is estimated from (ours: 64 put the pile of
     /// 2048 images, 2 deep, above 2.5).
@@ -1194,18 +1198,15 @@ impl Interior {
         let margin = self.w / f64::from(1_u32 << 20);
         let last = n as f64;
         'tris: for t in tris {
-            // Each edge's bound on the cells of a row inside its line.
-            let mut bounds = [EdgeBound::Flat {
-                p: 0.0,
-                d: 0.0,
-                m: 0.0,
-            }; 3];
-            for (e, bound) in bounds.iter_mut().enumerate() {
+            // The edges' lines as bounds on the cells of a row inside them.
+            let mut bounds = RowBounds::default();
+            for e in 0..3 {
                 let (p, q) = t.edge(e);
                 let d = q - p;
                 let m = margin * d.abs().max_element();
                 if d.y == 0.0 {
-                    *bound = EdgeBound::Flat { p: p.y, d: d.x, m };
+                    bounds.flat[bounds.flats] = (p.y, d.x, m);
+                    bounds.flats += 1;
                     continue;
                 }
                 // Inside (counter-clockwise): `f = d.x (y − p.y) − d.y (x −
@@ -1224,38 +1225,34 @@ impl Interior {
                     // always safe).
                     continue 'tris;
                 }
-                *bound = EdgeBound::Sloped {
-                    alpha,
-                    beta,
-                    left: d.y < 0.0,
+                // The first free slot (`α` finite where taken): a triangle
+                // has at most two edges on a side, the differences `d.y`
+                // of its corners having their exact signs.
+                let side = if d.y < 0.0 {
+                    &mut bounds.left
+                } else {
+                    &mut bounds.right
                 };
+                side[usize::from(side[0].0.is_finite())] = (alpha, beta);
             }
             for r in self.cell(t.lo.y)..=self.cell(t.hi.y) {
-                // The cells `k0..=k1` of the row inside each edge's line.
-                let (mut k0, mut k1) = (0_i64, n as i64 - 1);
-                for bound in &bounds {
-                    match *bound {
-                        EdgeBound::Sloped { alpha, beta, left } => {
-                            let v = alpha + beta * r as f64;
-                            if left {
-                                // The cell's left `k ≥ v`: the first such
-                                // `k` is at most `floor(v) + 1`, by
-                                // truncation of `v + 1 ≥ 0`.
-                                k0 = k0.max((v.max(-1.0).min(last) + 1.0) as i64);
-                            } else {
-                                // The cell's right `k + 1 ≤ v`.
-                                k1 = k1.min(v.max(0.0).min(last) as i64 - 1);
-                            }
-                        }
-                        EdgeBound::Flat { p, d, m } => {
-                            let y0 = -half + r as f64 * self.w;
-                            let y = if d > 0.0 { y0 } else { y0 + self.w };
-                            if d * (y - p) < m {
-                                k1 = -1;
-                            }
-                        }
-                    }
+                let y0 = -half + r as f64 * self.w;
+                let outside = bounds.flat[..bounds.flats].iter().any(|&(p, d, m)| {
+                    let y = if d > 0.0 { y0 } else { y0 + self.w };
+                    d * (y - p) < m
+                });
+                if outside {
+                    continue;
                 }
+                // The cells `k0..=k1` of the row inside each edge's line:
+                // the cell's left `k ≥ v` past the left edges (the first
+                // such `k` is at most `floor(v) + 1`, by truncation of `v +
+                // 1 ≥ 0`), its right `k + 1 ≤ v` short of the right ones.
+                let at = |(alpha, beta): (f64, f64)| alpha + beta * r as f64;
+                let v0 = at(bounds.left[0]).max(at(bounds.left[1]));
+                let v1 = at(bounds.right[0]).min(at(bounds.right[1]));
+                let k0 = (v0.max(-1.0).min(last) + 1.0) as i64;
+                let k1 = v1.max(0.0).min(last) as i64 - 1;
                 if k0 <= k1 {
                     self.mark(r, k0 as usize, k1 as usize);
                 }
@@ -1267,17 +1264,19 @@ impl Interior {
 
     /// Fills [`Interior::full`] from the marks.
     fn find_full_blocks(&mut self) {
-        let (words, blocks) = (self.n / 64, self.n / 8);
+        const B: usize = Interior::BLOCK;
+        let (words, blocks) = (self.n / 64, self.n / B);
         let block_words = self.block_words();
         self.full.clear();
         self.full.resize(blocks * block_words, 0);
+        let group = u64::MAX >> (64 - B);
         for br in 0..blocks {
             for i in 0..words {
-                let rows = (8 * br..8 * br + 8).map(|r| self.bits[r * words + i]);
+                let rows = (B * br..B * br + B).map(|r| self.bits[r * words + i]);
                 let all = rows.fold(u64::MAX, |x, y| x & y);
-                for byte in 0..8 {
-                    if (all >> (8 * byte)) & 0xff == 0xff {
-                        let k = 8 * i + byte;
+                for g in 0..64 / B {
+                    if (all >> (B * g)) & group == group {
+                        let k = 64 / B * i + g;
                         self.full[br * block_words + k / 64] |= 1 << (k % 64);
                     }
                 }
@@ -1287,7 +1286,7 @@ impl Interior {
 
     /// Words a row of [`Interior::full`].
     fn block_words(&self) -> usize {
-        (self.n / 8).div_ceil(64)
+        (self.n / Interior::BLOCK).div_ceil(64)
     }
 
     /// Row `r` of [`Interior::full`] (blocks `8 r..8 r + 8` of the rows).
@@ -1320,16 +1319,12 @@ impl Interior {
         }
     }
 
-    fn all_marked(&self, r: usize, k0: usize, k1: usize) -> bool {
-        all_set(self.row(r), k0, k1)
-    }
-
     /// Whether every cell the edge `a → b` may pass through is marked: the
-    /// blocks about its bounds are all marked ([`Interior::blocks_cover`]),
-    /// or else the cells along its course ([`Interior::walk_covers`]).
+    /// blocks along its course are all marked ([`Interior::blocks_cover`]),
+    /// or else the cells along its course ([`Interior::cells_cover`]).
     fn covers(&self, a: DVec2, b: DVec2) -> bool {
         self.course(a, b)
-            .is_some_and(|c| self.blocks_cover(&c) || self.walk_covers(&c))
+            .is_some_and(|c| self.blocks_cover(&c) || self.cells_cover(&c))
     }
 
     /// The edge `a → b` in cells, `None` where it leaves the square.
@@ -1347,69 +1342,100 @@ impl Interior {
             lo: DVec2::new(lx, ly),
             hi: DVec2::new(hx, hy),
             rows: (cell(ly - Course::EPS), cell(hy + Course::EPS)),
-            columns: (
-                cell(lx.min(hx) - Course::EPS),
-                cell(lx.max(hx) + Course::EPS),
-            ),
         })
     }
 
-    /// Whether the blocks about the course's bounds are all marked. Every
-    /// point of the edge lies in its bounds, so then every cell the walk
-    /// would take is marked too.
+    /// Whether the blocks along the course are all marked: the walk of
+    /// [`walk_covers`] over the blocks, the course scaled to them. Its
+    /// margin, `10⁻⁶ (1 + |s|)` blocks, is [`Interior::BLOCK`] times what
+    /// the cells within `10⁻⁶ (1 + |s|)` cells of the course need, so each
+    /// cell [`Interior::cells_cover`] would take lies in a block this
+    /// takes.
     #[inline(always)]
     fn blocks_cover(&self, c: &Course) -> bool {
-        let (k0, k1) = (c.columns.0 / 8, c.columns.1 / 8);
-        (c.rows.0 / 8..=c.rows.1 / 8).all(|r| all_set(self.block_row(r), k0, k1))
+        const B: usize = Interior::BLOCK;
+        let rows = (c.rows.0 / B, c.rows.1 / B);
+        let scale = 1.0 / B as f64;
+        walk_covers(c.lo * scale, c.hi * scale, rows, self.n / B, |r| {
+            self.block_row(r)
+        })
     }
 
     /// Whether every cell within `10⁻⁶ (1 + |s|)` of the course is marked
-    /// (row by row; `s` its slope against `y`).
+    /// ([`walk_covers`]).
     #[inline(always)]
-    fn walk_covers(&self, c: &Course) -> bool {
-        let ((lx, ly), (hx, hy)) = ((c.lo.x, c.lo.y), (c.hi.x, c.hi.y));
-        let level = hy <= ly;
-        let slope = if level { 0.0 } else { (hx - lx) / (hy - ly) };
-        let eps = Course::EPS * (1.0 + slope.abs());
-        let top = (self.n - 1) as i64;
-        // The course's `x` where it enters row `r` (at `y = ly` in the
-        // first row, at `y = r` after) and where it leaves it (at `y = r +
-        // 1`, at `y = hy` in the last); a level edge's whole course in each.
-        let mut x_in = lx;
-        for r in c.rows.0..=c.rows.1 {
-            let x_out = if level {
-                hx
-            } else {
-                lx + (((r + 1) as f64).min(hy) - ly) * slope
-            };
-            let (x0, x1) = if x_in <= x_out {
-                (x_in, x_out)
-            } else {
-                (x_out, x_in)
-            };
-            if !level {
-                x_in = x_out;
-            }
-            let k0 = ((x0 - eps) as i64).clamp(0, top) as usize;
-            let k1 = ((x1 + eps) as i64).clamp(0, top) as usize;
-            if !self.all_marked(r, k0, k1) {
-                return false;
-            }
-        }
-        true
+    fn cells_cover(&self, c: &Course) -> bool {
+        walk_covers(c.lo, c.hi, c.rows, self.n, |r| self.row(r))
     }
 }
 
-/// One edge of a triangle marked by [`Interior::build`]: where its inner
-/// side starts or ends along a row of cells.
+/// Whether every cell within `10⁻⁶ (1 + |s|)` of the course `lo → hi` (in
+/// cells of a raster `n` cells a side, `lo.y ≤ hi.y`, `s` its slope
+/// against `y`) is set in its row (`row(r)`, bit `k` for the column `k`),
+/// row by row from `rows.0` to `rows.1`.
+#[inline(always)]
+fn walk_covers<'a>(
+    lo: DVec2,
+    hi: DVec2,
+    rows: (usize, usize),
+    n: usize,
+    row: impl Fn(usize) -> &'a [u64],
+) -> bool {
+    let ((lx, ly), (hx, hy)) = ((lo.x, lo.y), (hi.x, hi.y));
+    let level = hy <= ly;
+    let slope = if level { 0.0 } else { (hx - lx) / (hy - ly) };
+    let eps = Course::EPS * (1.0 + slope.abs());
+    let top = (n - 1) as i64;
+    // The course's `x` where it enters row `r` (at `y = ly` in the first
+    // row, at `y = r` after) and where it leaves it (at `y = r + 1`, at `y =
+    // hy` in the last); a level edge's whole course in each.
+    let mut x_in = lx;
+    for r in rows.0..=rows.1 {
+        let x_out = if level {
+            hx
+        } else {
+            lx + (((r + 1) as f64).min(hy) - ly) * slope
+        };
+        let (x0, x1) = if x_in <= x_out {
+            (x_in, x_out)
+        } else {
+            (x_out, x_in)
+        };
+        if !level {
+            x_in = x_out;
+        }
+        let k0 = ((x0 - eps) as i64).clamp(0, top) as usize;
+        let k1 = ((x1 + eps) as i64).clamp(0, top) as usize;
+        if !all_set(row(r), k0, k1) {
+            return false;
+        }
+    }
+    true
+}
+
+/// A triangle's edges as [`Interior::build`] bounds the cells of a row
+/// inside them: where its left edges' lines cross row `r`, `α + β r` in
+/// cells from the square's left side (a missing edge at `−∞`), where its
+/// right edges' lines do (`+∞`), and its level edges, from height `p`
+/// running `d` along `x` with the margin `m`, each of which takes a whole
+/// row or none of it.
 #[derive(Clone, Copy, Debug)]
-enum EdgeBound {
-    /// The cells of row `r` from `α + β r` on (`left`) or up to it are
-    /// inside the edge's line, in cells from the square's left side.
-    Sloped { alpha: f64, beta: f64, left: bool },
-    /// A level edge from height `p`, running `d` along `x`, with the
-    /// margin `m`: a row is inside its line, or not at all.
-    Flat { p: f64, d: f64, m: f64 },
+struct RowBounds {
+    left: [(f64, f64); 2],
+    right: [(f64, f64); 2],
+    flat: [(f64, f64, f64); 3],
+    flats: usize,
+}
+
+impl Default for RowBounds {
+    fn default() -> RowBounds {
+        RowBounds {
+            left: [(f64::NEG_INFINITY, 0.0); 2],
+            right: [(f64::INFINITY, 0.0); 2],
+            flat: [(0.0, 0.0, 0.0); 3],
+            flats: 0,
+        }
+    }
 }
 
 /// An edge over the cells of an [`Interior`], in cells from the square's
@@ -1418,10 +1444,8 @@ struct Course {
     /// The end of least `y`, and the other.
     lo: DVec2,
     hi: DVec2,
-    /// The rows and the columns within [`Course::EPS`] of its bounds
-    /// (clamped).
+    /// The rows within [`Course::EPS`] of its ends (clamped).
     rows: (usize, usize),
-    columns: (usize, usize),
 }
 
 impl Course {
@@ -1942,7 +1966,7 @@ mod tests {
             let at = |k: usize| -h + k as f64 * interior.w;
             for r in 0..interior.n {
                 for k in 0..interior.n {
-                    if !interior.all_marked(r, k, k) {
+                    if !all_set(interior.row(r), k, k) {
                         continue;
                     }
                     marked += 1;
@@ -1970,7 +1994,7 @@ mod tests {
                     if interior.blocks_cover(&course) {
                         by_blocks += 1;
                         assert!(
-                            interior.walk_covers(&course),
+                            interior.cells_cover(&course),
                             "case {case}: the blocks cover an edge of {i} the walk does not"
                         );
                     }
@@ -2007,14 +2031,15 @@ mod tests {
             let depth = rng.uniform(3.0, 6.0);
             let tris = pile(case, &mut rng, n, depth, h);
             assert!(interior.build(&tris, h), "case {case}: not deep");
-            for br in 0..interior.n / 8 {
-                for bk in 0..interior.n / 8 {
-                    let cells = (8 * br..8 * br + 8)
-                        .flat_map(|r| (8 * bk..8 * bk + 8).map(move |k| (r, k)))
-                        .filter(|&(r, k)| interior.all_marked(r, k, k))
+            const B: usize = Interior::BLOCK;
+            for br in 0..interior.n / B {
+                for bk in 0..interior.n / B {
+                    let cells = (B * br..B * br + B)
+                        .flat_map(|r| (B * bk..B * bk + B).map(move |k| (r, k)))
+                        .filter(|&(r, k)| all_set(interior.row(r), k, k))
                         .count();
                     let listed = all_set(interior.block_row(br), bk, bk);
-                    assert_eq!(listed, cells == 64, "case {case}: block ({bk}, {br})");
+                    assert_eq!(listed, cells == B * B, "case {case}: block ({bk}, {br})");
                     full += usize::from(listed);
                     blocks += 1;
                 }
