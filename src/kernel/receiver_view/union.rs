@@ -1938,6 +1938,17 @@ mod tests {
         }
     }
 
+    /// Case `case` of the deep piles the [`Interior`] tests run on: its
+    /// square's half-width (`1.5` in even cases, `1` in odd ones) and a
+    /// [`pile`] 3 to 6 deep of [`Interior::FEWEST`] triangles and up to
+    /// `more` more.
+    fn deep_case(case: usize, rng: &mut Rng, more: u64) -> (f64, Vec<Tri>) {
+        let h = if case % 2 == 0 { 1.5 } else { 1.0 };
+        let n = Interior::FEWEST + rng.below(more) as usize;
+        let depth = rng.uniform(3.0, 6.0);
+        (h, pile(case, rng, n, depth, h))
+    }
+
     /// Whether `p` is strictly inside `t` (exactly).
     fn strictly_inside(t: &Tri, p: DVec2) -> bool {
         (0..3).all(|k| {
@@ -1958,10 +1969,7 @@ mod tests {
         let mut interior = Interior::default();
         let (mut marked, mut covered, mut by_blocks) = (0, 0, 0);
         for case in 0..24 {
-            let h = if case % 2 == 0 { 1.5 } else { 1.0 };
-            let n = Interior::FEWEST + rng.below(400) as usize;
-            let depth = rng.uniform(3.0, 6.0);
-            let tris = pile(case, &mut rng, n, depth, h);
+            let (h, tris) = deep_case(case, &mut rng, 400);
             assert!(interior.build(&tris, h), "case {case}: not deep");
             let at = |k: usize| -h + k as f64 * interior.w;
             for r in 0..interior.n {
@@ -2026,10 +2034,7 @@ mod tests {
         let mut interior = Interior::default();
         let (mut full, mut blocks) = (0, 0);
         for case in 0..12 {
-            let h = if case % 2 == 0 { 1.5 } else { 1.0 };
-            let n = Interior::FEWEST + rng.below(1200) as usize;
-            let depth = rng.uniform(3.0, 6.0);
-            let tris = pile(case, &mut rng, n, depth, h);
+            let (h, tris) = deep_case(case, &mut rng, 1200);
             assert!(interior.build(&tris, h), "case {case}: not deep");
             const B: usize = Interior::BLOCK;
             for br in 0..interior.n / B {
@@ -2064,14 +2069,14 @@ mod tests {
         let (mut dropped, mut edges) = (0, 0);
         let (mut searched, mut left_out) = (0, 0);
         for case in 0..60 {
-            let (measure, h) = if case % 2 == 0 {
-                (Measure::Disk(1.0), 1.5)
+            let (h, tris) = deep_case(case, &mut rng, 1200);
+            let n = tris.len();
+            // The disk's measure on the wider square.
+            let measure = if h > 1.0 {
+                Measure::Disk(1.0)
             } else {
-                (Measure::Square, 1.0)
+                Measure::Square
             };
-            let n = Interior::FEWEST + rng.below(1200) as usize;
-            let depth = rng.uniform(3.0, 6.0);
-            let tris = pile(case, &mut rng, n, depth, h);
             let with = union_area(&tris, measure, h, &mut scratch);
             assert!(scratch.interior.n > 0, "case {case}: not deep");
             edges += 3 * n;
