@@ -2026,8 +2026,8 @@ mod tests {
         );
     }
 
-    /// The blocks [`Interior`] lists as all marked are those whose 64
-    /// cells are marked, counted cell by cell.
+    /// The blocks [`Interior`] lists as all marked are those whose cells
+    /// are all marked, counted cell by cell.
     #[test]
     fn full_blocks_are_those_all_marked() {
         let mut rng = Rng::new(47);
