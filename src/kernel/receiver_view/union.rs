@@ -1124,8 +1124,8 @@ struct Interior {
     /// row `r` for the cell `[−half + k w, −half + (k + 1) w] × [−half +
     /// r w, −half + (r + 1) w]`.
     bits: Vec<u64>,
-    /// The blocks of 8 × 8 cells all marked, in the same layout, `n / 8`
-    /// blocks a side (`n / 512` words a row, rounded up).
+    /// The blocks of [`Interior::BLOCK`] cells a side all marked, in the
+    /// same layout: `n / BLOCK` blocks a side, a row's bits in whole words.
     full: Vec<u64>,
 }
 
@@ -1289,7 +1289,8 @@ impl Interior {
         (self.n / Interior::BLOCK).div_ceil(64)
     }
 
-    /// Row `r` of [`Interior::full`] (blocks `8 r..8 r + 8` of the rows).
+    /// Row `r` of [`Interior::full`] (the blocks over the rows `BLOCK r..
+    /// BLOCK (r + 1)` of cells).
     fn block_row(&self, r: usize) -> &[u64] {
         let words = self.block_words();
         &self.full[r * words..(r + 1) * words]
