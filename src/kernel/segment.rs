@@ -290,6 +290,8 @@ fn crossing_filtered(p: DVec3, d: DVec3, d_norm: f64, t: &[DVec3; 3]) -> Option<
 }
 
 /// What [`crossings_filtered`] found for one lane.
+// Used by the BVH's packets alone (feature `bvh`).
+#[cfg_attr(not(feature = "bvh"), allow(dead_code))]
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
 pub(crate) enum Filtered {
     /// Certainly no crossing.
@@ -310,6 +312,7 @@ pub(crate) enum Filtered {
 /// that applies, in the scalar function's order, taken. (The scalar
 /// function's first rule, two edges certainly opposite, is a case of its
 /// second.)
+#[cfg_attr(not(feature = "bvh"), allow(dead_code))]
 #[inline(always)]
 pub(crate) fn crossings_filtered<const N: usize>(
     p: DVec3,

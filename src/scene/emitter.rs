@@ -76,8 +76,9 @@ enum MapKind {
 }
 
 impl PlaneMap {
-    /// [`PlaneMap::approx_grid`] of one sample `s` (the tests' form).
-    #[cfg(test)]
+    /// [`PlaneMap::approx_grid`] of one sample `s` (the Monte Carlo tests'
+    /// form).
+    #[cfg(all(test, feature = "reference"))]
     pub(crate) fn approx(&self, s: DVec2) -> DVec2 {
         match self.kind {
             MapKind::Disk(r) => disk_q(s, r),
