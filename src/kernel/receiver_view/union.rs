@@ -1350,13 +1350,12 @@ impl Interior {
     /// Whether every cell within `10⁻⁶ (1 + |s|)` of the course is marked
     /// (`s` its slope against `y`): the answer of [`Walk`] over the cells
     /// from the first row to the last, found row of blocks by row of
-    /// blocks. In each, the walk of
-    /// [`Walk`] over the blocks, the course scaled to them, takes the
-    /// blocks within `10⁻⁶ (1 + |s|)` blocks of it — [`Interior::BLOCK`]
-    /// times the margin the cells need, so each cell the walk over the
-    /// cells takes in those rows lies in a block this walk takes. Where
-    /// those blocks are all marked, so are those cells, and the walk over
-    /// the cells is left out of that row of blocks.
+    /// blocks. In each row of blocks, [`Walk`] over the blocks (the course
+    /// scaled to them) takes the blocks within `10⁻⁶ (1 + |s|)` blocks of
+    /// the course — [`Interior::BLOCK`] times the margin the cells need —
+    /// so each cell the walk over the cells takes in those rows lies in a
+    /// block taken. Where those blocks are all marked, so are those cells,
+    /// and the walk over the cells is left out of that row of blocks.
     #[inline(always)]
     fn course_covered(&self, c: &Course) -> bool {
         const B: usize = Interior::BLOCK;
