@@ -109,7 +109,7 @@ macro_rules! angle_kernels {
         }
 
         /// `(num, den, swap, regular)`: `num = min(|x|, |y|)`, `den =
-        /// max(|x|, |y|)`, `swap` when `|y| > |x|`; `regular` when [`core`]
+        /// max(|x|, |y|)`, `swap` when `|y| > |x|`; `regular` when [`core()`]
         /// applies (`0 < den < ∞`, no NaN), not for the special values.
         #[inline(always)]
         pub(crate) fn reduce<R: Real<Scalar = $T>>(y: R, x: R) -> (R, R, R::Mask, R::Mask) {

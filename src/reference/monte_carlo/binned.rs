@@ -86,6 +86,8 @@
 //! magnitude, which the receivers, the light and the candidates are held
 //! to (`±10³⁰`, else every sample casts its ray); a sample point with a
 //! nonzero coordinate below `10⁻⁹⁰` is outside that domain by chance only.
+//!
+//! [`segment_blocked`]: crate::kernel::segment::segment_blocked
 
 use super::Replicate;
 use crate::bvh::Bvh;
