@@ -2063,7 +2063,9 @@ mod tests {
     /// covered has each of 65 points along it strictly inside a triangle
     /// other than its own — on random piles and on lattice piles, whose
     /// corners and edges fall on the cells' corners and lines (there a
-    /// margin of zero marks cells touching an edge: seen to fail).
+    /// margin of zero marks cells touching an edge: seen to fail). For
+    /// every edge, the walk a row of blocks at a time answers as the walk
+    /// over the cells from the first row to the last.
     #[test]
     fn marked_cells_lie_inside_a_triangle() {
         let mut rng = Rng::new(41);
