@@ -1359,15 +1359,17 @@ impl Interior {
     #[inline(always)]
     fn course_covered(&self, c: &Course) -> bool {
         const B: usize = Interior::BLOCK;
-        let scale = 1.0 / B as f64;
-        let (first, last) = (c.rows.0 / B, c.rows.1 / B);
-        let mut blocks = Walk::new(c.lo * scale, c.hi * scale, self.n / B, first);
-        let mut cells = Walk::new(c.lo, c.hi, self.n, c.rows.0);
-        for block_row in first..=last {
+        let in_blocks = c.in_blocks();
+        let mut blocks = Walk::new(&in_blocks, self.n / B);
+        // Set up where a row of blocks first fails (most questions the
+        // blocks settle never need it).
+        let mut cells = None;
+        for block_row in in_blocks.rows.0..=in_blocks.rows.1 {
             let (k0, k1) = blocks.step(block_row);
             if all_set(self.block_row(block_row), k0, k1) {
                 continue;
             }
+            let cells = cells.get_or_insert_with(|| Walk::new(c, self.n));
             let rows = c.rows.0.max(B * block_row)..=c.rows.1.min(B * block_row + B - 1);
             cells.enter(*rows.start());
             for r in rows {
@@ -1384,10 +1386,7 @@ impl Interior {
     /// [`Walk`] over the blocks, the course scaled to them, whole.
     #[cfg(test)]
     fn blocks_cover(&self, c: &Course) -> bool {
-        const B: usize = Interior::BLOCK;
-        let rows = (c.rows.0 / B, c.rows.1 / B);
-        let scale = 1.0 / B as f64;
-        walk_covers(c.lo * scale, c.hi * scale, rows, self.n / B, |r| {
+        walk_covers(&c.in_blocks(), self.n / Interior::BLOCK, |r| {
             self.block_row(r)
         })
     }
@@ -1396,32 +1395,25 @@ impl Interior {
     /// the walk over the cells whole.
     #[cfg(test)]
     fn cells_cover(&self, c: &Course) -> bool {
-        walk_covers(c.lo, c.hi, c.rows, self.n, |r| self.row(r))
+        walk_covers(c, self.n, |r| self.row(r))
     }
 }
 
-/// Whether every cell [`Walk`] takes along the course `lo → hi` is set in
-/// its row (`row(r)`, bit `k` for the column `k`), from row `rows.0` to
-/// `rows.1`.
+/// Whether every cell [`Walk`] takes along the course `c` (in a raster `n`
+/// cells a side) is set in its row (`row(r)`, bit `k` for the column `k`),
+/// from its first row to its last.
 #[cfg(test)]
-fn walk_covers<'a>(
-    lo: DVec2,
-    hi: DVec2,
-    rows: (usize, usize),
-    n: usize,
-    row: impl Fn(usize) -> &'a [u64],
-) -> bool {
-    let mut walk = Walk::new(lo, hi, n, rows.0);
-    (rows.0..=rows.1).all(|r| {
+fn walk_covers<'a>(c: &Course, n: usize, row: impl Fn(usize) -> &'a [u64]) -> bool {
+    let mut walk = Walk::new(c, n);
+    (c.rows.0..=c.rows.1).all(|r| {
         let (k0, k1) = walk.step(r);
         all_set(row(r), k0, k1)
     })
 }
 
-/// A walk along the course `lo → hi` (in cells of a raster `n` cells a
-/// side, `lo.y ≤ hi.y`) row by row from its first row: in each, the
-/// columns within `10⁻⁶ (1 + |s|)` of the course (`s` its slope against
-/// `y`), clamped to the raster.
+/// A walk along a [`Course`] (in a raster `n` cells a side) row by row
+/// from its first row: in each, the columns within `10⁻⁶ (1 + |s|)` of the
+/// course (`s` its slope against `y`), clamped to the raster.
 struct Walk {
     lo: DVec2,
     hi: DVec2,
@@ -1437,7 +1429,8 @@ struct Walk {
 
 impl Walk {
     #[inline(always)]
-    fn new(lo: DVec2, hi: DVec2, n: usize, first: usize) -> Walk {
+    fn new(c: &Course, n: usize) -> Walk {
+        let (lo, hi, first) = (c.lo, c.hi, c.rows.0);
         let level = hi.y <= lo.y;
         let slope = if level {
             0.0
@@ -1536,6 +1529,19 @@ struct Course {
 impl Course {
     /// The margin, in cells, for the rounding of the course.
     const EPS: f64 = 1e-6;
+
+    /// The course over the blocks of [`Interior::BLOCK`] cells a side: its
+    /// ends scaled to them, its rows those of blocks holding its rows.
+    #[inline(always)]
+    fn in_blocks(&self) -> Course {
+        const B: usize = Interior::BLOCK;
+        let scale = 1.0 / B as f64;
+        Course {
+            lo: self.lo * scale,
+            hi: self.hi * scale,
+            rows: (self.rows.0 / B, self.rows.1 / B),
+        }
+    }
 }
 
 /// The words `i0..=i1` of a row holding its bits `k0..=k1` (`k0 ≤ k1`),
@@ -2039,12 +2045,19 @@ mod tests {
     /// [`Interior::course_covered`] leaves the cells of that row out (a
     /// wider walk than its own, from the course's start in each row).
     fn some_blocks_cover(interior: &Interior, c: &Course) -> bool {
-        const B: usize = Interior::BLOCK;
-        let scale = 1.0 / B as f64;
-        (c.rows.0 / B..=c.rows.1 / B).any(|r| {
-            let (lo, hi) = (c.lo.min(c.hi), c.lo.max(c.hi));
-            let (lo, hi) = (DVec2::new(lo.x, c.lo.y), DVec2::new(hi.x, c.lo.y));
-            walk_covers(lo * scale, hi * scale, (r, r), interior.n / B, |k| {
+        let (lo, hi) = (c.lo.min(c.hi), c.lo.max(c.hi));
+        let level = Course {
+            lo: DVec2::new(lo.x, c.lo.y),
+            hi: DVec2::new(hi.x, c.lo.y),
+            rows: c.rows,
+        }
+        .in_blocks();
+        (level.rows.0..=level.rows.1).any(|r| {
+            let row = Course {
+                rows: (r, r),
+                ..level
+            };
+            walk_covers(&row, interior.n / Interior::BLOCK, |k| {
                 interior.block_row(k)
             })
         })
