@@ -3,7 +3,7 @@
 //! convex hull of a few points.
 
 use super::node::{Node, EMPTY, LEAF, WIDTH};
-use super::ray::NodeStack;
+use super::ray::{NodeStack, STACK};
 use super::{in_f32_range, Bvh};
 use crate::kernel::lanes;
 use glam::DVec3;
@@ -67,8 +67,8 @@ impl Bvh {
             return out.len() <= cap;
         }
         let hull = Hull::new(points);
-        // Depth-first, as the rays go: at most `stack_need` entries.
-        let mut stack = NodeStack::new();
+        // Depth-first, one node at a time: at most `stack_need` entries.
+        let mut stack = NodeStack::<STACK>::new();
         let stack = stack.entries(self.stack_need);
         let mut top = 1;
         while top > 0 {

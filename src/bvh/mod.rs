@@ -72,6 +72,7 @@ use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::bvh2::Bvh2;
 use obvhs::BvhBuildParams;
+use ray::GROUP;
 use std::fmt;
 use std::time::Duration;
 
@@ -94,8 +95,10 @@ pub struct Bvh {
     triangles: Vec<[DVec3; 3]>,
     /// The index in `occluders` of each of `triangles`.
     ids: Vec<u32>,
-    /// Stack entries a traversal can need.
+    /// Stack entries a depth-first traversal can need.
     stack_need: usize,
+    /// Stack entries [`Bvh::segment_unoccluded`]'s grouped walk can need.
+    grouped_stack_need: usize,
     /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
     /// tree and tested by every query, and their indices in `occluders`.
     outliers: Vec<[DVec3; 3]>,
@@ -209,6 +212,7 @@ impl Bvh {
             triangles: Vec::with_capacity(kept.len()),
             ids: Vec::with_capacity(kept.len()),
             stack_need: 1,
+            grouped_stack_need: 1,
             outliers,
             outlier_ids,
             bounds,
@@ -361,6 +365,17 @@ impl Bvh {
             self.nodes[dst] = node;
         }
         self.stack_need = depth * (WIDTH - 1) + 1;
+        // The grouped walk of `segment_unoccluded` pops the top `g ≤ GROUP`
+        // entries of its stack and pushes their hit inner children, the
+        // shallowest member's first: the stack stays sorted by depth,
+        // bottom to top (the popped entries are the deepest, their children
+        // deeper still, and pushed in nondecreasing depth). So when a step
+        // pops a node at depth `d − 1`, every entry at depth `≥ d` lies above
+        // it and is popped too: the entries at depth `d` are then only the
+        // children of that step's members, at most `GROUP · WIDTH`, and no
+        // later step adds any until one pops a node at depth `d − 1` again.
+        // The inner nodes lie at depths `2..=depth`.
+        self.grouped_stack_need = (GROUP * WIDTH * (depth - 1)).max(1);
     }
 
     /// The triangles it was built over.

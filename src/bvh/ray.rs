@@ -7,28 +7,40 @@ use crate::kernel::lanes;
 use crate::kernel::segment::segment_blocked;
 use glam::DVec3;
 
-/// Stack entries kept on the machine stack; deeper trees use a heap stack.
+/// Stack entries kept on the machine stack by the depth-first traversals;
+/// deeper trees use a heap stack.
 pub(super) const STACK: usize = 64;
 
-/// A traversal's stack of node indices: on the machine stack up to
-/// [`STACK`] entries, on the heap beyond.
-pub(super) struct NodeStack {
-    small: [u32; STACK],
+/// Nodes [`Bvh::segment_unoccluded`] takes from its stack at a time.
+pub(super) const GROUP: usize = 3;
+
+/// Stack entries [`Bvh::segment_unoccluded`] keeps on the machine stack:
+/// trees up to depth 17 (its need is `GROUP · WIDTH · (depth − 1)`, see
+/// `Bvh::grouped_stack_need`; a tree over 10⁵ triangles has depth about
+/// 11); deeper ones use a heap stack.
+const GROUPED_STACK: usize = 192;
+
+/// A traversal's stack of node indices: on the machine stack up to `N`
+/// entries, on the heap beyond.
+pub(super) struct NodeStack<const N: usize> {
+    small: [u32; N],
     large: Vec<u32>,
 }
 
-impl NodeStack {
-    pub(super) fn new() -> NodeStack {
+impl<const N: usize> NodeStack<N> {
+    pub(super) fn new() -> NodeStack<N> {
         NodeStack {
-            small: [0; STACK],
+            small: [0; N],
             large: Vec::new(),
         }
     }
 
-    /// At least `need` entries, all 0 (the root's index).
+    /// `need` entries, all 0 (the root's index): exactly as many, so that
+    /// a traversal outgrowing its proven bound fails loudly in the tests
+    /// rather than silently using the spare entries.
     pub(super) fn entries(&mut self, need: usize) -> &mut [u32] {
-        if need <= STACK {
-            &mut self.small
+        if need <= N {
+            &mut self.small[..need]
         } else {
             self.large.resize(need, 0);
             &mut self.large
@@ -73,6 +85,13 @@ impl Bvh {
     /// `t_near ≤ min(t_far, 1) · (1 + 2⁻²⁰)` (Ize, "Robust BVH Ray
     /// Traversal", 2013) cannot reject a box the true segment meets.
     ///
+    /// The walk takes the top three nodes of its stack at a time:
+    /// their slab tests run together, so the loads of their lines overlap
+    /// where a walk one node at a time waits on each in turn. The answer
+    /// does not depend on the order in which nodes and triangles are
+    /// visited: it is whether some triangle whose box the segment may meet
+    /// blocks it, each decided exactly.
+    ///
     /// Endpoints with a non-finite coordinate: `true` (no triangle meets
     /// them, by [`segment_blocked`]'s convention). Coordinates beyond
     /// `f32::MAX`: every triangle is tested.
@@ -99,50 +118,69 @@ impl Bvh {
         let Some(ray) = ray else {
             return !self.triangles.iter().any(|t| segment_blocked(p, x, t));
         };
-        let mut stack = NodeStack::new();
-        let stack = stack.entries(self.stack_need);
-        let mut top = 0;
-        let mut node = 0u32;
+        // The stack holds the inner nodes still to visit, by nondecreasing
+        // depth from the bottom (see `Bvh::grouped_stack_need`); the root
+        // first.
+        let mut stack = NodeStack::<GROUPED_STACK>::new();
+        let stack = stack.entries(self.grouped_stack_need);
+        let mut top = 1;
         // A value read from each child node and leaf triangle as soon as
-        // its box is hit: the loads start while this node's other lanes and
-        // leaves are handled (the crate forbids the `unsafe` prefetch
+        // its box is hit: the loads start while the group's other lanes
+        // and leaves are handled (the crate forbids the `unsafe` prefetch
         // intrinsic), and `black_box` keeps them. Measured: soup rays/s
         // 1.07× on `examples/ray_corpus.rs`.
         let mut touched = 0u32;
         loop {
-            let n = &self.nodes[node as usize];
-            let mask = ray.hits(n);
-            let mut leaves = 0u32;
-            let mut rest = mask;
-            while rest != 0 {
-                let lane = rest.trailing_zeros() as usize;
-                rest &= rest - 1;
-                let child = n.child[lane];
-                if child & LEAF == 0 {
-                    stack[top] = child;
-                    top += 1;
-                    touched = touched.wrapping_add(self.nodes[child as usize].child[0]);
-                } else {
-                    leaves |= 1 << lane;
-                    let t = &self.triangles[(child & !LEAF) as usize];
-                    touched = touched.wrapping_add(t[0].x.to_bits() as u32);
+            // The group: the top `g` entries, deepest first. Their loads
+            // and slab tests overlap, where a walk one node at a time
+            // would wait on each node's load in turn.
+            let g = top.min(GROUP);
+            let mut group = [&self.nodes[0]; GROUP];
+            for (k, n) in group.iter_mut().enumerate().take(g) {
+                *n = &self.nodes[stack[top - 1 - k] as usize];
+            }
+            top -= g;
+            let mut masks = [0u32; GROUP];
+            for k in 0..g {
+                masks[k] = ray.hits(group[k]);
+            }
+            // Inner children pushed from the shallowest member up, which
+            // keeps the stack sorted by depth.
+            let mut leaves = [0u32; GROUP];
+            for k in (0..g).rev() {
+                let n = group[k];
+                let mut rest = masks[k];
+                while rest != 0 {
+                    let lane = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    let child = n.child[lane];
+                    if child & LEAF == 0 {
+                        stack[top] = child;
+                        top += 1;
+                        touched = touched.wrapping_add(self.nodes[child as usize].child[0]);
+                    } else {
+                        leaves[k] |= 1 << lane;
+                        let t = &self.triangles[(child & !LEAF) as usize];
+                        touched = touched.wrapping_add(t[0].x.to_bits() as u32);
+                    }
                 }
             }
-            while leaves != 0 {
-                let lane = leaves.trailing_zeros() as usize;
-                leaves &= leaves - 1;
-                let t = &self.triangles[(n.child[lane] & !LEAF) as usize];
-                if segment_blocked(p, x, t) {
-                    std::hint::black_box(touched);
-                    return false;
+            for k in 0..g {
+                let mut rest = leaves[k];
+                while rest != 0 {
+                    let lane = rest.trailing_zeros() as usize;
+                    rest &= rest - 1;
+                    let t = &self.triangles[(group[k].child[lane] & !LEAF) as usize];
+                    if segment_blocked(p, x, t) {
+                        std::hint::black_box(touched);
+                        return false;
+                    }
                 }
             }
             if top == 0 {
                 std::hint::black_box(touched);
                 return true;
             }
-            top -= 1;
-            node = stack[top];
         }
     }
 }

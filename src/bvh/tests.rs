@@ -5,6 +5,7 @@ use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
 use super::ray::Ray32;
 use super::{Bvh, Occluders};
 use crate::arbitrary::Rng;
+use crate::kernel::segment::segment_blocked;
 use glam::DVec3;
 
 /// A coordinate near `centre`, `scale` across, with now and then a value
@@ -201,6 +202,38 @@ fn shallow_and_agrees(seed: u64, change: impl Fn(f64) -> [DVec3; 3]) {
 fn stacked_layers_make_a_balanced_tree() {
     // 1e-4 apart: 4096 layers over 0.4096.
     shallow_and_agrees(9, |s| FLAT.map(|v| v + DVec3::new(0.0, 0.4096 * s, 0.0)));
+}
+
+/// A segment that meets the box of every node and no triangle: 4096
+/// triangles across the `z` axis, each missing it by 0.1 on the far side
+/// of its hypotenuse and turned about the axis at random. The grouped walk
+/// of [`Bvh::segment_unoccluded`] visits every node, which is where its
+/// stack grows most: it stays within the bound of `grouped_stack_need`
+/// (the stack has exactly that many entries, so one more would panic), and
+/// the segment is unoccluded.
+#[test]
+fn a_walk_over_every_node_stays_within_its_stack() {
+    let mut rng = Rng::new(31);
+    let tris: Vec<[DVec3; 3]> = (0..4096)
+        .map(|_| {
+            let (z, turn) = (
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(0.0, std::f64::consts::TAU),
+            );
+            let (s, c) = turn.sin_cos();
+            [(-1.0, 1.1), (1.0, 1.1), (1.0, -0.9)]
+                .map(|(x, y)| DVec3::new(c * x - s * y, s * x + c * y, z))
+        })
+        .collect();
+    let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
+    let (p, x) = (DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.0, 0.0, 2.0));
+    assert!(tris.iter().all(|t| !segment_blocked(p, x, t)));
+    assert!(
+        bvh.stack_need >= 4 * (WIDTH - 1) + 1,
+        "a deep tree: {}",
+        bvh.stack_need
+    );
+    assert!(bvh.segment_unoccluded(p, x));
 }
 
 /// Random soups mixing runs of nested triangles (about shared centres, in
