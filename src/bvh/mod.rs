@@ -72,7 +72,7 @@ use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::bvh2::Bvh2;
 use obvhs::BvhBuildParams;
-use ray::GROUP;
+use ray::{GROUP, GROUPED_FROM, GROUPED_STACK};
 use std::fmt;
 use std::time::Duration;
 
@@ -97,8 +97,12 @@ pub struct Bvh {
     ids: Vec<u32>,
     /// Stack entries a depth-first traversal can need.
     stack_need: usize,
-    /// Stack entries [`Bvh::segment_unoccluded`]'s grouped walk can need.
-    grouped_stack_need: usize,
+    /// The depth of the tree (the root alone: 1).
+    depth: usize,
+    /// Whether [`Bvh::segment_unoccluded`] walks the tree several nodes at
+    /// a time (trees of [`GROUPED_FROM`] bytes or more whose grouped stack
+    /// fits [`GROUPED_STACK`] entries).
+    grouped: bool,
     /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
     /// tree and tested by every query, and their indices in `occluders`.
     outliers: Vec<[DVec3; 3]>,
@@ -212,7 +216,8 @@ impl Bvh {
             triangles: Vec::with_capacity(kept.len()),
             ids: Vec::with_capacity(kept.len()),
             stack_need: 1,
-            grouped_stack_need: 1,
+            depth: 1,
+            grouped: false,
             outliers,
             outlier_ids,
             bounds,
@@ -365,17 +370,24 @@ impl Bvh {
             self.nodes[dst] = node;
         }
         self.stack_need = depth * (WIDTH - 1) + 1;
-        // The grouped walk of `segment_unoccluded` pops the top `g ≤ GROUP`
-        // entries of its stack and pushes their hit inner children, the
-        // shallowest member's first: the stack stays sorted by depth,
-        // bottom to top (the popped entries are the deepest, their children
-        // deeper still, and pushed in nondecreasing depth). So when a step
-        // pops a node at depth `d − 1`, every entry at depth `≥ d` lies above
-        // it and is popped too: the entries at depth `d` are then only the
-        // children of that step's members, at most `GROUP · WIDTH`, and no
-        // later step adds any until one pops a node at depth `d − 1` again.
-        // The inner nodes lie at depths `2..=depth`.
-        self.grouped_stack_need = (GROUP * WIDTH * (depth - 1)).max(1);
+        self.depth = depth;
+        let bytes = self.nodes.len() * std::mem::size_of::<Node>()
+            + self.triangles.len() * std::mem::size_of::<[DVec3; 3]>();
+        self.grouped = bytes >= GROUPED_FROM && self.grouped_stack_need(GROUP) <= GROUPED_STACK;
+    }
+
+    /// Stack entries the any-hit walk taking `group` nodes at a time can
+    /// need. It pops the top `g ≤ group` entries of its stack and pushes
+    /// their hit inner children, the shallowest member's first: the stack
+    /// stays sorted by depth, bottom to top (the popped entries are the
+    /// deepest, their children deeper still, and pushed in nondecreasing
+    /// depth). So when a step pops a node at depth `d − 1`, every entry at
+    /// depth `≥ d` lies above it and is popped too: the entries at depth `d`
+    /// are then only the children of that step's members, at most
+    /// `group · WIDTH`, and no later step adds any until one pops a node at
+    /// depth `d − 1` again. The inner nodes lie at depths `2..=depth`.
+    fn grouped_stack_need(&self, group: usize) -> usize {
+        (group * WIDTH * (self.depth - 1)).max(1)
     }
 
     /// The triangles it was built over.

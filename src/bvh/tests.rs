@@ -206,11 +206,12 @@ fn stacked_layers_make_a_balanced_tree() {
 
 /// A segment that meets the box of every node and no triangle: 4096
 /// triangles across the `z` axis, each missing it by 0.1 on the far side
-/// of its hypotenuse and turned about the axis at random. The grouped walk
-/// of [`Bvh::segment_unoccluded`] visits every node, which is where its
-/// stack grows most: it stays within the bound of `grouped_stack_need`
-/// (the stack has exactly that many entries, so one more would panic), and
-/// the segment is unoccluded.
+/// of its hypotenuse and turned about the axis at random. The walk visits
+/// every node, which is where its stack grows most: grouped, it stays
+/// within the bound of `grouped_stack_need` (the stack has exactly that
+/// many entries, so one more would panic), and one node at a time within
+/// `stack_need`; the segment is unoccluded either way. The tree is too
+/// small for the grouped walk to be chosen: it is asked for here.
 #[test]
 fn a_walk_over_every_node_stays_within_its_stack() {
     let mut rng = Rng::new(31);
@@ -234,7 +235,36 @@ fn a_walk_over_every_node_stays_within_its_stack() {
         "a deep tree: {}",
         bvh.stack_need
     );
-    assert!(bvh.segment_unoccluded(p, x));
+    assert!(!bvh.grouped);
+    assert!(bvh.unoccluded_here(p, x, true));
+    assert!(bvh.unoccluded_here(p, x, false));
+}
+
+/// The walk is grouped on a tree of a megabyte or more, and not on a
+/// smaller one: soups of 16,384 and 4096 triangles.
+#[test]
+fn the_walk_is_grouped_on_large_trees() {
+    let mut rng = Rng::new(37);
+    for (n, grouped) in [(16384, true), (4096, false)] {
+        let tris: Vec<[DVec3; 3]> = (0..n)
+            .map(|_| {
+                let c = DVec3::new(
+                    rng.uniform(-1.0, 1.0),
+                    rng.uniform(0.1, 0.9),
+                    rng.uniform(-1.0, 1.0),
+                );
+                [0, 1, 2].map(|_| {
+                    c + DVec3::new(
+                        rng.uniform(-0.02, 0.02),
+                        rng.uniform(-0.02, 0.02),
+                        rng.uniform(-0.02, 0.02),
+                    )
+                })
+            })
+            .collect();
+        let bvh = Bvh::new(Occluders::from_triangles(tris));
+        assert_eq!(bvh.grouped, grouped, "{n} triangles");
+    }
 }
 
 /// Random soups mixing runs of nested triangles (about shared centres, in
@@ -310,6 +340,12 @@ fn holds_each_once_and_agrees(
             .iter()
             .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
         assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
+        // The walk not chosen for this tree, the same answer.
+        assert_eq!(
+            bvh.unoccluded_here(p, x, !bvh.grouped),
+            !brute,
+            "{p:?} → {x:?}"
+        );
     }
 }
 
