@@ -117,16 +117,25 @@ impl Bvh {
     pub fn segment_unoccluded(&self, p: DVec3, x: DVec3) -> bool {
         // Compiled for AVX2 where present: the same answers, the slab
         // tests and exact predicates in wider, three-operand instructions.
-        lanes::vectorized(
-            #[inline(always)]
-            |_| self.unoccluded_here(p, x, self.grouped),
-        )
+        // Each walk in a function of its own: with both in one, the
+        // depth-first walk took 3 % more instructions.
+        if self.grouped {
+            lanes::vectorized(
+                #[inline(always)]
+                |_| self.unoccluded_here::<true>(p, x),
+            )
+        } else {
+            lanes::vectorized(
+                #[inline(always)]
+                |_| self.unoccluded_here::<false>(p, x),
+            )
+        }
     }
 
     /// [`Bvh::segment_unoccluded`], compiled where it is called; its walk
-    /// grouped or not as `grouped` says (the same answer either way).
+    /// grouped or not as `GROUPED` says (the same answer either way).
     #[inline(always)]
-    pub(super) fn unoccluded_here(&self, p: DVec3, x: DVec3, grouped: bool) -> bool {
+    pub(super) fn unoccluded_here<const GROUPED: bool>(&self, p: DVec3, x: DVec3) -> bool {
         if !(p.is_finite() && x.is_finite()) {
             return true;
         }
@@ -137,7 +146,7 @@ impl Bvh {
         let Some(ray) = ray else {
             return !self.triangles.iter().any(|t| segment_blocked(p, x, t));
         };
-        if grouped {
+        if GROUPED {
             self.walk::<GROUP, GROUPED_STACK>(p, x, &ray)
         } else {
             self.walk::<1, STACK>(p, x, &ray)
@@ -149,64 +158,63 @@ impl Bvh {
     /// on the machine stack).
     #[inline(always)]
     fn walk<const G: usize, const N: usize>(&self, p: DVec3, x: DVec3, ray: &Ray32) -> bool {
-        // The stack holds the inner nodes still to visit, by nondecreasing
-        // depth from the bottom (see `Bvh::grouped_stack_need`); the root
-        // first.
+        // The nodes still to visit: `node`, then the stack from the top
+        // down, by nonincreasing depth (see `Bvh::grouped_stack_need`).
         let mut stack = NodeStack::<N>::new();
-        let stack = stack.entries(if G == 1 {
-            self.stack_need
-        } else {
-            self.grouped_stack_need(G)
-        });
-        let mut top = 1;
-        // A value read from each child node and leaf triangle as soon as
-        // its box is hit: the loads start while the group's other lanes
-        // and leaves are handled (the crate forbids the `unsafe` prefetch
-        // intrinsic), and `black_box` keeps them. Measured: soup rays/s
-        // 1.07× on `examples/ray_corpus.rs`.
-        let mut touched = 0u32;
+        let mut walk = Walk {
+            stack: stack.entries(if G == 1 {
+                self.stack_need
+            } else {
+                self.grouped_stack_need(G)
+            }),
+            top: 0,
+            node: 0,
+            touched: 0,
+        };
         for _ in 0..if G > 1 { DEPTH_FIRST_STEPS } else { 0 } {
-            if let Some(answer) = self.step::<1>(p, x, ray, stack, &mut top, &mut touched) {
-                std::hint::black_box(touched);
+            if let Some(answer) = self.step::<1>(p, x, ray, &mut walk) {
                 return answer;
             }
         }
         loop {
-            if let Some(answer) = self.step::<G>(p, x, ray, stack, &mut top, &mut touched) {
-                std::hint::black_box(touched);
+            if let Some(answer) = self.step::<G>(p, x, ray, &mut walk) {
                 return answer;
             }
         }
     }
 
-    /// One step of [`Bvh::walk`]: the top `g ≤ G` entries of the stack
-    /// taken, their hit inner children pushed, their hit leaves tested;
-    /// `Some(answer)` when the walk ends.
+    /// One step of [`Bvh::walk`]: `walk.node` and up to `G − 1` entries
+    /// from the top of the stack taken, their hit inner children pushed,
+    /// their hit leaves tested, the next node popped; `Some(answer)` when
+    /// the walk ends.
     #[inline(always)]
     fn step<const G: usize>(
         &self,
         p: DVec3,
         x: DVec3,
         ray: &Ray32,
-        stack: &mut [u32],
-        top: &mut usize,
-        touched: &mut u32,
+        walk: &mut Walk<'_>,
     ) -> Option<bool> {
-        // The group: the top `g` entries, deepest first. Their loads
-        // and slab tests overlap, where a walk one node at a time
-        // would wait on each node's load in turn.
-        let g = (*top).min(G);
-        let mut group = [&self.nodes[0]; G];
-        for (k, n) in group.iter_mut().enumerate().take(g) {
-            *n = &self.nodes[stack[*top - 1 - k] as usize];
+        // The group, deepest first. Their loads and slab tests overlap,
+        // where a walk one node at a time would wait on each node's load
+        // in turn.
+        let more = walk.top.min(G - 1);
+        let mut group = [&self.nodes[walk.node as usize]; G];
+        for k in 1..=more {
+            group[k] = &self.nodes[walk.stack[walk.top - k] as usize];
         }
-        *top -= g;
+        walk.top -= more;
+        let g = 1 + more;
         let mut masks = [0u32; G];
         for k in 0..g {
             masks[k] = ray.hits(group[k]);
         }
         // Inner children pushed from the shallowest member up, which
-        // keeps the stack sorted by depth.
+        // keeps the stack sorted by depth. A value is read from each child
+        // node and leaf triangle as soon as its box is hit: the loads start
+        // while the group's other lanes and leaves are handled (the crate
+        // forbids the `unsafe` prefetch intrinsic), and `black_box` keeps
+        // them. Measured: soup rays/s 1.07× on `examples/ray_corpus.rs`.
         let mut leaves = [0u32; G];
         for k in (0..g).rev() {
             let n = group[k];
@@ -216,13 +224,15 @@ impl Bvh {
                 rest &= rest - 1;
                 let child = n.child[lane];
                 if child & LEAF == 0 {
-                    stack[*top] = child;
-                    *top += 1;
-                    *touched = touched.wrapping_add(self.nodes[child as usize].child[0]);
+                    walk.stack[walk.top] = child;
+                    walk.top += 1;
+                    walk.touched = walk
+                        .touched
+                        .wrapping_add(self.nodes[child as usize].child[0]);
                 } else {
                     leaves[k] |= 1 << lane;
                     let t = &self.triangles[(child & !LEAF) as usize];
-                    *touched = touched.wrapping_add(t[0].x.to_bits() as u32);
+                    walk.touched = walk.touched.wrapping_add(t[0].x.to_bits() as u32);
                 }
             }
         }
@@ -233,12 +243,28 @@ impl Bvh {
                 rest &= rest - 1;
                 let t = &self.triangles[(group[k].child[lane] & !LEAF) as usize];
                 if segment_blocked(p, x, t) {
+                    std::hint::black_box(walk.touched);
                     return Some(false);
                 }
             }
         }
-        (*top == 0).then_some(true)
+        if walk.top == 0 {
+            std::hint::black_box(walk.touched);
+            return Some(true);
+        }
+        walk.top -= 1;
+        walk.node = walk.stack[walk.top];
+        None
     }
+}
+
+/// The state of [`Bvh::walk`]: the node to visit next, the stack of those
+/// after it, and the sum of the values read to start loads early.
+struct Walk<'a> {
+    stack: &'a mut [u32],
+    top: usize,
+    node: u32,
+    touched: u32,
 }
 
 /// The per-ray constants of the conservative `f32` slab test (see

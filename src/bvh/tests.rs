@@ -236,8 +236,8 @@ fn a_walk_over_every_node_stays_within_its_stack() {
         bvh.stack_need
     );
     assert!(!bvh.grouped);
-    assert!(bvh.unoccluded_here(p, x, true));
-    assert!(bvh.unoccluded_here(p, x, false));
+    assert!(bvh.unoccluded_here::<true>(p, x));
+    assert!(bvh.unoccluded_here::<false>(p, x));
 }
 
 /// The walk is grouped on a tree of a megabyte or more, and not on a
@@ -341,11 +341,12 @@ fn holds_each_once_and_agrees(
             .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
         assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
         // The walk not chosen for this tree, the same answer.
-        assert_eq!(
-            bvh.unoccluded_here(p, x, !bvh.grouped),
-            !brute,
-            "{p:?} → {x:?}"
-        );
+        let other = if bvh.grouped {
+            bvh.unoccluded_here::<false>(p, x)
+        } else {
+            bvh.unoccluded_here::<true>(p, x)
+        };
+        assert_eq!(other, !brute, "{p:?} → {x:?}");
     }
 }
 
