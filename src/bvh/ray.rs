@@ -200,10 +200,11 @@ impl Bvh {
         // in turn.
         let more = walk.top.min(G - 1);
         let mut group = [&self.nodes[walk.node as usize]; G];
-        for k in 1..=more {
-            group[k] = &self.nodes[walk.stack[walk.top - k] as usize];
-        }
         walk.top -= more;
+        let taken = walk.stack[walk.top..walk.top + more].iter().rev();
+        for (n, &i) in group[1..].iter_mut().zip(taken) {
+            *n = &self.nodes[i as usize];
+        }
         let g = 1 + more;
         let mut masks = [0u32; G];
         for k in 0..g {
