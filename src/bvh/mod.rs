@@ -41,7 +41,9 @@
 //! This file holds the tree and its build; `nested.rs` the runs of nested
 //! boxes the build groups; `node.rs` the quantised 4-wide
 //! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
-//! traversal ([`Bvh::segment_unoccluded`]); `closest.rs` the closest hit
+//! traversal ([`Bvh::segment_unoccluded`]; on a tree the caches do not
+//! hold, several nodes at a time, so that their loads overlap);
+//! `closest.rs` the closest hit
 //! ([`Bvh::closest_hit`], [`Hit`]); `packet.rs` the closest hits of eight
 //! coherent rays through one walk (for [`Bvh::closest_hits`]); `hull.rs`
 //! the culling query of the exact
