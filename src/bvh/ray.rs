@@ -208,11 +208,12 @@ impl Bvh {
         let g = 1 + more;
         // Member `k`'s hit lanes at bits `4 (G − 1 − k)` on: the deepest
         // member's highest.
+        const { assert!(G * WIDTH <= 32) };
         let mut hits = 0u32;
         for (k, n) in group.iter().enumerate().take(g) {
             hits |= ray.hits(n) << (WIDTH * (G - 1 - k));
         }
-        let child = |bit: usize| group[G - 1 - bit / WIDTH].child[bit % WIDTH];
+        let child_at = |bit: usize| group[G - 1 - bit / WIDTH].child[bit % WIDTH];
         // Inner children pushed from the shallowest member (the lowest
         // bits) up, which keeps the stack sorted by depth. A value is
         // read from each child node and leaf triangle as soon as its box is
@@ -225,7 +226,7 @@ impl Bvh {
         while rest != 0 {
             let bit = rest.trailing_zeros() as usize;
             rest &= rest - 1;
-            let child = child(bit);
+            let child = child_at(bit);
             if child & LEAF == 0 {
                 walk.stack[walk.top] = child;
                 walk.top += 1;
@@ -241,7 +242,7 @@ impl Bvh {
         while leaves != 0 {
             let bit = leaves.trailing_zeros() as usize;
             leaves &= leaves - 1;
-            let t = &self.triangles[(child(bit) & !LEAF) as usize];
+            let t = &self.triangles[(child_at(bit) & !LEAF) as usize];
             if segment_blocked(p, x, t) {
                 std::hint::black_box(walk.touched);
                 return Some(false);
