@@ -206,7 +206,8 @@ fn stacked_layers_make_a_balanced_tree() {
 
 /// A segment that meets the box of every node and no triangle: 4096
 /// triangles across the `z` axis, each missing it by 0.1 on the far side
-/// of its hypotenuse and turned about the axis at random. The walk visits
+/// of its hypotenuse, turned about the axis by a random multiple of a
+/// right angle (so that its box still holds the axis). The walk visits
 /// every node, which is where its stack grows most: grouped, it stays
 /// within the bound of `grouped_stack_need` (the stack has exactly that
 /// many entries, so one more would panic), and one node at a time within
@@ -219,7 +220,7 @@ fn a_walk_over_every_node_stays_within_its_stack() {
         .map(|_| {
             let (z, turn) = (
                 rng.uniform(-1.0, 1.0),
-                rng.uniform(0.0, std::f64::consts::TAU),
+                std::f64::consts::FRAC_PI_2 * rng.below(4) as f64,
             );
             let (s, c) = turn.sin_cos();
             [(-1.0, 1.1), (1.0, 1.1), (1.0, -0.9)]
