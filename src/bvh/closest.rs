@@ -253,14 +253,14 @@ impl Bvh {
         // Only the stack the tree needs is cleared (most rays of small
         // scenes visit a node or two: clearing 512 bytes showed).
         let (mut small, mut medium, mut large);
-        let stack: &mut [(u32, f32)] = if self.stack_need <= STACK / 2 {
+        let stack: &mut [(u32, f32)] = if self.stack_need() <= STACK / 2 {
             small = [(0u32, 0.0f32); STACK / 2];
             &mut small
-        } else if self.stack_need <= STACK {
+        } else if self.stack_need() <= STACK {
             medium = [(0u32, 0.0f32); STACK];
             &mut medium
         } else {
-            large = vec![(0, 0.0); self.stack_need];
+            large = vec![(0, 0.0); self.stack_need()];
             &mut large
         };
         let mut top = 0;

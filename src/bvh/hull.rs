@@ -69,7 +69,7 @@ impl Bvh {
         let hull = Hull::new(points);
         // Depth-first, one node at a time: at most `stack_need` entries.
         let mut stack = NodeStack::<STACK>::new();
-        let stack = stack.entries(self.stack_need);
+        let stack = stack.entries(self.stack_need());
         let mut top = 1;
         while top > 0 {
             top -= 1;

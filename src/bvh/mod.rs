@@ -97,9 +97,7 @@ pub struct Bvh {
     triangles: Vec<[DVec3; 3]>,
     /// The index in `occluders` of each of `triangles`.
     ids: Vec<u32>,
-    /// Stack entries a depth-first traversal can need.
-    stack_need: usize,
-    /// The depth of the tree (the root alone: 1).
+    /// The depth of the tree (the root alone, or no tree: 1).
     depth: usize,
     /// Whether [`Bvh::segment_unoccluded`] walks the tree several nodes at
     /// a time (trees of [`GROUPED_FROM`] bytes or more whose grouped stack
@@ -217,7 +215,6 @@ impl Bvh {
             nodes: Vec::new(),
             triangles: Vec::with_capacity(kept.len()),
             ids: Vec::with_capacity(kept.len()),
-            stack_need: 1,
             depth: 1,
             grouped: false,
             outliers,
@@ -371,11 +368,17 @@ impl Bvh {
             }
             self.nodes[dst] = node;
         }
-        self.stack_need = depth * (WIDTH - 1) + 1;
         self.depth = depth;
         let bytes = self.nodes.len() * std::mem::size_of::<Node>()
             + self.triangles.len() * std::mem::size_of::<[DVec3; 3]>();
         self.grouped = bytes >= GROUPED_FROM && self.grouped_stack_need(GROUP) <= GROUPED_STACK;
+    }
+
+    /// Stack entries a depth-first traversal can need: at most `WIDTH − 1`
+    /// siblings waiting at each level, and the children of the node being
+    /// visited.
+    pub(super) fn stack_need(&self) -> usize {
+        self.depth * (WIDTH - 1) + 1
     }
 
     /// Stack entries the any-hit walk taking `group` nodes at a time can

@@ -45,7 +45,7 @@ impl Bvh {
             || out.len() != PACKET
             || !self.outliers.is_empty()
             || self.nodes.is_empty()
-            || self.stack_need > STACK
+            || self.stack_need() > STACK
             || t_max.is_nan()
             || t_max <= 0.0
         {
@@ -70,7 +70,7 @@ impl Bvh {
 
         // Only the stack the tree needs is cleared (as `closest_in_tree`).
         let (mut small, mut large);
-        let stack: &mut [(u32, u8)] = if self.stack_need <= STACK / 2 {
+        let stack: &mut [(u32, u8)] = if self.stack_need() <= STACK / 2 {
             small = [(0u32, 0u8); STACK / 2];
             &mut small
         } else {

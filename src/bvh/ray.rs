@@ -163,7 +163,7 @@ impl Bvh {
         let mut stack = NodeStack::<N>::new();
         let mut walk = Walk {
             stack: stack.entries(if G == 1 {
-                self.stack_need
+                self.stack_need()
             } else {
                 self.grouped_stack_need(G)
             }),
