@@ -314,30 +314,20 @@ impl Bvh {
         if refused {
             return None;
         }
-        // `Ray32::new`, axis by axis.
-        let (mut near, mut far, mut inv) = (
-            [[0.0f32; PACKET]; 3],
-            [[0.0f32; PACKET]; 3],
-            [[0.0f32; PACKET]; 3],
-        );
-        let mut back = [[0u32; PACKET]; 3];
-        for k in 0..3 {
-            for l in 0..PACKET {
-                let axis = Ray32::axis(origin[k][l], d[k][l]);
-                (near[k][l], far[k][l], inv[k][l]) = (axis.near, axis.far, axis.inv);
-                back[k][l] = 0u32.wrapping_sub(u32::from(axis.backward));
-            }
-        }
+        // `Ray32::new`, each axis for the eight rays at once.
+        let axes = [0, 1, 2].map(|k| Ray32::axes(origin[k], d[k]));
         Some(Setup {
             origin: rays[0].0,
             x,
             d,
             d_norm,
             scale,
-            near,
-            far,
-            inv,
-            back,
+            near: axes.each_ref().map(|a| a.near),
+            far: axes.each_ref().map(|a| a.far),
+            inv: axes.each_ref().map(|a| a.inv),
+            back: axes
+                .each_ref()
+                .map(|a| a.backward.map(|b| 0u32.wrapping_sub(u32::from(b)))),
         })
     }
 }

@@ -54,13 +54,21 @@ impl<const N: usize> NodeStack<N> {
     /// `need` entries, all 0 (the root's index): exactly as many, so that
     /// a traversal outgrowing its proven bound fails loudly in the tests
     /// rather than silently using the spare entries.
+    #[inline(always)]
     pub(super) fn entries(&mut self, need: usize) -> &mut [u32] {
         if need <= N {
             &mut self.small[..need]
         } else {
-            self.large.resize(need, 0);
-            &mut self.large
+            self.large_entries(need)
         }
+    }
+
+    /// [`NodeStack::entries`] beyond the machine stack's `N`.
+    #[cold]
+    #[inline(never)]
+    fn large_entries(&mut self, need: usize) -> &mut [u32] {
+        self.large.resize(need, 0);
+        &mut self.large
     }
 }
 
@@ -136,21 +144,42 @@ impl Bvh {
     /// grouped or not as `GROUPED` says (the same answer either way).
     #[inline(always)]
     pub(super) fn unoccluded_here<const GROUPED: bool>(&self, p: DVec3, x: DVec3) -> bool {
-        if !(p.is_finite() && x.is_finite()) {
-            return true;
+        // The common case in one test (a NaN or an infinity fails it too),
+        // the others out of line: for a segment that misses the root's
+        // boxes the set-up is most of the query.
+        let common = in_f32_range(p)
+            && in_f32_range(x)
+            && self.outliers.is_empty()
+            && !self.nodes.is_empty();
+        if !common {
+            if let Some(answer) = self.unoccluded_off_tree(p, x) {
+                return answer;
+            }
         }
-        if self.outliers.iter().any(|t| segment_blocked(p, x, t)) {
-            return false;
-        }
-        let ray = Ray32::new(p, x).filter(|_| !self.nodes.is_empty());
-        let Some(ray) = ray else {
-            return !self.triangles.iter().any(|t| segment_blocked(p, x, t));
-        };
+        let ray = Ray32::in_range(p, x);
         if GROUPED {
             self.walk::<GROUP, GROUPED_STACK>(p, x, &ray)
         } else {
             self.walk::<1, STACK>(p, x, &ray)
         }
+    }
+
+    /// [`Bvh::segment_unoccluded`] where its endpoints leave the `f32`
+    /// range, an outlier triangle may block it or there is no tree: the
+    /// answer, or `None` when the walk over the tree decides it.
+    #[cold]
+    #[inline(never)]
+    fn unoccluded_off_tree(&self, p: DVec3, x: DVec3) -> Option<bool> {
+        if !(p.is_finite() && x.is_finite()) {
+            return Some(true);
+        }
+        if self.outliers.iter().any(|t| segment_blocked(p, x, t)) {
+            return Some(false);
+        }
+        if self.nodes.is_empty() || !(in_f32_range(p) && in_f32_range(x)) {
+            return Some(!self.triangles.iter().any(|t| segment_blocked(p, x, t)));
+        }
+        None
     }
 
     /// The any-hit walk of [`Bvh::segment_unoccluded`] over the tree,
@@ -281,12 +310,12 @@ pub(super) struct Ray32 {
     pub(super) entry: [usize; 3],
 }
 
-/// One axis of a [`Ray32`] ([`Ray32::axis`]).
-pub(super) struct Axis32 {
-    pub(super) near: f32,
-    pub(super) far: f32,
-    pub(super) inv: f32,
-    pub(super) backward: bool,
+/// Axes of [`Ray32`]s, lane by lane ([`Ray32::axes`]).
+pub(super) struct Axes32<const L: usize> {
+    pub(super) near: [f32; L],
+    pub(super) far: [f32; L],
+    pub(super) inv: [f32; L],
+    pub(super) backward: [bool; L],
 }
 
 /// `1 + 2⁻²⁰`: covers the `(1 + γ₃)/(1 − γ₃)` of three roundings on each side
@@ -297,48 +326,60 @@ impl Ray32 {
     /// `None` when `p` or `x` leaves the `f32` range.
     #[inline(always)]
     pub(super) fn new(p: DVec3, x: DVec3) -> Option<Ray32> {
-        if !(in_f32_range(p) && in_f32_range(x)) {
-            return None;
-        }
-        let d = x - p;
-        let mut ray = Ray32 {
-            near: [0.0; 3],
-            far: [0.0; 3],
-            inv: [0.0; 3],
-            entry: [0; 3],
-        };
-        for i in 0..3 {
-            let axis = Ray32::axis(p[i], d[i]);
-            ray.entry[i] = usize::from(axis.backward);
-            (ray.near[i], ray.far[i], ray.inv[i]) = (axis.near, axis.far, axis.inv);
-        }
-        Some(ray)
+        (in_f32_range(p) && in_f32_range(x)).then(|| Ray32::in_range(p, x))
     }
 
-    /// One axis of [`Ray32::new`]: from the coordinate `p` of the
-    /// segment's start and `d` of its direction (both within the `f32`
-    /// range), the origins subtracted from the entry and exit planes, the
-    /// reciprocal of the direction, and whether the ray runs toward lower
-    /// values (enters by the upper plane). The packets of closest hits
-    /// call it lane by lane, so that their bits are a single ray's.
+    /// [`Ray32::new`] of endpoints within the `f32` range.
     #[inline(always)]
-    pub(super) fn axis(p: f64, d: f64) -> Axis32 {
+    pub(super) fn in_range(p: DVec3, x: DVec3) -> Ray32 {
+        let d = x - p;
+        let axes = Ray32::axes(p.to_array(), d.to_array());
+        Ray32 {
+            near: axes.near,
+            far: axes.far,
+            inv: axes.inv,
+            entry: axes.backward.map(usize::from),
+        }
+    }
+
+    /// The axes of [`Ray32::new`], `L` at a time (each lane the same
+    /// operations, so the same bits, whatever `L`: the packets of closest
+    /// hits take eight rays' axes at once, and their bits are each
+    /// single ray's): from the coordinate `p` of a segment's start and `d`
+    /// of its direction (both within the `f32` range), the origins
+    /// subtracted from the entry and exit planes, the reciprocal of the
+    /// direction, and whether the ray runs toward lower values (enters by
+    /// the upper plane).
+    #[inline(always)]
+    pub(super) fn axes<const L: usize>(p: [f64; L], d: [f64; L]) -> Axes32<L> {
         const TINY: f32 = 1.0 / (1u128 << 100) as f32;
-        let o = f64::from(p as f32);
-        let (di, tiny) = (d as f32, if d < 0.0 { -TINY } else { TINY });
-        let di = if di.abs() < TINY { tiny } else { di };
-        let delta = (p.abs() + d.abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
+        // Each step over all lanes, so that each compiles to lane-wise
+        // instructions.
+        let o: [f64; L] = std::array::from_fn(|l| f64::from(p[l] as f32));
+        let di: [f32; L] = std::array::from_fn(|l| {
+            let (di, tiny) = (d[l] as f32, if d[l] < 0.0 { -TINY } else { TINY });
+            if di.abs() < TINY {
+                tiny
+            } else {
+                di
+            }
+        });
         // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
         // (see `Bvh::segment_unoccluded`): no branch per rounding.
-        let wide = delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o.abs() / f64::from(1u32 << 23);
-        let up = ((o + wide) as f32).clamp(-f32::MAX, f32::MAX);
-        let down = ((o - wide) as f32).clamp(-f32::MAX, f32::MAX);
-        let backward = di < 0.0;
-        let (near, far) = if backward { (down, up) } else { (up, down) };
-        Axis32 {
-            near,
-            far,
-            inv: 1.0 / di,
+        let wide: [f64; L] = std::array::from_fn(|l| {
+            let delta =
+                (p[l].abs() + d[l].abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
+            delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o[l].abs() / f64::from(1u32 << 23)
+        });
+        let up: [f32; L] =
+            std::array::from_fn(|l| ((o[l] + wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
+        let down: [f32; L] =
+            std::array::from_fn(|l| ((o[l] - wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
+        let backward = di.map(|di| di < 0.0);
+        Axes32 {
+            near: std::array::from_fn(|l| if backward[l] { down[l] } else { up[l] }),
+            far: std::array::from_fn(|l| if backward[l] { up[l] } else { down[l] }),
+            inv: di.map(|di| 1.0 / di),
             backward,
         }
     }
