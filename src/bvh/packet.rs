@@ -315,19 +315,29 @@ impl Bvh {
             return None;
         }
         // `Ray32::new`, each axis for the eight rays at once.
-        let axes = [0, 1, 2].map(|k| Ray32::axes(origin[k], d[k]));
+        let (mut near, mut far, mut inv) = (
+            [[0.0f32; PACKET]; 3],
+            [[0.0f32; PACKET]; 3],
+            [[0.0f32; PACKET]; 3],
+        );
+        let mut back = [[0u32; PACKET]; 3];
+        for k in 0..3 {
+            let axes = Ray32::axes(origin[k], d[k]);
+            (near[k], far[k], inv[k]) = (axes.near, axes.far, axes.inv);
+            for l in 0..PACKET {
+                back[k][l] = 0u32.wrapping_sub(u32::from(axes.backward[l]));
+            }
+        }
         Some(Setup {
             origin: rays[0].0,
             x,
             d,
             d_norm,
             scale,
-            near: axes.each_ref().map(|a| a.near),
-            far: axes.each_ref().map(|a| a.far),
-            inv: axes.each_ref().map(|a| a.inv),
-            back: axes
-                .each_ref()
-                .map(|a| a.backward.map(|b| 0u32.wrapping_sub(u32::from(b)))),
+            near,
+            far,
+            inv,
+            back,
         })
     }
 }

@@ -353,35 +353,32 @@ impl Ray32 {
     #[inline(always)]
     pub(super) fn axes<const L: usize>(p: [f64; L], d: [f64; L]) -> Axes32<L> {
         const TINY: f32 = 1.0 / (1u128 << 100) as f32;
-        // Each step over all lanes, so that each compiles to lane-wise
-        // instructions.
-        let o: [f64; L] = std::array::from_fn(|l| f64::from(p[l] as f32));
-        let di: [f32; L] = std::array::from_fn(|l| {
-            let (di, tiny) = (d[l] as f32, if d[l] < 0.0 { -TINY } else { TINY });
-            if di.abs() < TINY {
-                tiny
-            } else {
-                di
-            }
-        });
-        // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
-        // (see `Bvh::segment_unoccluded`): no branch per rounding.
-        let wide: [f64; L] = std::array::from_fn(|l| {
-            let delta =
-                (p[l].abs() + d[l].abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
-            delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o[l].abs() / f64::from(1u32 << 23)
-        });
-        let up: [f32; L] =
-            std::array::from_fn(|l| ((o[l] + wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
-        let down: [f32; L] =
-            std::array::from_fn(|l| ((o[l] - wide[l]) as f32).clamp(-f32::MAX, f32::MAX));
-        let backward = di.map(|di| di < 0.0);
-        Axes32 {
-            near: std::array::from_fn(|l| if backward[l] { down[l] } else { up[l] }),
-            far: std::array::from_fn(|l| if backward[l] { up[l] } else { down[l] }),
-            inv: di.map(|di| 1.0 / di),
-            backward,
+        let mut axes = Axes32 {
+            near: [0.0; L],
+            far: [0.0; L],
+            inv: [0.0; L],
+            backward: [false; L],
+        };
+        // Plain loops over the lanes (`array::from_fn`'s closures were
+        // left out of line in the packets' set-up).
+        for l in 0..L {
+            let (p, d) = (p[l], d[l]);
+            let o = f64::from(p as f32);
+            let (di, tiny) = (d as f32, if d < 0.0 { -TINY } else { TINY });
+            let di = if di.abs() < TINY { tiny } else { di };
+            let delta = (p.abs() + d.abs()) * (1.0 / f64::from(1u32 << 21)) + 4.0 * f64::from(TINY);
+            // `o ± wide` rounded to nearest lands on or beyond `o ± delta`
+            // (see `Bvh::segment_unoccluded`): no branch per rounding.
+            let wide =
+                delta * (1.0 + 1.0 / f64::from(1u32 << 22)) + o.abs() / f64::from(1u32 << 23);
+            let up = ((o + wide) as f32).clamp(-f32::MAX, f32::MAX);
+            let down = ((o - wide) as f32).clamp(-f32::MAX, f32::MAX);
+            let backward = di < 0.0;
+            (axes.near[l], axes.far[l]) = if backward { (down, up) } else { (up, down) };
+            axes.inv[l] = 1.0 / di;
+            axes.backward[l] = backward;
         }
+        axes
     }
 
     /// The lanes of `n` whose box the segment may meet, as a bit mask.
