@@ -324,8 +324,8 @@ impl Bvh {
         for k in 0..3 {
             let axes = Ray32::axes(origin[k], d[k]);
             (near[k], far[k], inv[k]) = (axes.near, axes.far, axes.inv);
-            for l in 0..PACKET {
-                back[k][l] = 0u32.wrapping_sub(u32::from(axes.backward[l]));
+            for (b, &backward) in back[k].iter_mut().zip(&axes.backward) {
+                *b = 0u32.wrapping_sub(u32::from(backward));
             }
         }
         Some(Setup {
