@@ -346,6 +346,71 @@ fn holds_each_once_and_agrees(
     }
 }
 
+/// The cases `Bvh::segment_unoccluded` decides off the tree answer as the
+/// triangles themselves do: triangles beyond the tree's range (`2⁶⁰`,
+/// tested by every query) beside a tree, an endpoint beyond the `f32`
+/// range (every triangle tested), outliers and no tree; and an endpoint
+/// with a non-finite coordinate meets nothing.
+#[test]
+fn segments_off_the_tree_answer_as_brute_force() {
+    let mut rng = Rng::new(31);
+    let brute =
+        |tris: &[[DVec3; 3]], p: DVec3, x: DVec3| !tris.iter().any(|t| segment_blocked(p, x, t));
+    for _ in 0..20 {
+        let mut tris: Vec<[DVec3; 3]> = (0..rng.below(300))
+            .map(|_| {
+                let c = DVec3::new(
+                    rng.uniform(-2.0, 2.0),
+                    rng.uniform(0.2, 2.0),
+                    rng.uniform(-2.0, 2.0),
+                );
+                [0, 1, 2].map(|_| {
+                    c + DVec3::new(
+                        rng.uniform(-0.5, 0.5),
+                        rng.uniform(-0.5, 0.5),
+                        rng.uniform(-0.5, 0.5),
+                    )
+                })
+            })
+            .collect();
+        let tree = Bvh::new(Occluders::from_triangles(tris.clone()));
+        // A huge sheet at height 1 over part of the floor, its far corners
+        // beyond the tree's range: an outlier every query tests.
+        let big = 1e19;
+        tris.push([
+            DVec3::new(-big, 1.0, -big),
+            DVec3::new(rng.uniform(-1.0, 1.0), 1.0, big),
+            DVec3::new(big, 1.0, -big),
+        ]);
+        let with_outlier = Bvh::new(Occluders::from_triangles(tris.clone()));
+        assert_eq!(with_outlier.outliers.len(), 1);
+        let sheet = Bvh::new(Occluders::from_triangles(tris[tris.len() - 1..].to_vec()));
+        assert!(sheet.nodes.is_empty());
+        for _ in 0..50 {
+            let p = DVec3::new(rng.uniform(-4.0, 4.0), 0.0, rng.uniform(-4.0, 4.0));
+            let x = DVec3::new(rng.uniform(-1.0, 1.0), 3.0, rng.uniform(-1.0, 1.0));
+            let n = tris.len();
+            assert_eq!(with_outlier.segment_unoccluded(p, x), brute(&tris, p, x));
+            // An end beyond the `f32` range, far up the same line.
+            let far = p + (x - p) * 1e39;
+            assert_eq!(
+                tree.segment_unoccluded(p, far),
+                brute(&tris[..n - 1], p, far)
+            );
+            assert_eq!(
+                with_outlier.segment_unoccluded(p, far),
+                brute(&tris, p, far)
+            );
+            assert_eq!(sheet.segment_unoccluded(p, x), brute(&tris[n - 1..], p, x));
+            for bad in [f64::NAN, f64::INFINITY] {
+                let q = DVec3::new(x.x, bad, x.z);
+                assert!(with_outlier.segment_unoccluded(p, q));
+                assert!(with_outlier.segment_unoccluded(q, p));
+            }
+        }
+    }
+}
+
 /// The capped hull query gives the whole query's answer when it finds no
 /// more than the cap, and says so when it finds more.
 #[test]
