@@ -18,6 +18,17 @@ fn coordinate(rng: &mut Rng, centre: f64, scale: f64) -> f64 {
     }
 }
 
+/// A triangle whose corners lie within `r` on each axis of a centre drawn
+/// uniformly from the box `lo..hi` (the soups of the tests below).
+fn scattered_triangle(rng: &mut Rng, lo: DVec3, hi: DVec3, r: f64) -> [DVec3; 3] {
+    let c = DVec3::new(
+        rng.uniform(lo.x, hi.x),
+        rng.uniform(lo.y, hi.y),
+        rng.uniform(lo.z, hi.z),
+    );
+    [0, 1, 2].map(|_| c + DVec3::new(rng.uniform(-r, r), rng.uniform(-r, r), rng.uniform(-r, r)))
+}
+
 /// The invariant the traversal's conservativeness rests on: every
 /// decoded lane box contains, exactly, every corner of every triangle
 /// below it (clamped to the `f32` range). Returns the subtree's corner
@@ -242,21 +253,9 @@ fn a_walk_over_every_node_stays_within_its_stack() {
 fn the_walk_is_grouped_on_large_trees() {
     let mut rng = Rng::new(37);
     for (n, grouped) in [(16384, true), (4096, false)] {
+        let (lo, hi) = (DVec3::new(-1.0, 0.1, -1.0), DVec3::new(1.0, 0.9, 1.0));
         let tris: Vec<[DVec3; 3]> = (0..n)
-            .map(|_| {
-                let c = DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(0.1, 0.9),
-                    rng.uniform(-1.0, 1.0),
-                );
-                [0, 1, 2].map(|_| {
-                    c + DVec3::new(
-                        rng.uniform(-0.02, 0.02),
-                        rng.uniform(-0.02, 0.02),
-                        rng.uniform(-0.02, 0.02),
-                    )
-                })
-            })
+            .map(|_| scattered_triangle(&mut rng, lo, hi, 0.02))
             .collect();
         let bvh = Bvh::new(Occluders::from_triangles(tris));
         assert_eq!(bvh.grouped, grouped, "{n} triangles");
@@ -292,19 +291,9 @@ fn soups_with_nested_runs_answer_as_brute_force() {
                 tris.push(shape.map(|v| c + (v - mean) * s));
             }
         }
+        let (lo, hi) = (DVec3::new(-3.0, 0.2, -3.0), DVec3::new(3.0, 2.0, 3.0));
         for _ in 0..rng.below(200) {
-            let c = DVec3::new(
-                rng.uniform(-3.0, 3.0),
-                rng.uniform(0.2, 2.0),
-                rng.uniform(-3.0, 3.0),
-            );
-            tris.push([0, 1, 2].map(|_| {
-                c + DVec3::new(
-                    rng.uniform(-0.2, 0.2),
-                    rng.uniform(-0.2, 0.2),
-                    rng.uniform(-0.2, 0.2),
-                )
-            }));
+            tris.push(scattered_triangle(&mut rng, lo, hi, 0.2));
         }
         // Shuffle, so that runs are not contiguous in the input.
         for i in (1..tris.len()).rev() {
@@ -357,21 +346,9 @@ fn segments_off_the_tree_answer_as_brute_force() {
     let brute =
         |tris: &[[DVec3; 3]], p: DVec3, x: DVec3| !tris.iter().any(|t| segment_blocked(p, x, t));
     for _ in 0..20 {
+        let (lo, hi) = (DVec3::new(-2.0, 0.2, -2.0), DVec3::new(2.0, 2.0, 2.0));
         let mut tris: Vec<[DVec3; 3]> = (0..rng.below(300))
-            .map(|_| {
-                let c = DVec3::new(
-                    rng.uniform(-2.0, 2.0),
-                    rng.uniform(0.2, 2.0),
-                    rng.uniform(-2.0, 2.0),
-                );
-                [0, 1, 2].map(|_| {
-                    c + DVec3::new(
-                        rng.uniform(-0.5, 0.5),
-                        rng.uniform(-0.5, 0.5),
-                        rng.uniform(-0.5, 0.5),
-                    )
-                })
-            })
+            .map(|_| scattered_triangle(&mut rng, lo, hi, 0.5))
             .collect();
         let tree = Bvh::new(Occluders::from_triangles(tris.clone()));
         // A huge sheet at height 1 over part of the floor, its far corners
