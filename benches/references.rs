@@ -12,9 +12,9 @@
 //! `cargo bench --bench references`; figures in `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::reference::exact::{self, Scratch};
 use softshadow::reference::monte_carlo::{self, Options};
 use softshadow::scene::builtin::{builtin, floor_receivers};

@@ -36,8 +36,8 @@
 //!   receivers (sample generation, the light's point mapping and the
 //!   estimate included): the reference as users run it, per ray cast.
 
-use glam::DVec3;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options};
 use softshadow::scene::builtin::{builtin, floor_receivers};

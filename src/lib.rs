@@ -55,7 +55,7 @@
 //! view of [`definitions`]): `V = 1 − area(triangle ∩ disk) / πr²`.
 //!
 //! ```
-//! use glam::DVec2;
+//! use softshadow::glam::DVec2;
 //! use softshadow::kernel::disk::f64::polygon_disk_area;
 //!
 //! let r = 0.5;
@@ -103,7 +103,10 @@
 
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
-pub use glam;
+// Under its own name for dependants (and for the crate's own modules: an
+// `extern crate` at the root is in every module's scope); see `glam_dep`
+// in Cargo.toml.
+pub extern crate glam_dep as glam;
 
 #[doc = include_str!("../docs/definitions.md")]
 pub mod definitions {}

@@ -7,7 +7,7 @@
 //! value in `[0, 1]` or an error, never NaN.
 #![cfg(feature = "render")]
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::method::{self, registry::REGISTRY};
 use softshadow::reference::{exact, monte_carlo};
 use softshadow::scene::{primitive, LightError};

@@ -5,7 +5,7 @@
 //! changes; the paper's eq. 1 agrees with the stable construction; and the
 //! paper's three artifacts show where the paper says they appear.
 
-use glam::{DVec2, DVec3};
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::method::{self, Exact, Oess};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::primitive::{cuboid, quad, sphere};

@@ -5,7 +5,7 @@
 
 #![cfg(feature = "scene-file")]
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::scene::file::{
     load_points, load_scene, mesh_from_obj, points_from_str, scene_from_str,
 };

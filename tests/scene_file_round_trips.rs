@@ -4,7 +4,7 @@
 
 #![cfg(feature = "scene-file")]
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::scene::file::{load_points, load_scene, scene_from_str};
 use softshadow::scene::primitive::sphere;
 use softshadow::scene::{Camera, Light, Mesh};

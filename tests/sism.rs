@@ -3,8 +3,8 @@
 //! within the paper's approximations), the chain identities of the
 //! composition, and the overdraw optimisations' bookkeeping.
 
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
+use softshadow::glam::DVec3;
 use softshadow::kernel::silhouette::MeshTopology;
 use softshadow::kernel::wedge::f64::PenumbraWedge;
 use softshadow::method::sism::{Bound, Composition, EdgeSource, SismPasses};

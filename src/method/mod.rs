@@ -17,7 +17,7 @@
 //! use softshadow::method::{self, Method};
 //! use softshadow::render::{Frame, Receiver, Stages};
 //! use softshadow::scene::{primitive, Light, Scene};
-//! use glam::DVec3;
+//! use softshadow::glam::DVec3;
 //!
 //! // A unit square 1 above the floor, a sphere light of radius 0.5 above it.
 //! let plate = primitive::quad(DVec3::Y, DVec3::X * 0.5, DVec3::Z * 0.5).unwrap();

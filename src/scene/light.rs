@@ -336,7 +336,7 @@ impl Point {
 /// ```compile_fail
 /// use softshadow::scene::Light;
 /// // The kinds' fields are private: a light cannot be written out unchecked.
-/// let light = Light::Sphere(softshadow::scene::light::Sphere { center: glam::DVec3::ZERO, radius: f64::NAN });
+/// let light = Light::Sphere(softshadow::scene::light::Sphere { center: softshadow::glam::DVec3::ZERO, radius: f64::NAN });
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {
