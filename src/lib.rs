@@ -101,6 +101,30 @@
 //!   inputs, shared by the property tests, the fuzz targets and the
 //!   benchmarks.
 
+// Links to the items of a feature that is off lead to the list above, so
+// that the page documents every feature set without a broken link (each
+// `doc = ""` ends the paragraph before the link definitions).
+#![cfg_attr(
+    not(feature = "bvh"),
+    doc = "",
+    doc = "[`Occluders`]: #feature-flags",
+    doc = "[`Bvh`]: #feature-flags"
+)]
+#![cfg_attr(
+    not(feature = "reference"),
+    doc = "",
+    doc = "[`reference::agree`]: #feature-flags"
+)]
+#![cfg_attr(
+    not(feature = "render"),
+    doc = "",
+    doc = "[`Frame`]: #feature-flags",
+    doc = "[`Stages`]: #feature-flags",
+    doc = "[`ErrorSummary`]: #feature-flags",
+    doc = "[`Method`]: #feature-flags",
+    doc = "[`method::run`]: #feature-flags"
+)]
+#![cfg_attr(not(feature = "report"), doc = "", doc = "[`report`]: #feature-flags")]
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
 // Under its own name for dependants (and for the crate's own modules: an
