@@ -133,7 +133,26 @@
 pub extern crate glam_dep as glam;
 
 #[doc = include_str!("../docs/definitions.md")]
-pub mod definitions {}
+pub mod definitions {
+    /// How far the exact `V` must be from 0 and from 1 for a receiver to
+    /// be in the [penumbra group](self#receiver-groups): `10⁻⁹`, above the
+    /// exact reference's error (at most `3.4·10⁻¹²` against every closed
+    /// form of `docs/accuracy/references.md`; a light covered by several
+    /// triangles may leave `~10⁻¹⁶` instead of 0), far below any visible
+    /// shade. Without it the group would move with the exact answer's
+    /// last bits.
+    pub const PENUMBRA_MARGIN: f64 = 1e-9;
+
+    /// Whether a receiver whose exact visibility is `v_exact` is in the
+    /// [penumbra group](self#receiver-groups):
+    /// `PENUMBRA_MARGIN < v_exact < 1 − PENUMBRA_MARGIN` (false for NaN).
+    /// The report, the renderer's error table and the benches all decide
+    /// the group here.
+    #[must_use]
+    pub fn in_penumbra(v_exact: f64) -> bool {
+        v_exact > PENUMBRA_MARGIN && v_exact < 1.0 - PENUMBRA_MARGIN
+    }
+}
 
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;

@@ -3,9 +3,10 @@
 //! exact answer).
 
 use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_method};
+use softshadow::definitions::in_penumbra;
 use softshadow::method::{self, Exact, Method};
 use softshadow::render::image::{
-    error_heat_map, in_penumbra, shaded, shaded_by_ends, visibility_image, ErrorRow,
+    error_heat_map, shaded, shaded_by_ends, visibility_image, ErrorRow,
 };
 use softshadow::render::{Frame, Stages, Stats};
 use softshadow::scene::Scene;

@@ -7,6 +7,7 @@
 
 use super::frame::{Frame, BACKGROUND};
 use super::Receiver;
+use crate::definitions::in_penumbra;
 use crate::scene::{Light, Scene};
 use glam::DVec3;
 use std::fmt;
@@ -429,14 +430,6 @@ impl ErrorSummary {
     }
 }
 
-/// Whether a receiver with exact visibility `v_exact` is in the exact
-/// penumbra, `0 < V_exact < 1` (the [penumbra
-/// group](crate::definitions#receiver-groups)).
-#[must_use]
-pub fn in_penumbra(v_exact: f64) -> bool {
-    v_exact > 0.0 && v_exact < 1.0
-}
-
 /// One row of the error table the `softshadow` program prints (and the
 /// README shows): a method's errors against the exact values over every
 /// receiver and over the exact penumbra, with its time.
@@ -448,7 +441,8 @@ pub struct ErrorRow {
     pub seconds: f64,
     /// The errors over every receiver.
     pub all: ErrorSummary,
-    /// The errors over the exact penumbra ([`in_penumbra`]).
+    /// The errors over the exact penumbra
+    /// ([`in_penumbra`](crate::definitions::in_penumbra)).
     pub penumbra: ErrorSummary,
 }
 
@@ -534,6 +528,32 @@ mod tests {
             ErrorSummary::new(&values, &reference, |_| false),
             ErrorSummary::default()
         );
+    }
+
+    #[test]
+    fn the_penumbra_group_ignores_the_exact_answers_last_bits() {
+        use crate::definitions::PENUMBRA_MARGIN as M;
+        // Rounding residues of a covered or an unobstructed light (as the
+        // exact reference leaves them: 1e-16, 1 − 2⁻⁵³) are not penumbra;
+        // the margin's own ends are not; a hair inside them is.
+        let exact = [
+            0.0,
+            1e-16,
+            M,
+            M.next_up(),
+            0.5,
+            (1.0 - M).next_down(),
+            1.0 - M,
+            1.0 - f64::EPSILON / 2.0,
+            1.0,
+            f64::NAN,
+        ];
+        let inside: Vec<usize> = (0..exact.len())
+            .filter(|&i| in_penumbra(exact[i]))
+            .collect();
+        assert_eq!(inside, [3, 4, 5]);
+        let row = ErrorRow::new("m", 0.0, &[0.25; 10], &exact);
+        assert_eq!(row.penumbra.count, 3);
     }
 
     #[cfg(unix)]

@@ -24,7 +24,7 @@
 //! - **Error** of `V` against [`Exact`]: mean absolute, RMSE,
 //!   99th percentile, maximum, mean signed, share over 0.05
 //!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
-//!   exact penumbra (`0 < V_exact < 1`), the ground (object 0, the floor of
+//!   exact penumbra ([`in_penumbra`]), the ground (object 0, the floor of
 //!   every built-in scene) and the occluders (every other object); and the
 //!   same for the shaded value `V·max(0, n·l̂)` (`l̂` toward the light's
 //!   centre), which is what the papers' pictures show.
@@ -55,9 +55,10 @@ pub use machine::machine_line;
 pub use write::{write, write_accuracy, ACCURACY_MARKER};
 pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
 
+use crate::definitions::in_penumbra;
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
-use crate::render::image::{in_penumbra, ErrorSummary};
+use crate::render::image::ErrorSummary;
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};

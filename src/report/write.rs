@@ -125,7 +125,7 @@ fn index(results: &Results, plots: &[String]) -> String {
          beforehand — the maps a method builds are paid, the BVH and the primary rays (shared, \
          listed per scene) are not — the median of {} runs (one where a run takes over {SLOW_RUN} \
          s; each cell's count is in `results.json`). **Error** is `V − V_exact` (negative: too \
-         dark) over four receiver groups: all, the exact penumbra (`0 < V_exact < 1`), the \
+         dark) over four receiver groups: all, the exact penumbra (`{margin:e} < V_exact < 1 − {margin:e}`), the \
          ground (object 0) and the occluders (the other objects); \"shaded\" is the error of \
          `V·max(0, n·l̂)` (`l̂` toward the light's centre), what the papers' pictures show. \
          **MC N** is the Monte Carlo sample count of equal RMSE: per scene, Monte Carlo's RMSE \
@@ -140,6 +140,7 @@ fn index(results: &Results, plots: &[String]) -> String {
             .join(", "),
         c.mc.first().copied().unwrap_or(0),
         c.mc.last().copied().unwrap_or(0),
+        margin = crate::definitions::PENUMBRA_MARGIN,
     );
     let multi = results.machines.len() > 1;
     let _ = writeln!(s, "## Summary\n");
