@@ -32,8 +32,9 @@ pub struct Args {
     /// Image height (default: the scene camera's).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
     height: Option<u32>,
-    /// Seed of the Monte Carlo samples (the same as the option seed=S of
-    /// mc:N; default the method's own).
+    /// Seed of the Monte Carlo samples: the option seed=S of mc:N (not
+    /// both; refused for a method without a seed); default the method's
+    /// own.
     #[arg(long)]
     seed: Option<u64>,
     /// Print each stage's time and what was built.

@@ -2,7 +2,7 @@
 //! method.
 
 use crate::progress::Progress;
-use softshadow::method::{self, Method, MethodError};
+use softshadow::method::{self, registry, Method, MethodError, OptionError, ParseError, REGISTRY};
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::{load_points, load_scene};
@@ -22,27 +22,44 @@ pub struct Args {
     /// The method, NAME or NAME:OPTION,… (the list is below).
     #[arg(long, value_parser = parse_method)]
     method: String,
-    /// Seed of the Monte Carlo samples (the same as the option seed=S of
-    /// mc:N; default the method's own).
+    /// Seed of the Monte Carlo samples: the option seed=S of mc:N (not
+    /// both; refused for a method without a seed); default the method's
+    /// own.
     #[arg(long)]
     seed: Option<u64>,
 }
 
 /// Checks a method name (clap's value parser), keeping the name.
-pub fn parse_method(s: &str) -> Result<String, String> {
+pub fn parse_method(s: &str) -> Result<String, ParseError> {
     method::parse(s).map(|_| s.to_owned())
 }
 
-/// The method `name`, with `seed=S` added to a Monte Carlo method's
-/// options when a seed is given.
+/// The method `name`, with `seed=S` added to its options when `--seed S`
+/// is given. Refused, rather than one of them silently dropped: `--seed`
+/// for a method without a seed, and `--seed` beside a `seed=` of the name.
 pub fn method_with_seed(name: &str, seed: Option<u64>) -> Result<Box<dyn Method>, String> {
-    match seed {
-        Some(seed) if name == "mc" || name.starts_with("mc:") => {
-            let sep = if name.contains(':') { ',' } else { ':' };
-            method::parse(&format!("{name}{sep}seed={seed}"))
-        }
-        _ => method::parse(name),
+    let Some(seed) = seed else {
+        return method::parse(name).map_err(|e| e.to_string());
+    };
+    let base = name.split(':').next().unwrap_or(name);
+    if !registry::entry(base).is_some_and(|e| e.accepts("seed")) {
+        let seeded: Vec<String> = REGISTRY
+            .iter()
+            .filter(|e| e.is_built() && e.accepts("seed"))
+            .map(|e| e.usage())
+            .collect();
+        return Err(format!(
+            "--seed {seed}: method {base} has no seed (methods with one: {})",
+            seeded.join(", ")
+        ));
     }
+    let sep = if name.contains(':') { ',' } else { ':' };
+    method::parse(&format!("{name}{sep}seed={seed}")).map_err(|e| match e.option() {
+        Some(OptionError::Repeated { .. }) => {
+            format!("--seed {seed}: --method {name} sets seed= already; give the seed once")
+        }
+        _ => e.to_string(),
+    })
 }
 
 /// A built-in scene by name, else a scene file.

@@ -44,7 +44,7 @@ pub mod ssoc;
 
 pub use hard::HardShadow;
 pub use oess::Oess;
-pub use options::Configurable;
+pub use options::{Configurable, OptionError, ParseError};
 pub use pcss::{Pcss, PcssBias};
 pub use reference::{Exact, MonteCarlo};
 pub use registry::{default_set, parse, REGISTRY};
@@ -498,9 +498,9 @@ pub fn check<'r, 'a>(
 
 /// An [`MethodError::InvalidOption`] for `method` from an options check.
 pub(crate) fn check_options<T: Configurable>(m: &T) -> Result<(), MethodError> {
-    options::check(m).map_err(|message| MethodError::InvalidOption {
+    options::check(m).map_err(|e| MethodError::InvalidOption {
         method: m.name(),
-        message,
+        message: e.to_string(),
     })
 }
 

@@ -324,7 +324,7 @@ pub fn run(
         .iter()
         .map(|s| match config.own.iter().find(|m| m.name() == *s) {
             Some(own) => Ok(Arc::clone(own)),
-            None => registry::parse(s).map(Arc::from),
+            None => registry::parse(s).map(Arc::from).map_err(|e| e.to_string()),
         })
         .collect::<Result<_, _>>()?;
     let machine = machine_line();
