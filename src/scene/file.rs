@@ -255,9 +255,9 @@ pub fn scene_from_str(name: &str, text: &str, base_dir: &Path) -> Result<Scene, 
 pub fn load_points(path: &Path, mesh_count: usize) -> Result<Vec<Receiver>, FileError> {
     use std::io::Read as _;
     let name = path.display().to_string();
-    let (file, len) = open_input(path, MAX_TEXT_BYTES).map_err(|m| whole(&name, m))?;
+    let (file, len) = open_input(path, MAX_TEXT_BYTES).map_err(|e| whole(&name, e.to_string()))?;
     if len < 1 << 16 {
-        let bytes = read_all(file, MAX_TEXT_BYTES).map_err(|m| whole(&name, m))?;
+        let bytes = read_all(file, MAX_TEXT_BYTES).map_err(|e| whole(&name, e.to_string()))?;
         return points_from_str(&name, &utf8(&name, bytes)?, mesh_count);
     }
     // Streamed from the file: the text is never held whole.
@@ -466,6 +466,43 @@ pub const MAX_TEXT_BYTES: u64 = 256 << 20;
 /// The largest OBJ file read (1 GiB).
 pub const MAX_OBJ_BYTES: u64 = 1 << 30;
 
+/// Why an input file could not be read ([`read_input`]); displayed as
+/// one line.
+#[derive(Debug)]
+#[non_exhaustive]
+pub enum InputError {
+    /// The path is a directory.
+    Directory,
+    /// The path is a device, FIFO or socket, not a regular file.
+    NotRegular,
+    /// The file is longer than the limit, or grew past it while being read.
+    TooLarge {
+        /// Its length (at least; `limit + 1` when it grew while read).
+        bytes: u64,
+        /// The limit.
+        limit: u64,
+    },
+    /// The system could not open or read it.
+    Io(std::io::Error),
+}
+
+impl fmt::Display for InputError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            InputError::Directory => write!(f, "not a regular file (a directory)"),
+            InputError::NotRegular => {
+                write!(f, "not a regular file (a device, FIFO or socket)")
+            }
+            InputError::TooLarge { bytes, limit } => {
+                write!(f, "{bytes} bytes or more, over the limit of {limit} bytes")
+            }
+            InputError::Io(e) => write!(f, "cannot read: {e}"),
+        }
+    }
+}
+
+impl std::error::Error for InputError {}
+
 /// The bytes of the regular file at `path`, at most `limit` of them.
 ///
 /// Devices (`/dev/zero`), FIFOs, sockets and directories are refused before
@@ -474,50 +511,50 @@ pub const MAX_OBJ_BYTES: u64 = 1 << 30;
 /// — is refused rather than read whole.
 ///
 /// # Errors
-/// A one-line message: what the path is instead of a regular file, its
-/// size against the limit, or the I/O error.
-pub fn read_input(path: &Path, limit: u64) -> Result<Vec<u8>, String> {
+/// [`InputError`]: what the path is instead of a regular file, its size
+/// against the limit, or the I/O error.
+pub fn read_input(path: &Path, limit: u64) -> Result<Vec<u8>, InputError> {
     read_all(open_input(path, limit)?.0, limit)
 }
 
 /// The bytes of an opened input, at most `limit` of them.
-fn read_all(file: std::fs::File, limit: u64) -> Result<Vec<u8>, String> {
+fn read_all(file: std::fs::File, limit: u64) -> Result<Vec<u8>, InputError> {
     use std::io::Read as _;
     let mut bytes = Vec::new();
     file.take(limit + 1)
         .read_to_end(&mut bytes)
-        .map_err(|e| format!("cannot read: {e}"))?;
+        .map_err(InputError::Io)?;
     if bytes.len() as u64 > limit {
-        return Err(too_big(limit + 1, limit));
+        return Err(InputError::TooLarge {
+            bytes: limit + 1,
+            limit,
+        });
     }
     Ok(bytes)
 }
 
 /// The regular file at `path`, opened, and its length (see [`read_input`]).
-fn open_input(path: &Path, limit: u64) -> Result<(std::fs::File, u64), String> {
-    let meta = std::fs::metadata(path).map_err(|e| format!("cannot read: {e}"))?;
+fn open_input(path: &Path, limit: u64) -> Result<(std::fs::File, u64), InputError> {
+    let meta = std::fs::metadata(path).map_err(InputError::Io)?;
     let kind = meta.file_type();
+    if kind.is_dir() {
+        return Err(InputError::Directory);
+    }
     if !kind.is_file() {
-        let what = if kind.is_dir() {
-            "a directory"
-        } else {
-            "a device, FIFO or socket"
-        };
-        return Err(format!("not a regular file ({what})"));
+        return Err(InputError::NotRegular);
     }
     if meta.len() > limit {
-        return Err(too_big(meta.len(), limit));
+        return Err(InputError::TooLarge {
+            bytes: meta.len(),
+            limit,
+        });
     }
-    let file = std::fs::File::open(path).map_err(|e| format!("cannot read: {e}"))?;
+    let file = std::fs::File::open(path).map_err(InputError::Io)?;
     Ok((file, meta.len()))
 }
 
-fn too_big(n: u64, limit: u64) -> String {
-    format!("{n} bytes or more, over the limit of {limit} bytes")
-}
-
 fn read_text(name: &str, path: &Path) -> Result<String, FileError> {
-    let bytes = read_input(path, MAX_TEXT_BYTES).map_err(|m| whole(name, m))?;
+    let bytes = read_input(path, MAX_TEXT_BYTES).map_err(|e| whole(name, e.to_string()))?;
     utf8(name, bytes)
 }
 
@@ -908,5 +945,41 @@ mod tests {
             message: "bad\r\nthing".to_owned(),
         };
         assert_eq!(e.to_string(), "a\\nb.json: x: bad\\r\\nthing");
+    }
+
+    #[test]
+    fn inputs_that_cannot_be_read_are_typed_errors() {
+        let dir = std::env::temp_dir().join(format!("softshadow-input-{}", std::process::id()));
+        std::fs::create_dir_all(&dir).unwrap();
+        let file = dir.join("ten.txt");
+        std::fs::write(&file, b"0123456789").unwrap();
+        assert_eq!(read_input(&file, 10).unwrap(), b"0123456789");
+        let e = read_input(&file, 9).unwrap_err();
+        assert!(
+            matches!(
+                e,
+                InputError::TooLarge {
+                    bytes: 10,
+                    limit: 9
+                }
+            ),
+            "{e:?}"
+        );
+        assert_eq!(e.to_string(), "10 bytes or more, over the limit of 9 bytes");
+        assert!(matches!(
+            read_input(&dir, 1 << 20),
+            Err(InputError::Directory)
+        ));
+        let missing = read_input(&dir.join("missing"), 1 << 20).unwrap_err();
+        assert!(
+            matches!(&missing, InputError::Io(io) if io.kind() == std::io::ErrorKind::NotFound),
+            "{missing:?}"
+        );
+        #[cfg(unix)]
+        assert!(matches!(
+            read_input(Path::new("/dev/null"), 1 << 20),
+            Err(InputError::NotRegular)
+        ));
+        std::fs::remove_dir_all(&dir).unwrap();
     }
 }
