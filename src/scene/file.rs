@@ -427,10 +427,7 @@ fn point(cx: &Cx<'_>, v: &Json, at: &At<'_>, mesh_count: usize) -> Result<Receiv
         Some(v) => {
             let at = at.key("normal");
             let n = cx.vec3(v, &at)?;
-            Some(
-                n.try_normalize()
-                    .ok_or_else(|| cx.err(&at, "has zero length"))?,
-            )
+            Some(crate::kernel::eft::unit(n).ok_or_else(|| cx.err(&at, "has zero length"))?)
         }
     };
     Ok(Receiver {
@@ -683,7 +680,24 @@ impl Cx<'_> {
             "segment" => Light::segment(vec("a")?, vec("b")?),
             _ => Light::point(vec("position")?),
         };
-        light.map_err(|e| match e {
+        light.map_err(|e| {
+            // Every fault on the one line, located at the first.
+            let mut faults = e.faults().iter().map(|fault| self.light_fault(fault, at));
+            let mut first = faults.next().unwrap_or_else(|| self.err(at, e.to_string()));
+            for other in faults {
+                let place = match &other.place {
+                    Place::Path(path) => format!("{path}: "),
+                    _ => String::new(),
+                };
+                first.message = format!("{}; {place}{}", first.message, other.message);
+            }
+            first
+        })
+    }
+
+    /// One fault of a light, located at its field.
+    fn light_fault(&self, e: &LightError, at: &At) -> FileError {
+        match e {
             LightError::NonFinite { field } => self.err(&at.key(field), "not finite"),
             LightError::NonPositiveRadius { radius } => {
                 self.err(&at.key("radius"), format!("must be positive, got {radius}"))
@@ -696,7 +710,8 @@ impl Cx<'_> {
             LightError::ZeroLengthSegment => {
                 self.err(&at.key("b"), "equals a (the segment has zero length)")
             }
-        })
+            e => self.err(at, e.to_string()),
+        }
     }
 
     fn mesh(
