@@ -63,6 +63,7 @@ use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
 use std::collections::BTreeMap;
+use std::fmt;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -90,19 +91,49 @@ pub struct Shard {
     pub count: u32,
 }
 
+/// Why a text is not a [`Shard`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ShardError {
+    /// Not two whole numbers `i/n`.
+    Syntax {
+        /// The text given.
+        text: String,
+    },
+    /// `i` is 0 or greater than `n`.
+    OutOfRange {
+        /// Which part.
+        index: u32,
+        /// Of how many.
+        count: u32,
+    },
+}
+
+impl fmt::Display for ShardError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ShardError::Syntax { text } => write!(f, "'{text}'"),
+            ShardError::OutOfRange { index, count } => write!(f, "'{index}/{count}'"),
+        }?;
+        write!(f, ": a shard is i/n with 1 ≤ i ≤ n")
+    }
+}
+
+impl std::error::Error for ShardError {}
+
 impl std::str::FromStr for Shard {
-    type Err = String;
+    type Err = ShardError;
 
     /// `i/n` with `1 ≤ i ≤ n`.
-    fn from_str(s: &str) -> Result<Shard, String> {
-        let bad = || format!("'{s}': a shard is i/n with 1 ≤ i ≤ n");
-        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    fn from_str(s: &str) -> Result<Shard, ShardError> {
+        let syntax = || ShardError::Syntax { text: s.to_owned() };
+        let (i, n) = s.split_once('/').ok_or_else(syntax)?;
         let (index, count): (u32, u32) = (
-            i.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
+            i.trim().parse().map_err(|_| syntax())?,
+            n.trim().parse().map_err(|_| syntax())?,
         );
         if index == 0 || index > count {
-            return Err(bad());
+            return Err(ShardError::OutOfRange { index, count });
         }
         Ok(Shard { index, count })
     }
@@ -722,6 +753,13 @@ mod tests {
         for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
             assert!(bad.parse::<Shard>().is_err(), "{bad}");
         }
+        assert_eq!(
+            "4/3".parse::<Shard>(),
+            Err(ShardError::OutOfRange { index: 4, count: 3 })
+        );
+        let e = "a/b".parse::<Shard>().unwrap_err();
+        assert_eq!(e, ShardError::Syntax { text: "a/b".into() });
+        assert_eq!(e.to_string(), "'a/b': a shard is i/n with 1 ≤ i ≤ n");
     }
 
     #[test]
