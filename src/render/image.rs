@@ -441,8 +441,7 @@ pub struct ErrorRow {
     pub seconds: f64,
     /// The errors over every receiver.
     pub all: ErrorSummary,
-    /// The errors over the exact penumbra
-    /// ([`in_penumbra`](crate::definitions::in_penumbra)).
+    /// The errors over the exact penumbra ([`in_penumbra`]).
     pub penumbra: ErrorSummary,
 }
 
