@@ -47,6 +47,13 @@
 //! receiver lies inside the light is the query's business
 //! ([`Light::emitter`](super::Light::emitter)), not the file's.
 //!
+//! # Numbers
+//!
+//! Every number is read correctly rounded: the double nearest the literal
+//! (ties to even), whatever its number of digits, so that a file written
+//! with 17 significant digits, or by any shortest-round-trip printer,
+//! reads back as the doubles it was written from.
+//!
 //! # Errors
 //!
 //! Every problem is a [`FileError`], displayed on one line as
