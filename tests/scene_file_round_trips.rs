@@ -192,7 +192,10 @@ fn numbers_are_read_correctly_rounded() {
         off += usize::from(p[0] != w(0) || p[1] != w(4) || p[2].x != want[7]);
         let points = points_from_str(
             "p.json",
-            &format!(r#"{{"points": [{{"p": [{x}, {y}, {z}], "normal": [0, {}, 0]}}]}}"#, lits[8]),
+            &format!(
+                r#"{{"points": [{{"p": [{x}, {y}, {z}], "normal": [0, {}, 0]}}]}}"#,
+                lits[8]
+            ),
             1,
         )
         .unwrap();
@@ -221,7 +224,11 @@ fn the_double_below_one_is_read_as_itself() {
     use softshadow::scene::file::points_from_str;
     let below = 1.0 - f64::EPSILON / 2.0;
     assert_eq!("0.9999999999999999".parse::<f64>().unwrap(), below);
-    let points = points_from_str("p.json", r#"{"points": [{"p": [0, 0.9999999999999999, 0]}]}"#, 0)
-        .unwrap();
+    let points = points_from_str(
+        "p.json",
+        r#"{"points": [{"p": [0, 0.9999999999999999, 0]}]}"#,
+        0,
+    )
+    .unwrap();
     assert_eq!(points[0].position.y, below);
 }

@@ -14,16 +14,29 @@
 //! - `softshadow stability [--out DIR]`: the stability suite.
 //!
 //! Bad input ends with one line on stderr naming the file, the place and
-//! the field, exit status 2, and nothing on stdout.
+//! the field, exit status 2, and nothing on stdout. An answer that could
+//! not be delivered — stdout closed (`>&-`), full, or a pipe whose reader
+//! left (`| head -1`) — ends with one line on stderr and exit status 1,
+//! after every file the command started is written whole. A stderr that
+//! cannot be written (`2>/dev/full`) changes nothing but the lines lost:
+//! the exit status still tells.
 
-/// `println!` that ends the program quietly (status 0) when stdout is
-/// closed — `softshadow … | head -1` — as a pipeline's reader expects, and
-/// with a one-line error (status 1) when it cannot be written otherwise.
-/// Every file the program writes is written to a temporary name and
-/// renamed, so stopping here leaves no partial file.
+/// `println!` for what the program prints as its answer. A failed write is
+/// remembered, not fatal: the command goes on and writes every file it
+/// started (each to a temporary name, renamed when whole), then
+/// [`main`] ends with exit status 1 and says what was lost.
 macro_rules! say {
     ($($arg:tt)*) => {
         $crate::stdout_line(format_args!($($arg)*))
+    };
+}
+
+/// `eprintln!` that never panics: a line to stderr, dropped when stderr
+/// cannot be written (full or closed), since there is nowhere else to say
+/// it; the exit status still tells.
+macro_rules! note {
+    ($($arg:tt)*) => {
+        $crate::stderr_line(format_args!($($arg)*))
     };
 }
 
@@ -57,17 +70,55 @@ fn out_dir(dir: &std::path::Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Writes one line to stdout for [`say!`].
+/// Why stdout lost what was printed: the first failed write, or a
+/// descriptor closed before the program started. Set once; [`say!`]
+/// prints nothing more after it.
+static STDOUT_LOST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
+
+/// Writes one line to stdout for [`say!`], or remembers why it could not.
 fn stdout_line(args: std::fmt::Arguments<'_>) {
     use std::io::Write;
+    if STDOUT_LOST.get().is_some() {
+        return;
+    }
     let mut out = std::io::stdout().lock();
     if let Err(e) = writeln!(out, "{args}").and_then(|()| out.flush()) {
-        if e.kind() == std::io::ErrorKind::BrokenPipe {
-            std::process::exit(0);
-        }
-        eprintln!("softshadow: cannot write to stdout: {e}");
-        std::process::exit(1);
+        let why = if e.kind() == std::io::ErrorKind::BrokenPipe {
+            "broken pipe, its reader has gone".to_owned()
+        } else {
+            e.to_string()
+        };
+        let _ = STDOUT_LOST.set(why);
     }
+}
+
+/// Whether something [`say!`] printed was lost: a command that only
+/// prints stops early.
+fn stdout_lost() -> bool {
+    STDOUT_LOST.get().is_some()
+}
+
+/// Writes one line to stderr for [`note!`]; a failed write is dropped.
+fn stderr_line(args: std::fmt::Arguments<'_>) {
+    use std::io::Write;
+    let mut err = std::io::stderr().lock();
+    let _ = writeln!(err, "{args}").and_then(|()| err.flush());
+}
+
+/// Whether stdout was closed when the program started (`>&-`). Rust's
+/// runtime puts `/dev/null`, opened for reading and writing, in place of
+/// a closed standard descriptor, so that every write would "succeed"
+/// into nothing; a shell's `>/dev/null` opens it for writing only. Read
+/// from `/proc` (Linux); elsewhere `false`.
+fn stdout_closed_at_start() -> bool {
+    let null = std::fs::read_link("/proc/self/fd/1")
+        .is_ok_and(|target| target == std::path::Path::new("/dev/null"));
+    null && std::fs::read_to_string("/proc/self/fdinfo/1").is_ok_and(|info| {
+        info.lines()
+            .find_map(|l| l.strip_prefix("flags:"))
+            .and_then(|f| u32::from_str_radix(f.trim(), 8).ok())
+            .is_some_and(|flags| flags & 0o3 == 0o2)
+    })
 }
 
 #[derive(Parser)]
@@ -100,6 +151,10 @@ enum Command {
 /// Exit status for bad input (a file, an argument).
 const BAD_INPUT: u8 = 2;
 
+/// Exit status for an answer that could not be delivered (stdout closed,
+/// full or its reader gone).
+const NOT_DELIVERED: u8 = 1;
+
 /// The command with the registry's list of methods under `--help`.
 fn command() -> clap::Command {
     use clap::CommandFactory;
@@ -115,6 +170,9 @@ fn command() -> clap::Command {
 
 fn main() -> ExitCode {
     use clap::FromArgMatches;
+    if stdout_closed_at_start() {
+        let _ = STDOUT_LOST.set("it was closed when the program started".to_owned());
+    }
     let parsed = command()
         .try_get_matches()
         .and_then(|m| Cli::from_arg_matches(&m));
@@ -128,34 +186,66 @@ fn main() -> ExitCode {
                     ErrorKind::DisplayHelpOnMissingArgumentOrSubcommand
                 )
             {
-                e.exit();
+                // The help is the answer: printed, or said to be lost.
+                if let Some(why) = STDOUT_LOST.get() {
+                    return not_delivered(why);
+                }
+                return match e.print() {
+                    Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(0)),
+                    Err(err) => not_delivered(&err.to_string()),
+                };
             }
             // One line, as for every other bad input (clap's own message
             // adds a usage block and a hint).
             let text = e.to_string();
             let first = text.lines().next().unwrap_or("bad arguments");
-            eprintln!(
+            note!(
                 "softshadow: {} (see softshadow --help)",
                 one_line(first.trim_start_matches("error: "), 600)
             );
             return ExitCode::from(BAD_INPUT);
         }
     };
+    // A command whose whole answer is printed does no work for a stdout
+    // closed from the start; one that writes files writes them.
+    let prints_only = matches!(
+        cli.command,
+        None | Some(Command::Check | Command::Visibility(_))
+    );
+    if let (true, Some(why)) = (prints_only, STDOUT_LOST.get()) {
+        return not_delivered(why);
+    }
     let result = match cli.command {
         None => render::default_run(),
-        Some(Command::Check) => return check::run(),
+        Some(Command::Check) => {
+            let status = check::run();
+            return match STDOUT_LOST.get() {
+                Some(why) => not_delivered(why),
+                None => status,
+            };
+        }
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Visibility(args)) => visibility::run(&args),
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Stability(args)) => stability::run(&args),
     };
-    match result {
-        Ok(()) => ExitCode::SUCCESS,
-        Err(message) => {
-            eprintln!("softshadow: {}", one_line(&message, 600));
+    match (result, STDOUT_LOST.get()) {
+        (Err(message), _) => {
+            note!("softshadow: {}", one_line(&message, 600));
             ExitCode::from(BAD_INPUT)
         }
+        (Ok(()), Some(why)) => not_delivered(why),
+        (Ok(()), None) => ExitCode::SUCCESS,
     }
+}
+
+/// Says that what was to be printed is lost, and why; exit status 1.
+fn not_delivered(why: &str) -> ExitCode {
+    note!(
+        "softshadow: stdout: {}; the printed output is lost or incomplete",
+        one_line(why, 200)
+    );
+    ExitCode::from(NOT_DELIVERED)
 }
 
 /// A message as one line of at most about `max` bytes: control characters

@@ -281,11 +281,23 @@ fn visibility_numbers_cross_the_json_exactly() {
         &format!(r#"{{"points": [{}]}}"#, list.join(", ")),
     );
     let out = softshadow(&[
-        "visibility", "--scene", &scene, "--points", &points, "--method", "exact",
+        "visibility",
+        "--scene",
+        &scene,
+        "--points",
+        &points,
+        "--method",
+        "exact",
     ]);
     let stdout = String::from_utf8_lossy(&out.stdout);
-    assert!(out.status.success(), "{}", String::from_utf8_lossy(&out.stderr));
-    let (_, rest) = stdout.split_once(r#""visibility":["#).expect("a visibility list");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (_, rest) = stdout
+        .split_once(r#""visibility":["#)
+        .expect("a visibility list");
     let (list, _) = rest.split_once(']').unwrap();
     let got: Vec<f64> = list.split(',').map(|x| x.parse().unwrap()).collect();
 

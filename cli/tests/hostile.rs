@@ -1,5 +1,7 @@
-//! Hostile input and a hostile environment, one test per case: a closed
-//! stdout ends the program quietly; files are replaced whole (a symlink is
+//! Hostile input and a hostile environment, one test per case: an answer
+//! that cannot be delivered (stdout closed, full, its reader gone) ends
+//! with status 1 after every file is written, a full stderr panics
+//! nothing; files are replaced whole (a symlink is
 //! replaced, never written through); `--out` is checked before any work;
 //! special and oversized input files are refused without being read; error
 //! messages stay one short line whatever the input quoted; option values
@@ -55,13 +57,109 @@ fn with_stdout_closed(args: &[&str]) -> Output {
     }
 }
 
+/// Runs `softshadow args` under `sh -c` with `redirect` appended (`>&-`,
+/// `2>/dev/full`, …).
+fn with_redirect(args: &[&str], redirect: &str) -> Output {
+    let quoted: Vec<String> = args.iter().map(|a| format!("'{a}'")).collect();
+    let script = format!(
+        "exec '{}' {} {redirect}",
+        env!("CARGO_BIN_EXE_softshadow"),
+        quoted.join(" ")
+    );
+    Command::new("sh").arg("-c").arg(&script).output().unwrap()
+}
+
+/// The three pictures of `render --method hard` of `scene.json` in `d`,
+/// each present and whole.
+fn three_pictures(d: &std::path::Path) {
+    pictures_whole(d, false);
+    for kind in ["visibility", "shaded", "error"] {
+        let p = d.join(format!("scene-hard-{kind}.png"));
+        assert!(p.exists(), "{} is missing", p.display());
+    }
+}
+
+/// An answer that cannot be delivered ends with exit status 1 and one line
+/// saying so — a pipe whose reader left, a stdout closed before the start
+/// (`>&-`, which Rust's runtime turns into a read-write `/dev/null`), a
+/// full device — and `render` writes all three pictures first; a
+/// `>/dev/null` chosen by the user is an answer delivered.
 #[test]
-fn a_closed_stdout_ends_the_program_quietly() {
+fn an_answer_that_cannot_be_delivered_ends_with_status_1() {
     let d = dir("pipe");
     let scene = write(&d, "scene.json", SCENE);
     let points = write(&d, "points.json", r#"{"points": [{"p": [0.2, 0.0, 0.1]}]}"#);
-    for args in [
-        vec![
+    let visibility = [
+        "visibility",
+        "--scene",
+        &scene,
+        "--points",
+        &points,
+        "--method",
+        "hard",
+    ];
+    let lost = |out: &Output, what: &str| {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{what}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{what}: {stderr}");
+        assert!(
+            stderr.starts_with("softshadow: stdout: "),
+            "{what}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{what}: {stderr}");
+    };
+    lost(&with_stdout_closed(&visibility), "broken pipe");
+    lost(&with_redirect(&visibility, ">&-"), ">&-");
+    lost(&with_redirect(&visibility, ">/dev/full"), ">/dev/full");
+    lost(&with_redirect(&["--help"], ">&-"), "--help >&-");
+    let quiet = with_redirect(&visibility, ">/dev/null");
+    assert!(quiet.status.success(), "{quiet:?}");
+    assert!(quiet.stderr.is_empty(), "{quiet:?}");
+    // `render` with its stdout gone still writes every picture.
+    for (k, how) in ["pipe", ">&-", ">/dev/full"].into_iter().enumerate() {
+        let out = dir(&format!("pipe-render-{k}"));
+        let render = [
+            "render",
+            "--scene",
+            &scene,
+            "--method",
+            "hard",
+            "--out",
+            out.to_str().unwrap(),
+        ];
+        let run = match how {
+            "pipe" => with_stdout_closed(&render),
+            redirect => with_redirect(&render, redirect),
+        };
+        lost(&run, how);
+        three_pictures(&out);
+    }
+}
+
+/// A stderr that cannot be written (`2>/dev/full`) is no reason to panic:
+/// bad input still ends with exit status 2, a good run with 0.
+#[test]
+fn a_full_stderr_changes_nothing_but_the_lines_lost() {
+    let d = dir("full-stderr");
+    let scene = write(&d, "scene.json", SCENE);
+    let points = write(&d, "points.json", r#"{"points": [{"p": [0.2, 0.0, 0.1]}]}"#);
+    let bad = with_redirect(
+        &[
+            "visibility",
+            "--scene",
+            "nope.json",
+            "--points",
+            &points,
+            "--method",
+            "hard",
+        ],
+        "2>/dev/full",
+    );
+    assert_eq!(bad.status.code(), Some(2), "{bad:?}");
+    let args = with_redirect(&["render", "--width", "0"], "2>/dev/full");
+    assert_eq!(args.status.code(), Some(2), "{args:?}");
+    let good = with_redirect(
+        &[
             "visibility",
             "--scene",
             &scene,
@@ -70,24 +168,10 @@ fn a_closed_stdout_ends_the_program_quietly() {
             "--method",
             "hard",
         ],
-        vec![
-            "render",
-            "--scene",
-            &scene,
-            "--method",
-            "hard",
-            "--out",
-            d.to_str().unwrap(),
-        ],
-    ] {
-        let out = with_stdout_closed(&args);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
-        assert!(stderr.is_empty(), "{args:?}: {stderr}");
-    }
-    // Whatever `render` wrote before it stopped is whole: every PNG
-    // decodes, and no temporary file is left.
-    pictures_whole(&d, false);
+        "2>/dev/full",
+    );
+    assert_eq!(good.status.code(), Some(0), "{good:?}");
+    assert!(String::from_utf8_lossy(&good.stdout).starts_with("{\"method\""));
 }
 
 #[test]
