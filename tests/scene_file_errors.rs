@@ -62,13 +62,76 @@ fn missing_file_is_an_error() {
     assert!(msg.starts_with(&expect), "{msg}");
 }
 
+/// A byte that is not UTF-8 is reported at its line and column, with its
+/// value, in a scene or a points file, large or small.
 #[test]
 fn non_utf8_file_is_an_error() {
     let path = scratch("utf8").join("bad.json");
     std::fs::write(&path, b"{\"light\": \xff}").unwrap();
+    let latin1 = "(byte 0xFF; the file must be UTF-8, not Latin-1 or another encoding)";
     assert_eq!(
         load_scene(&path).unwrap_err().to_string(),
-        format!("{}: not valid UTF-8 (byte 10)", path.display())
+        format!("{}:1:11: not valid UTF-8 {latin1}", path.display())
+    );
+    // A Latin-1 "é" in a mesh name on line 3, past 100 kB of points.
+    let many = vec!["[0, 0, 0]"; 12_000].join(", ");
+    let text = format!(
+        "{{{LIGHT},\n\"meshes\": [{{\"positions\": [{many}],\n  \"name\": \"caf\u{1}\"}}]}}"
+    );
+    let mut bytes = text.into_bytes();
+    let at = bytes.iter().position(|&b| b == 1).unwrap();
+    bytes[at] = 0xe9;
+    std::fs::write(&path, &bytes).unwrap();
+    let msg = load_scene(&path).unwrap_err().to_string();
+    assert_eq!(
+        msg,
+        format!("{}:3:15: not valid UTF-8 (byte 0xE9; the file must be UTF-8, not Latin-1 or another encoding)", path.display())
+    );
+    std::fs::write(&path, b"{\"points\": [{\"p\": [0, 0, 0]}]}\n\x80").unwrap();
+    assert_eq!(
+        load_points(&path, 1).unwrap_err().to_string(),
+        format!(
+            "{}:2:1: not valid UTF-8 {}",
+            path.display(),
+            latin1.replace("0xFF", "0x80")
+        )
+    );
+}
+
+/// A UTF-8 byte-order mark (which some editors write) is skipped, in files
+/// and in text; a UTF-16 one is refused by name, not as "expected value".
+#[test]
+fn a_byte_order_mark_is_skipped_and_utf16_named() {
+    let dir = scratch("bom");
+    let text = with_meshes("");
+    let path = dir.join("bom.json");
+    std::fs::write(&path, format!("\u{feff}{text}")).unwrap();
+    assert!(load_scene(&path).is_ok());
+    assert!(scene_from_str("s.json", &format!("\u{feff}{text}"), manifest()).is_ok());
+    let points = dir.join("points.json");
+    std::fs::write(&points, "\u{feff}{\"points\": [{\"p\": [0, 1, 0]}]}").unwrap();
+    assert_eq!(load_points(&points, 0).unwrap().len(), 1);
+    assert_eq!(
+        points_from_str("p.json", "\u{feff}{\"points\": []}", 0).unwrap(),
+        vec![]
+    );
+    // A mark then nothing is an empty file.
+    std::fs::write(&path, "\u{feff}").unwrap();
+    assert_eq!(
+        load_scene(&path).unwrap_err().to_string(),
+        format!("{}: file is empty", path.display())
+    );
+    let utf16: Vec<u8> = std::iter::once(0xfeff_u16)
+        .chain(text.encode_utf16())
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    std::fs::write(&path, utf16).unwrap();
+    assert_eq!(
+        load_scene(&path).unwrap_err().to_string(),
+        format!(
+            "{}: is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8",
+            path.display()
+        )
     );
 }
 
