@@ -454,7 +454,7 @@ fn obj_problems_are_reported_at_the_obj_field() {
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap();
     assert_eq!(
         scene_err_in(&with_meshes(r#"{"obj": "bad.obj"}"#), &dir),
-        format!("scene.json: meshes[0].obj: {bad:?}: OBJ: face vertex index out of bounds")
+        format!("scene.json: meshes[0].obj: {bad:?}: line 4: a face (f) names a vertex that does not exist")
     );
     let inf = dir.join("inf.obj");
     std::fs::write(&inf, "v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
@@ -468,6 +468,50 @@ fn obj_problems_are_reported_at_the_obj_field() {
         scene_err_in(&with_meshes(r#"{"obj": 3}"#), &dir),
         "scene.json: meshes[0].obj: expected a string, got a number"
     );
+}
+
+/// OBJ errors name their line; bytes that are not UTF-8 (Latin-1 in a
+/// comment, as old exporters write) are no error where they are harmless,
+/// and one at its line where they are not.
+#[test]
+fn obj_errors_name_their_line() {
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let mut latin1 = b"# cr\xe9\xe9 par Blender\n".to_vec();
+    latin1.extend_from_slice(tri.as_bytes());
+    assert_eq!(
+        mesh_from_obj("l.obj", &latin1).unwrap().triangles().len(),
+        1
+    );
+    let mut bad_vertex = tri.as_bytes().to_vec();
+    bad_vertex.extend_from_slice(b"v 1 \xe9 0\nf 1 2 4\n");
+    assert_eq!(
+        mesh_from_obj("b.obj", &bad_vertex).unwrap_err().to_string(),
+        "b.obj: line 5: a vertex (v) that is not 3 or 4 numbers"
+    );
+    let cases = [
+        ("v 0 0\n", "line 1: a vertex (v) that is not 3 or 4 numbers"),
+        (
+            "v 0 0 0\nvn 0 x 1\n",
+            "line 2: a normal (vn) that is not 3 numbers",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 x\n",
+            "line 5: a face (f) that cannot be read",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 -4 2\no next\nf 1 2 3",
+            "line 5: a face (f) names a vertex that does not exist",
+        ),
+    ];
+    for (text, want) in cases {
+        assert_eq!(
+            mesh_from_obj("c.obj", text.as_bytes())
+                .unwrap_err()
+                .to_string(),
+            format!("c.obj: {want}"),
+            "{text:?}"
+        );
+    }
 }
 
 #[test]

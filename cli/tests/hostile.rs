@@ -652,6 +652,116 @@ fn a_render_beyond_the_memory_limit_is_refused_with_its_estimate() {
     );
 }
 
+/// A method's own maps count toward the memory limit: `oess:map=16384`
+/// (two endpoint maps, about 16 GiB) is refused in one line with the
+/// maps' share, by `render` and `visibility` alike, before any map is
+/// allocated (it aborted with a backtrace); the same method at its default
+/// side runs under the same limit.
+#[test]
+fn a_method_s_maps_count_toward_the_memory_limit() {
+    let d = dir("memory-maps");
+    let out = d.to_str().unwrap();
+    let points = write(
+        &d,
+        "points.json",
+        r#"{"points": [{"p": [0.1, 0.02, 0.3]}]}"#,
+    );
+    let big = "oess:map=16384";
+    let render = |method: &str| {
+        softshadow(&[
+            "render",
+            "--scene",
+            "linear-light",
+            "--method",
+            method,
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--out",
+            out,
+            "--max-memory",
+            "8",
+        ])
+    };
+    refused(
+        &render(big),
+        400,
+        &["16.0 GiB of the method's maps", "--max-memory", big],
+    );
+    let visibility = |method: &str| {
+        softshadow(&[
+            "visibility",
+            "--scene",
+            "linear-light",
+            "--points",
+            &points,
+            "--method",
+            method,
+            "--max-memory",
+            "8",
+        ])
+    };
+    refused(
+        &visibility(big),
+        400,
+        &["points.json (1 point)", "16.0 GiB of the method's maps"],
+    );
+    // 2 × 1024² × 64 bytes: the maps' estimate grows with the side squared.
+    assert!(render("oess").status.success());
+    assert!(visibility("oess:map=1024").status.success());
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            "linear-light",
+            "--points",
+            &points,
+            "--method",
+            "pcss:map=8192",
+            "--max-memory",
+            "0.4",
+        ]),
+        400,
+        &["1.0 GiB of the method's maps"],
+    );
+}
+
+/// A method's message speaks the program's words: the PCSS hint for a
+/// receiver without a normal names the option, not a type of the library.
+#[test]
+fn method_messages_name_options_not_types() {
+    let d = dir("pcss-words");
+    let points = write(&d, "points.json", r#"{"points": [{"p": [0.1, 0.0, 0.3]}]}"#);
+    refused(
+        &softshadow(&[
+            "visibility",
+            "--scene",
+            "default",
+            "--points",
+            &points,
+            "--method",
+            "pcss",
+        ]),
+        400,
+        &[
+            "points[0].normal",
+            "pcss needs receiver normals",
+            "pcss:constant",
+        ],
+    );
+    let out = softshadow(&[
+        "visibility",
+        "--scene",
+        "default",
+        "--points",
+        &points,
+        "--method",
+        "pcss",
+    ]);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("PcssBias"));
+}
+
 /// A full disk, simulated by a file-size limit of 2 KiB (two of the pictures of a
 /// 200 × 150 render are larger): the program stops, and no picture is
 /// left under its final name unless whole.

@@ -848,10 +848,22 @@ fn obj_mesh(bytes: &[u8]) -> Result<Mesh, String> {
         ignore_lines: true,
         ..Default::default()
     };
-    let (models, _) = tobj::load_obj_buf(&mut &bytes[..], &options, |_| {
+    // tobj reads lines as UTF-8 and fails on any other byte, even in a
+    // comment, with "read error": bytes that are not UTF-8 become U+FFFD
+    // here, harmless in a comment or a name, an error at their line
+    // elsewhere.
+    let text = String::from_utf8_lossy(bytes);
+    let mut reader = std::io::Cursor::new(text.as_bytes());
+    let (models, _) = tobj::load_obj_buf(&mut reader, &options, |_| {
         Err(tobj::LoadError::OpenFileFailed)
     })
-    .map_err(|e| format!("OBJ: {e}"))?;
+    .map_err(|e| {
+        // tobj stops at the line it could not read: the last one taken.
+        let taken = &text.as_bytes()[..reader.position() as usize];
+        let line =
+            taken.iter().filter(|&&b| b == b'\n').count() + usize::from(!taken.ends_with(b"\n"));
+        obj_error(&text, line, &e)
+    })?;
     let mut positions = Vec::new();
     let mut triangles = Vec::new();
     for model in &models {
@@ -880,6 +892,60 @@ fn obj_mesh(bytes: &[u8]) -> Result<Mesh, String> {
         }
         e => e.to_string(),
     })
+}
+
+/// A one-line message for tobj's error `e`, at `line` (where tobj
+/// stopped) or, for a face index out of range — which tobj finds only
+/// when it closes an object — at the first face line that has one.
+fn obj_error(text: &str, line: usize, e: &tobj::LoadError) -> String {
+    use tobj::LoadError as E;
+    let what = match e {
+        E::PositionParseError => "a vertex (v) that is not 3 or 4 numbers",
+        E::NormalParseError => "a normal (vn) that is not 3 numbers",
+        E::TexcoordParseError => "a texture coordinate (vt) that cannot be read",
+        E::FaceParseError => "a face (f) that cannot be read",
+        E::FaceVertexOutOfBounds => {
+            let line = bad_face_line(text).unwrap_or(line);
+            return format!("line {line}: a face (f) names a vertex that does not exist");
+        }
+        E::FaceTexCoordOutOfBounds | E::FaceNormalOutOfBounds | E::FaceColorOutOfBounds => {
+            return format!("OBJ: {e}");
+        }
+        _ => return format!("line {line}: {e} (OBJ)"),
+    };
+    format!("line {line}: {what}")
+}
+
+/// The 1-based line of the first face whose vertex index is 0, beyond
+/// the vertices of the file (positive) or before its first vertex
+/// (negative, counted back from the vertices so far).
+fn bad_face_line(text: &str) -> Option<usize> {
+    let total = text
+        .lines()
+        .filter(|l| l.split_whitespace().next() == Some("v"))
+        .count() as i64;
+    let mut vertices = 0i64;
+    for (k, line) in text.lines().enumerate() {
+        let mut words = line.split_whitespace();
+        match words.next() {
+            Some("v") => vertices += 1,
+            Some("f") => {
+                let bad = words.any(|w| {
+                    let i: i64 = w
+                        .split('/')
+                        .next()
+                        .and_then(|i| i.parse().ok())
+                        .unwrap_or(0);
+                    i == 0 || i > total || -i > vertices
+                });
+                if bad {
+                    return Some(k + 1);
+                }
+            }
+            _ => {}
+        }
+    }
+    None
 }
 
 /// The scene file's parts, read with the generic accessors of `json`.

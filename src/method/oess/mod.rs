@@ -174,6 +174,14 @@ impl Method for Oess {
         super::options::print(self)
     }
 
+    /// The two endpoint maps — each a depth, object and triangle map
+    /// and the edge columns found in it — and the search's rows: measured
+    /// 62.5 bytes a texel between `map=1024` and `map=4096` (`/usr/bin/time
+    /// -f %M`); `map=16384` needs about 17 GB.
+    fn map_bytes(&self) -> u64 {
+        64 * u64::from(self.resolution).pow(2)
+    }
+
     fn lights(&self) -> &'static [LightKind] {
         Self::LIGHTS
     }
