@@ -227,12 +227,19 @@ impl Oess {
         if frame.receivers().is_empty() {
             return Ok(OessPasses::default());
         }
-        let frames = maps::frames(&segment, &frame.positions()).ok_or_else(|| {
-            MethodError::InvalidOption {
+        // Every segment light (two distinct finite ends, any length) has
+        // its frames; `None` would be a bug, reported rather than hidden.
+        let frames =
+            maps::frames(&segment, &frame.positions()).ok_or_else(|| MethodError::Contract {
                 method: self.name(),
-                message: "no light frame along the segment".to_owned(),
-            }
-        })?;
+                message: {
+                    let (a, b) = (segment.a(), segment.b());
+                    format!(
+                        "no light frame along the segment from [{:e}, {:e}, {:e}] to [{:e}, {:e}, {:e}]",
+                        a.x, a.y, a.z, b.x, b.y, b.z
+                    )
+                },
+            })?;
         let strategies = Strategies {
             tilt: self.tilt,
             corresponding: self.corresponding,
