@@ -316,6 +316,21 @@ fn unknown_and_duplicate_keys_are_rejected() {
         scene_err(r#"{"meshes": [], "meshes": []}"#),
         "scene.json:1:23: duplicate key \"meshes\""
     );
+    // In a streamed mesh, a small part, the points file.
+    let text = with_meshes(r#"{"name": "a", "name": "b"}"#);
+    let column = text.find(r#""name": "b""#).unwrap() + 6; // after the key
+    assert_eq!(
+        scene_err(&text),
+        format!("scene.json:1:{column}: duplicate key \"name\"")
+    );
+    assert!(scene_err(&with_light(
+        r#"{"type": "point", "position": [0, 5, 0], "position": [0, 6, 0]}"#
+    ))
+    .ends_with(": duplicate key \"position\""));
+    assert_eq!(
+        points_err(r#"{"points": [], "points": []}"#, 1),
+        "points.json:1:23: duplicate key \"points\""
+    );
 }
 
 #[test]

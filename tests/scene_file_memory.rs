@@ -10,7 +10,7 @@
 
 use softshadow::scene::file::{load_points, load_scene};
 use std::fmt::Write as _;
-use std::path::PathBuf;
+use std::path::{Path, PathBuf};
 
 #[global_allocator]
 static ALLOC: dhat::Alloc = dhat::Alloc;
@@ -34,12 +34,25 @@ fn scratch(name: &str) -> PathBuf {
     dir.join(name)
 }
 
-/// The peak heap (bytes) while `f` runs, and its result.
-fn peak<T>(f: impl FnOnce() -> T) -> (u64, T) {
+/// `load` of `text` written to the file `name`, with the heap's peak
+/// while it runs (dhat) checked to be under `bound` × the file's size.
+fn load_within<T>(name: &str, text: &str, bound: f64, load: impl FnOnce(&Path) -> T) -> T {
+    let path = scratch(name);
+    std::fs::write(&path, text).unwrap();
     let _profiler = dhat::Profiler::builder().testing().build();
     let base = dhat::HeapStats::get().curr_bytes as u64;
-    let out = f();
-    (dhat::HeapStats::get().max_bytes as u64 - base, out)
+    let out = load(&path);
+    let bytes = dhat::HeapStats::get().max_bytes as u64 - base;
+    let ratio = bytes as f64 / text.len() as f64;
+    println!(
+        "  {name}: peak {bytes} bytes, {ratio:.2} × the file of {} bytes",
+        text.len()
+    );
+    assert!(
+        ratio < bound,
+        "{name}: peak {bytes} bytes, {ratio:.2} × the file"
+    );
+    out
 }
 
 /// A scene of one inline mesh of `n` vertices with 7-decimal coordinates
@@ -83,42 +96,20 @@ const SCENE_BOUND: f64 = 2.3;
 /// `/usr/bin/time`).
 fn a_scene_file_peaks_near_its_meshes() {
     let text = scene_text(240_000, "");
-    let path = scratch("ok.json");
-    std::fs::write(&path, &text).unwrap();
-    let (bytes, scene) = peak(|| load_scene(&path));
-    let scene = scene.unwrap();
+    let scene = load_within("ok.json", &text, SCENE_BOUND, load_scene).unwrap();
     assert_eq!(scene.meshes()[0].positions().len(), 240_000);
-    let ratio = bytes as f64 / text.len() as f64;
-    println!(
-        "  peak {bytes} bytes, {ratio:.2} × the file of {} bytes",
-        text.len()
-    );
-    assert!(
-        ratio < SCENE_BOUND,
-        "peak {bytes} bytes, {ratio:.2} × the file"
-    );
 }
 
 /// An unknown key after 10 MB of mesh: refused at that key, having held
 /// no more than the mesh read so far and the text.
 fn an_error_at_the_end_is_found_without_a_tree_of_the_file() {
     let text = scene_text(240_000, r#", "unknown": 1"#);
-    let path = scratch("unknown.json");
-    std::fs::write(&path, &text).unwrap();
-    let (bytes, scene) = peak(|| load_scene(&path));
-    let msg = scene.unwrap_err().to_string();
+    let msg = load_within("unknown.json", &text, SCENE_BOUND, load_scene)
+        .unwrap_err()
+        .to_string();
     assert!(
         msg.ends_with("unknown: unknown key (expected one of: camera, light, meshes)"),
         "{msg}"
-    );
-    let ratio = bytes as f64 / text.len() as f64;
-    println!(
-        "  peak {bytes} bytes, {ratio:.2} × the file of {} bytes",
-        text.len()
-    );
-    assert!(
-        ratio < SCENE_BOUND,
-        "peak {bytes} bytes, {ratio:.2} × the file"
     );
 }
 
@@ -133,16 +124,8 @@ fn a_points_file_peaks_near_its_receivers() {
         write!(text, r#"{sep}{{"p": [{x:.7}, 0.1234567, {:.7}]}}"#, -x).unwrap();
     }
     text.push_str("]}");
-    let path = scratch("points.json");
-    std::fs::write(&path, &text).unwrap();
-    let (bytes, points) = peak(|| load_points(&path, 1));
-    assert_eq!(points.unwrap().len(), 200_000);
-    let ratio = bytes as f64 / text.len() as f64;
-    println!(
-        "  peak {bytes} bytes, {ratio:.2} × the file of {} bytes",
-        text.len()
-    );
-    assert!(ratio < 4.0, "peak {bytes} bytes, {ratio:.2} × the file");
+    let points = load_within("points.json", &text, 4.0, |p| load_points(p, 1)).unwrap();
+    assert_eq!(points.len(), 200_000);
 }
 
 /// Where one small value goes (a light, one vertex, one point), a
@@ -163,16 +146,9 @@ fn a_huge_small_part_is_refused_without_building_it() {
         ),
     ];
     for (text, want) in cases {
-        let path = scratch("huge-light.json");
-        std::fs::write(&path, &text).unwrap();
-        let (bytes, scene) = peak(|| load_scene(&path));
-        let msg = scene.unwrap_err().to_string();
+        let msg = load_within("huge-light.json", &text, 2.0, load_scene)
+            .unwrap_err()
+            .to_string();
         assert!(msg.ends_with(want), "{msg}");
-        let ratio = bytes as f64 / text.len() as f64;
-        println!(
-            "  peak {bytes} bytes, {ratio:.2} × the file of {} bytes",
-            text.len()
-        );
-        assert!(ratio < 2.0, "peak {bytes} bytes, {ratio:.2} × the file");
     }
 }

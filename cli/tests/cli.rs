@@ -11,7 +11,7 @@ use std::path::PathBuf;
 #[path = "support/cli.rs"]
 mod cli_support;
 
-use cli_support::{softshadow, write};
+use cli_support::{softshadow, visibility, write};
 
 fn dir(name: &str) -> PathBuf {
     cli_support::dir("cli", name)
@@ -182,6 +182,26 @@ fn visibility_prints_the_json_of_the_design() {
     }
 }
 
+/// The library's side of `scene_with_light` with the sphere light of
+/// radius 0.5 at `(0, 3, 0)`: the light and the BVH over the card.
+fn card_under_sphere() -> (softshadow::scene::Light, softshadow::bvh::Bvh) {
+    use softshadow::bvh::{Bvh, Occluders};
+    use softshadow::glam::DVec3;
+    use softshadow::scene::{Light, Mesh, Scene};
+    let mesh = Mesh::new(
+        vec![
+            DVec3::new(-1.0, 1.0, -1.0),
+            DVec3::new(1.0, 1.0, -1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).unwrap();
+    let scene = Scene::new(light).with_mesh("card", mesh);
+    (light, Bvh::new(Occluders::from_scene(&scene)))
+}
+
 #[test]
 fn visibility_answers_match_the_library() {
     // A card at height 1 between a sphere light and two receivers: the
@@ -220,22 +240,9 @@ fn visibility_answers_match_the_library() {
         .map(|x| x.as_f64().unwrap())
         .collect();
 
-    use softshadow::bvh::{Bvh, Occluders};
     use softshadow::glam::DVec3;
     use softshadow::reference::exact;
-    use softshadow::scene::{Light, Mesh, Scene};
-    let mesh = Mesh::new(
-        vec![
-            DVec3::new(-1.0, 1.0, -1.0),
-            DVec3::new(1.0, 1.0, -1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-        ],
-        vec![[0, 1, 2]],
-    )
-    .unwrap();
-    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).unwrap();
-    let scene = Scene::new(light).with_mesh("card", mesh);
-    let bvh = Bvh::new(Occluders::from_scene(&scene));
+    let (light, bvh) = card_under_sphere();
     for (k, p) in [DVec3::ZERO, DVec3::new(0.1, 0.0, -0.2)]
         .into_iter()
         .enumerate()
@@ -251,10 +258,8 @@ fn visibility_answers_match_the_library() {
 /// receivers under the card, where `V` takes every value).
 #[test]
 fn visibility_numbers_cross_the_json_exactly() {
-    use softshadow::bvh::{Bvh, Occluders};
     use softshadow::glam::DVec3;
     use softshadow::reference::exact;
-    use softshadow::scene::{Light, Mesh, Scene};
     let d = dir("exact-numbers");
     let light_json = r#"{"type": "sphere", "center": [0, 3, 0], "radius": 0.5}"#;
     let scene = write(&d, "scene.json", &scene_with_light(light_json));
@@ -280,15 +285,7 @@ fn visibility_numbers_cross_the_json_exactly() {
         "points.json",
         &format!(r#"{{"points": [{}]}}"#, list.join(", ")),
     );
-    let out = softshadow(&[
-        "visibility",
-        "--scene",
-        &scene,
-        "--points",
-        &points,
-        "--method",
-        "exact",
-    ]);
+    let out = visibility(&scene, &points, "exact", &[]);
     let stdout = String::from_utf8_lossy(&out.stdout);
     assert!(
         out.status.success(),
@@ -301,18 +298,7 @@ fn visibility_numbers_cross_the_json_exactly() {
     let (list, _) = rest.split_once(']').unwrap();
     let got: Vec<f64> = list.split(',').map(|x| x.parse().unwrap()).collect();
 
-    let mesh = Mesh::new(
-        vec![
-            DVec3::new(-1.0, 1.0, -1.0),
-            DVec3::new(1.0, 1.0, -1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-        ],
-        vec![[0, 1, 2]],
-    )
-    .unwrap();
-    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).unwrap();
-    let scene = Scene::new(light).with_mesh("card", mesh);
-    let bvh = Bvh::new(Occluders::from_scene(&scene));
+    let (light, bvh) = card_under_sphere();
     assert_eq!(got.len(), literals.len());
     let mut penumbra = 0;
     for (k, [x, y, z]) in literals.iter().enumerate() {

@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 #[path = "support/cli.rs"]
 mod cli_support;
 
-use cli_support::{bin, pictures_whole, refused, softshadow, write};
+use cli_support::{bin, pictures_whole, refused, softshadow, visibility, write};
 
 fn dir(name: &str) -> PathBuf {
     cli_support::dir("hostile", name)
@@ -143,33 +143,23 @@ fn a_full_stderr_changes_nothing_but_the_lines_lost() {
     let d = dir("full-stderr");
     let scene = write(&d, "scene.json", SCENE);
     let points = write(&d, "points.json", r#"{"points": [{"p": [0.2, 0.0, 0.1]}]}"#);
-    let bad = with_redirect(
-        &[
+    let full_stderr = |scene: &str| {
+        let args = [
             "visibility",
             "--scene",
-            "nope.json",
+            scene,
             "--points",
             &points,
             "--method",
             "hard",
-        ],
-        "2>/dev/full",
-    );
+        ];
+        with_redirect(&args, "2>/dev/full")
+    };
+    let bad = full_stderr("nope.json");
     assert_eq!(bad.status.code(), Some(2), "{bad:?}");
     let args = with_redirect(&["render", "--width", "0"], "2>/dev/full");
     assert_eq!(args.status.code(), Some(2), "{args:?}");
-    let good = with_redirect(
-        &[
-            "visibility",
-            "--scene",
-            &scene,
-            "--points",
-            &points,
-            "--method",
-            "hard",
-        ],
-        "2>/dev/full",
-    );
+    let good = full_stderr(&scene);
     assert_eq!(good.status.code(), Some(0), "{good:?}");
     assert!(String::from_utf8_lossy(&good.stdout).starts_with("{\"method\""));
 }
@@ -468,15 +458,7 @@ fn lights_at_the_edge_of_f64() {
         } else {
             method
         };
-        let out = softshadow(&[
-            "visibility",
-            "--scene",
-            &scene,
-            "--points",
-            &points,
-            "--method",
-            method,
-        ]);
+        let out = visibility(&scene, &points, method, &[]);
         let stdout = String::from_utf8_lossy(&out.stdout);
         assert!(
             out.status.success(),
@@ -735,42 +717,23 @@ fn a_method_s_maps_count_toward_the_memory_limit() {
         400,
         &["16.0 GiB of the method's maps", "--max-memory", big],
     );
-    let visibility = |method: &str| {
-        softshadow(&[
-            "visibility",
-            "--scene",
-            "linear-light",
-            "--points",
-            &points,
-            "--method",
-            method,
-            "--max-memory",
-            "8",
-        ])
-    };
+    let limited =
+        |method: &str| visibility("linear-light", &points, method, &["--max-memory", "8"]);
     refused(
-        &visibility(big),
+        &limited(big),
         400,
         &["points.json (1 point)", "16.0 GiB of the method's maps"],
     );
     // 2 × 1024² × 64 bytes: the maps' estimate grows with the side squared.
     assert!(render("oess").status.success());
-    assert!(visibility("oess:map=1024").status.success());
-    refused(
-        &softshadow(&[
-            "visibility",
-            "--scene",
-            "linear-light",
-            "--points",
-            &points,
-            "--method",
-            "pcss:map=8192",
-            "--max-memory",
-            "0.4",
-        ]),
-        400,
-        &["1.0 GiB of the method's maps"],
+    assert!(limited("oess:map=1024").status.success());
+    let pcss = visibility(
+        "linear-light",
+        &points,
+        "pcss:map=8192",
+        &["--max-memory", "0.4"],
     );
+    refused(&pcss, 400, &["1.0 GiB of the method's maps"]);
 }
 
 /// A method's message speaks the program's words: the PCSS hint for a
@@ -779,32 +742,13 @@ fn a_method_s_maps_count_toward_the_memory_limit() {
 fn method_messages_name_options_not_types() {
     let d = dir("pcss-words");
     let points = write(&d, "points.json", r#"{"points": [{"p": [0.1, 0.0, 0.3]}]}"#);
-    refused(
-        &softshadow(&[
-            "visibility",
-            "--scene",
-            "default",
-            "--points",
-            &points,
-            "--method",
-            "pcss",
-        ]),
-        400,
-        &[
-            "points[0].normal",
-            "pcss needs receiver normals",
-            "pcss:constant",
-        ],
-    );
-    let out = softshadow(&[
-        "visibility",
-        "--scene",
-        "default",
-        "--points",
-        &points,
-        "--method",
-        "pcss",
-    ]);
+    let out = visibility("default", &points, "pcss", &[]);
+    let needles = [
+        "points[0].normal",
+        "pcss needs receiver normals",
+        "pcss:constant",
+    ];
+    refused(&out, 400, &needles);
     assert!(!String::from_utf8_lossy(&out.stderr).contains("PcssBias"));
 }
 

@@ -398,13 +398,7 @@ impl<'de> Entries<'de> for SceneEntries<'_, '_> {
         let (cx, top) = (self.cx, At::ROOT);
         let mut parts = SceneParts::default();
         let mut seen = [false; 3];
-        while let Some(key) = map.next_key::<String>()? {
-            let Some(k) = KEYS.iter().position(|&k| k == key) else {
-                return Err(cx.unknown_key(&top, &key, KEYS));
-            };
-            if std::mem::replace(&mut seen[k], true) {
-                return Err(json::duplicate_key(&key));
-            }
+        while let Some(k) = cx.next_key(&mut map, &top, KEYS, &mut seen)? {
             let at = top.key(KEYS[k]);
             match k {
                 0 => {
@@ -475,7 +469,6 @@ struct MeshEntries<'c, 'f, 'a> {
 /// A mesh's `triangles` as read: the indices (those beyond `u32` kept as
 /// `u32::MAX`, the first of them with its value), checked against the
 /// vertex count once the mesh is read.
-#[derive(Default)]
 struct Triangles {
     indices: Vec<[u32; 3]>,
     /// The first index beyond `u32`: triangle, corner, value.
@@ -500,13 +493,7 @@ impl<'de> Entries<'de> for MeshEntries<'_, '_, '_> {
         let mut positions: Option<Vec<DVec3>> = None;
         let mut triangles: Option<Triangles> = None;
         let mut small: [Option<Json>; 3] = [None, None, None]; // obj, primitive, transform
-        while let Some(key) = map.next_key::<String>()? {
-            let Some(k) = KEYS.iter().position(|&k| k == key) else {
-                return Err(cx.unknown_key(at, &key, KEYS));
-            };
-            if std::mem::replace(&mut seen[k], true) {
-                return Err(json::duplicate_key(&key));
-            }
+        while let Some(k) = cx.next_key(&mut map, at, KEYS, &mut seen)? {
             let key_at = at.key(KEYS[k]);
             match k {
                 0 => {
@@ -514,18 +501,14 @@ impl<'de> Entries<'de> for MeshEntries<'_, '_, '_> {
                     name = Some(cx.string(&v, &key_at).map_err(|e| cx.fail(e))?.to_owned());
                 }
                 1 => {
-                    positions = Some(map.next_value_seed(Array {
-                        cx,
-                        at: &key_at,
-                        items: Positions { cx, at: &key_at },
-                    })?);
+                    let each = |v: &Json, at: &At, _| cx.vec3(v, at);
+                    positions = Some(map.next_value_seed(list(cx, &key_at, each))?);
                 }
                 2 => {
-                    triangles = Some(map.next_value_seed(Array {
-                        cx,
-                        at: &key_at,
-                        items: TriangleList { cx, at: &key_at },
-                    })?);
+                    let mut wide = None;
+                    let each = |v: &Json, at: &At, t| triangle(cx, v, at, t, &mut wide);
+                    let indices = map.next_value_seed(list(cx, &key_at, each))?;
+                    triangles = Some(Triangles { indices, wide });
                 }
                 _ => small[k - 3] = Some(cx.small_value(&mut map, &key_at)?),
             }
@@ -558,16 +541,22 @@ struct MeshParts {
     transform: Option<Json>,
 }
 
-/// A mesh's `positions`, one vertex at a time.
-struct Positions<'c, 'f, 'a> {
+/// A list of small items (vertices, triangles, points), one at a time:
+/// each read as a [`Json`] tree within its budget and made into a `T` by
+/// `each` (given the item, its place and its index) before the next is
+/// read.
+struct Each<'c, 'f, 'a, F> {
     cx: &'c Cx<'f>,
     at: &'a At<'a>,
+    each: F,
 }
 
-impl<'de> Items<'de> for Positions<'_, '_, '_> {
-    type Out = Vec<DVec3>;
+impl<'de, T, F: FnMut(&Json, &At, usize) -> Result<T, FileError>> Items<'de>
+    for Each<'_, '_, '_, F>
+{
+    type Out = Vec<T>;
 
-    fn items<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<DVec3>, A::Error> {
+    fn items<A: SeqAccess<'de>>(mut self, mut seq: A) -> Result<Vec<T>, A::Error> {
         let cx = self.cx;
         let mut out = Vec::new();
         loop {
@@ -576,53 +565,58 @@ impl<'de> Items<'de> for Positions<'_, '_, '_> {
                 out.shrink_to_fit();
                 return Ok(out);
             };
-            out.push(cx.vec3(&v, &at).map_err(|e| cx.fail(e))?);
+            out.push((self.each)(&v, &at, out.len()).map_err(|e| cx.fail(e))?);
         }
     }
 }
 
-/// A mesh's `triangles`, one at a time.
-struct TriangleList<'c, 'f, 'a> {
+/// The streamed list at `at` whose items `each` makes into `T`s.
+fn list<'c, 'f, 'a, T, F>(
     cx: &'c Cx<'f>,
     at: &'a At<'a>,
+    each: F,
+) -> Array<'c, 'f, 'a, Each<'c, 'f, 'a, F>>
+where
+    F: FnMut(&Json, &At, usize) -> Result<T, FileError>,
+{
+    Array {
+        cx,
+        at,
+        items: Each { cx, at, each },
+    }
 }
 
-impl<'de> Items<'de> for TriangleList<'_, '_, '_> {
-    type Out = Triangles;
-
-    fn items<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Triangles, A::Error> {
-        let cx = self.cx;
-        let mut out = Triangles::default();
-        loop {
-            let t = out.indices.len();
-            let at = self.at.index(t);
-            let Some(v) = cx.small_item(&mut seq, &at)? else {
-                out.indices.shrink_to_fit();
-                return Ok(out);
-            };
-            let items = match &v {
-                Json::Array(items) if items.len() == 3 => items,
-                _ => {
-                    return Err(cx.fail(cx.err(
-                        &at,
-                        format!(
-                            "expected [i, j, k] (3 vertex indices), got {}",
-                            v.describe()
-                        ),
-                    )))
-                }
-            };
-            let mut tri = [0u32; 3];
-            for (c, slot) in tri.iter_mut().enumerate() {
-                let i = cx.uint(&items[c], &at.index(c)).map_err(|e| cx.fail(e))?;
-                *slot = u32::try_from(i).unwrap_or_else(|_| {
-                    out.wide.get_or_insert((t, c, i));
-                    u32::MAX
-                });
-            }
-            out.indices.push(tri);
+/// One triangle of a mesh's `triangles`: `[i, j, k]` of non-negative
+/// integers, an index beyond `u32` kept as `u32::MAX` and the first of
+/// them recorded in `wide` (triangle, corner, value).
+fn triangle(
+    cx: &Cx<'_>,
+    v: &Json,
+    at: &At,
+    t: usize,
+    wide: &mut Option<(usize, usize, u64)>,
+) -> Result<[u32; 3], FileError> {
+    let items = match v {
+        Json::Array(items) if items.len() == 3 => items,
+        _ => {
+            return Err(cx.err(
+                at,
+                format!(
+                    "expected [i, j, k] (3 vertex indices), got {}",
+                    v.describe()
+                ),
+            ))
         }
+    };
+    let mut tri = [0u32; 3];
+    for (c, slot) in tri.iter_mut().enumerate() {
+        let i = cx.uint(&items[c], &at.index(c))?;
+        *slot = u32::try_from(i).unwrap_or_else(|_| {
+            wide.get_or_insert((t, c, i));
+            u32::MAX
+        });
     }
+    Ok(tri)
 }
 
 /// The points of a points file, read as a stream: one point's JSON at a
@@ -661,50 +655,16 @@ impl<'de> Entries<'de> for PointsEntries<'_, '_> {
 
     fn entries<A: MapAccess<'de>>(self, mut map: A) -> Result<Self::Out, A::Error> {
         let (cx, top) = (self.cx, At::ROOT);
-        let mut points = None;
-        while let Some(key) = map.next_key::<String>()? {
-            if key != "points" {
-                return Err(cx.unknown_key(&top, &key, &["points"]));
-            }
-            if points.is_some() {
-                return Err(json::duplicate_key(&key));
-            }
+        let (mut points, mut seen) = (None, [false]);
+        while cx
+            .next_key(&mut map, &top, &["points"], &mut seen)?
+            .is_some()
+        {
             let at = top.key("points");
-            points = Some(map.next_value_seed(Array {
-                cx,
-                at: &at,
-                items: PointList {
-                    cx,
-                    at: &at,
-                    mesh_count: self.mesh_count,
-                },
-            })?);
+            let each = |v: &Json, at: &At, _| point(cx, v, at, self.mesh_count);
+            points = Some(map.next_value_seed(list(cx, &at, each))?);
         }
         Ok(points)
-    }
-}
-
-/// The `points` list, one point at a time.
-struct PointList<'c, 'f, 'a> {
-    cx: &'c Cx<'f>,
-    at: &'a At<'a>,
-    mesh_count: usize,
-}
-
-impl<'de> Items<'de> for PointList<'_, '_, '_> {
-    type Out = Vec<Receiver>;
-
-    fn items<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Vec<Receiver>, A::Error> {
-        let cx = self.cx;
-        let mut out = Vec::new();
-        loop {
-            let at = self.at.index(out.len());
-            let Some(v) = cx.small_item(&mut seq, &at)? else {
-                out.shrink_to_fit();
-                return Ok(out);
-            };
-            out.push(point(cx, &v, &at, self.mesh_count).map_err(|e| cx.fail(e))?);
-        }
     }
 }
 

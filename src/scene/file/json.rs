@@ -172,7 +172,7 @@ impl<'de> Visitor<'de> for Small<'_> {
 
 /// The error of a key given twice in one object, placed by serde_json at
 /// its line and column.
-pub(super) fn duplicate_key<E: de::Error>(key: &str) -> E {
+fn duplicate_key<E: de::Error>(key: &str) -> E {
     E::custom(format!("duplicate key {}", quoted(key)))
 }
 
@@ -510,12 +510,29 @@ impl Cx<'_> {
         }
     }
 
-    /// Fails the walk at `at.key(key)`: a key the object does not take.
-    pub(super) fn unknown_key<E: de::Error>(&self, at: &At, key: &str, allowed: &[&str]) -> E {
-        self.fail(self.err(
-            &at.key(key),
-            format!("unknown key (expected one of: {})", allowed.join(", ")),
-        ))
+    /// The next key of the streamed object `map` at `at`, as its index in
+    /// `keys`; a key not in `keys`, or one already marked in `seen` (a
+    /// duplicate, reported at its line and column), fails the walk.
+    pub(super) fn next_key<'de, A: MapAccess<'de>>(
+        &self,
+        map: &mut A,
+        at: &At,
+        keys: &[&str],
+        seen: &mut [bool],
+    ) -> Result<Option<usize>, A::Error> {
+        let Some(key) = map.next_key::<String>()? else {
+            return Ok(None);
+        };
+        let Some(k) = keys.iter().position(|&k| k == key) else {
+            return Err(self.fail(self.err(
+                &at.key(&key),
+                format!("unknown key (expected one of: {})", keys.join(", ")),
+            )));
+        };
+        if std::mem::replace(&mut seen[k], true) {
+            return Err(duplicate_key(&key));
+        }
+        Ok(Some(k))
     }
 
     /// A JSON syntax error at its line and column.
