@@ -15,9 +15,10 @@
 //!
 //! Bad input ends with one line on stderr naming the file, the place and
 //! the field, exit status 2, and nothing on stdout. An answer that could
-//! not be delivered — stdout closed (`>&-`), full, or a pipe whose reader
-//! left (`| head -1`) — ends with one line on stderr and exit status 1,
-//! after every file the command started is written whole. A stderr that
+//! not be delivered — stdout full, a pipe whose reader left (`| head -1`),
+//! or closed from the start (`>&-`) for a command whose answer is all
+//! printed — ends with one line on stderr and exit status 1, after every
+//! file the command started is written whole. A stderr that
 //! cannot be written (`2>/dev/full`) changes nothing but the lines lost:
 //! the exit status still tells.
 
@@ -70,9 +71,8 @@ fn out_dir(dir: &std::path::Path) -> Result<(), String> {
     Ok(())
 }
 
-/// Why stdout lost what was printed: the first failed write, or a
-/// descriptor closed before the program started. Set once; [`say!`]
-/// prints nothing more after it.
+/// Why stdout lost what was printed: the first failed write. Set once;
+/// [`say!`] prints nothing more after it.
 static STDOUT_LOST: std::sync::OnceLock<String> = std::sync::OnceLock::new();
 
 /// Writes one line to stdout for [`say!`], or remembers why it could not.
@@ -105,11 +105,14 @@ fn stderr_line(args: std::fmt::Arguments<'_>) {
     let _ = writeln!(err, "{args}").and_then(|()| err.flush());
 }
 
-/// Whether stdout was closed when the program started (`>&-`). Rust's
-/// runtime puts `/dev/null`, opened for reading and writing, in place of
-/// a closed standard descriptor, so that every write would "succeed"
-/// into nothing; a shell's `>/dev/null` opens it for writing only. Read
-/// from `/proc` (Linux); elsewhere `false`.
+/// Whether stdout may have been closed when the program started (`>&-`).
+/// Rust's runtime puts `/dev/null`, opened for reading and writing, in
+/// place of a closed standard descriptor, so that every write would
+/// "succeed" into nothing; a shell's `>/dev/null` opens it for writing
+/// only. But a parent may choose a read-write `/dev/null` too (Python's
+/// `subprocess.DEVNULL`), and nothing tells the two apart: so only a
+/// command whose whole answer is printed refuses to run on it. Read from
+/// `/proc` (Linux); elsewhere `false`.
 fn stdout_closed_at_start() -> bool {
     let null = std::fs::read_link("/proc/self/fd/1")
         .is_ok_and(|target| target == std::path::Path::new("/dev/null"));
@@ -170,9 +173,6 @@ fn command() -> clap::Command {
 
 fn main() -> ExitCode {
     use clap::FromArgMatches;
-    if stdout_closed_at_start() {
-        let _ = STDOUT_LOST.set("it was closed when the program started".to_owned());
-    }
     let parsed = command()
         .try_get_matches()
         .and_then(|m| Cli::from_arg_matches(&m));
@@ -187,8 +187,8 @@ fn main() -> ExitCode {
                 )
             {
                 // The help is the answer: printed, or said to be lost.
-                if let Some(why) = STDOUT_LOST.get() {
-                    return not_delivered(why);
+                if stdout_closed_at_start() {
+                    return not_delivered(CLOSED);
                 }
                 return match e.print() {
                     Ok(()) => ExitCode::from(u8::try_from(e.exit_code()).unwrap_or(0)),
@@ -207,13 +207,14 @@ fn main() -> ExitCode {
         }
     };
     // A command whose whole answer is printed does no work for a stdout
-    // closed from the start; one that writes files writes them.
+    // closed from the start; one whose answer is files writes them (its
+    // stdout may be a read-write /dev/null by choice).
     let prints_only = matches!(
         cli.command,
         None | Some(Command::Check | Command::Visibility(_))
     );
-    if let (true, Some(why)) = (prints_only, STDOUT_LOST.get()) {
-        return not_delivered(why);
+    if prints_only && stdout_closed_at_start() {
+        return not_delivered(CLOSED);
     }
     let result = match cli.command {
         None => render::default_run(),
@@ -238,6 +239,10 @@ fn main() -> ExitCode {
         (Ok(()), None) => ExitCode::SUCCESS,
     }
 }
+
+/// Why a stdout closed from the start is lost.
+const CLOSED: &str = "closed (or /dev/null opened for reading and writing, which is what a \
+                      closed stdout becomes) when the program started";
 
 /// Says that what was to be printed is lost, and why; exit status 1.
 fn not_delivered(why: &str) -> ExitCode {

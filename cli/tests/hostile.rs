@@ -80,10 +80,11 @@ fn three_pictures(d: &std::path::Path) {
 }
 
 /// An answer that cannot be delivered ends with exit status 1 and one line
-/// saying so — a pipe whose reader left, a stdout closed before the start
-/// (`>&-`, which Rust's runtime turns into a read-write `/dev/null`), a
-/// full device — and `render` writes all three pictures first; a
-/// `>/dev/null` chosen by the user is an answer delivered.
+/// saying so — a pipe whose reader left, a full device, and for a command
+/// whose answer is printed, a stdout closed before the start (`>&-`, which
+/// Rust's runtime turns into a read-write `/dev/null`) — and `render`
+/// writes all three pictures first; a `>/dev/null` chosen by the user is
+/// an answer delivered.
 #[test]
 fn an_answer_that_cannot_be_delivered_ends_with_status_1() {
     let d = dir("pipe");
@@ -116,7 +117,7 @@ fn an_answer_that_cannot_be_delivered_ends_with_status_1() {
     assert!(quiet.status.success(), "{quiet:?}");
     assert!(quiet.stderr.is_empty(), "{quiet:?}");
     // `render` with its stdout gone still writes every picture.
-    for (k, how) in ["pipe", ">&-", ">/dev/full"].into_iter().enumerate() {
+    for (k, how) in ["pipe", ">/dev/full"].into_iter().enumerate() {
         let out = dir(&format!("pipe-render-{k}"));
         let render = [
             "render",
@@ -134,6 +135,25 @@ fn an_answer_that_cannot_be_delivered_ends_with_status_1() {
         lost(&run, how);
         three_pictures(&out);
     }
+    // A stdout closed from the start cannot be told from a read-write
+    // /dev/null chosen by the parent (Python's subprocess.DEVNULL): a
+    // command whose answer is files writes them and succeeds.
+    let out = dir("pipe-render-closed");
+    let render = [
+        "render",
+        "--scene",
+        &scene,
+        "--method",
+        "hard",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    for redirect in [">&-", "1<>/dev/null"] {
+        let run = with_redirect(&render, redirect);
+        assert!(run.status.success(), "{redirect}: {run:?}");
+        three_pictures(&out);
+    }
+    lost(&with_redirect(&visibility, "1<>/dev/null"), "1<>/dev/null");
 }
 
 /// A stderr that cannot be written (`2>/dev/full`) is no reason to panic:
