@@ -46,7 +46,7 @@ pub struct Args {
     max_memory: Option<f64>,
 }
 
-fn parse_gib(s: &str) -> Result<f64, String> {
+pub fn parse_gib(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(g) if g.is_finite() && g > 0.0 => Ok(g),
         _ => Err(format!("expected a positive number of GiB, got {s:?}")),
@@ -55,7 +55,9 @@ fn parse_gib(s: &str) -> Result<f64, String> {
 
 /// Measured peak memory of `render` (`/usr/bin/time -f %M`, 1024² and
 /// 2048², hard, exact, sism, oess): 103–117 bytes per pixel over a fixed
-/// part of at most about 130 MiB (SISM's and OESS's maps).
+/// part (the BVH, the scene, the default maps of SISM and OESS) of at most
+/// about 130 MiB. A method's own maps at other resolutions
+/// ([`Method::map_bytes`]) are counted apart.
 const BYTES_PER_PIXEL: f64 = 120.0;
 const FIXED_BYTES: f64 = 256.0 * MIB;
 const MIB: f64 = (1u64 << 20) as f64;
@@ -73,9 +75,18 @@ fn default_memory_limit() -> f64 {
     total.map_or(8.0 * GIB, |b| 0.5 * b)
 }
 
-/// Refuses a frame of `w × h` whose estimated peak exceeds the limit.
-fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
-    let estimate = BYTES_PER_PIXEL * f64::from(w) * f64::from(h) + FIXED_BYTES;
+/// Refuses, before any allocation, a run of `method` on `receivers`
+/// receivers (`what` names them: `--width W --height H`, a points file)
+/// whose estimated peak — per receiver, fixed, and the method's maps —
+/// exceeds the limit (`--max-memory` GiB, else half the machine's memory).
+pub fn check_memory(
+    what: &str,
+    receivers: u64,
+    method: &dyn Method,
+    max_gib: Option<f64>,
+) -> Result<(), String> {
+    let maps = method.map_bytes() as f64;
+    let estimate = BYTES_PER_PIXEL * receivers as f64 + FIXED_BYTES + maps;
     let (limit, whence) = match max_gib {
         Some(g) => (g * GIB, "--max-memory"),
         None => (
@@ -84,9 +95,14 @@ fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
         ),
     };
     if estimate > limit {
+        let maps = if maps > 0.0 {
+            format!(", {:.1} GiB of the method's maps", maps / GIB)
+        } else {
+            String::new()
+        };
         return Err(format!(
-            "--width {w} --height {h}: about {:.1} GiB estimated ({BYTES_PER_PIXEL} bytes per pixel \
-             and {:.0} MiB of maps), over the limit of {:.1} GiB ({whence})",
+            "{what}: about {:.1} GiB estimated ({BYTES_PER_PIXEL} bytes per receiver, \
+             {:.0} MiB fixed{maps}), over the limit of {:.1} GiB ({whence})",
             estimate / GIB,
             FIXED_BYTES / MIB,
             limit / GIB
@@ -102,14 +118,17 @@ fn camera_frame(
     name: &str,
     width: Option<u32>,
     height: Option<u32>,
-    max_memory: Option<f64>,
+    memory: Option<(&dyn Method, Option<f64>)>,
 ) -> Result<Frame, String> {
     let camera = scene
         .camera()
         .ok_or_else(|| format!("--scene {name}: the scene has no camera; rendering needs one"))?;
     let (w, h) = camera.resolution();
     let (w, h) = (width.unwrap_or(w), height.unwrap_or(h));
-    check_memory(w, h, max_memory)?;
+    if let Some((method, max_gib)) = memory {
+        let what = format!("--width {w} --height {h} --method {}", method.name());
+        check_memory(&what, u64::from(w) * u64::from(h), method, max_gib)?;
+    }
     let camera = camera
         .with_resolution(w, h)
         .map_err(|e| format!("--width/--height: {e}"))?;
@@ -143,7 +162,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         &args.scene,
         args.width,
         args.height,
-        args.max_memory,
+        Some((method.as_ref(), args.max_memory)),
     )?;
     let fail = |e: method::MethodError| format!("--method {}: {e}", args.method);
     let run = run_method(method.as_ref(), &stages, &frame).map_err(fail)?;
@@ -201,6 +220,10 @@ pub fn default_run() -> Result<(), String> {
             "bars, a box and a ball under a segment light of length 2.4",
         ),
     ] {
+        if crate::stdout_lost() {
+            // Nothing more would get through: the exit status says so.
+            return Ok(());
+        }
         scene_table(name, what)?;
     }
     say!("\ntotal run {:.2} s", start.elapsed().as_secs_f64());
@@ -215,7 +238,7 @@ pub fn default_run() -> Result<(), String> {
 fn scene_table(name: &str, what: &str) -> Result<(), String> {
     let scene = resolve_scene(name)?;
     let stages = Stages::new(&scene);
-    let frame = camera_frame(&scene, &stages, name, None, None, None)?;
+    let frame = camera_frame(&scene, &stages, name, None, None, Some((&Exact, None)))?;
     let (w, h) = frame.size();
     say!(
         "softshadow: `{name}` ({what}), {w}×{h}, {} receivers, {} threads",

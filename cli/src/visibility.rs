@@ -27,6 +27,10 @@ pub struct Args {
     /// own.
     #[arg(long)]
     seed: Option<u64>,
+    /// Refuse a run whose estimated peak memory exceeds this many GiB
+    /// (default: half of this machine's memory).
+    #[arg(long, value_parser = crate::render::parse_gib)]
+    max_memory: Option<f64>,
 }
 
 /// Checks a method name (clap's value parser), keeping the name.
@@ -99,6 +103,14 @@ pub fn run(args: &Args) -> Result<(), String> {
     let scene = resolve_scene(&args.scene)?;
     let method = method_with_seed(&args.method, args.seed)?;
     let points = load_points(&args.points, scene.meshes().len()).map_err(|e| e.to_string())?;
+    let what = format!(
+        "{} ({} point{}) --method {}",
+        args.points.display(),
+        points.len(),
+        if points.len() == 1 { "" } else { "s" },
+        method.name()
+    );
+    crate::render::check_memory(&what, points.len() as u64, method.as_ref(), args.max_memory)?;
     let frame = Frame::from_receivers(points);
     let stages = Stages::new(&scene);
     let file = args.points.display();

@@ -102,6 +102,16 @@ pub trait Method: Send + Sync + fmt::Debug {
         Horizon::Off
     }
 
+    /// An estimate of the peak bytes of the maps the method builds at its
+    /// settings, whatever the frame — its light-view maps, whose side is
+    /// an option — for a caller that bounds its memory before running it
+    /// (the command line's `--max-memory`). The methods of the crate give
+    /// their measured peak per texel, rounded up. Default: `0`, no such
+    /// maps.
+    fn map_bytes(&self) -> u64 {
+        0
+    }
+
     /// The visibility of every receiver of the checked frame `input`.
     ///
     /// # Errors
