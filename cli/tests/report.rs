@@ -86,6 +86,17 @@ fn tree(dir: &Path) -> Vec<(PathBuf, Vec<u8>)> {
     out
 }
 
+/// `report --merge PART --out OUT` is refused in one line naming every
+/// needle, and nothing is written into `OUT`.
+fn merge_refused(part: &Path, out: &Path, needles: &[&str]) {
+    refused(
+        &softshadow(&["report", "--merge", s(part), "--out", s(out)]),
+        600,
+        needles,
+    );
+    assert!(tree(out).is_empty(), "{:?}", tree(out));
+}
+
 /// The pictures a part's results name.
 fn pictures(v: &serde_json::Value) -> Vec<String> {
     v["cells"]
@@ -113,13 +124,8 @@ fn a_picture_path_leading_out_of_the_part_is_refused() {
     }
     set_results(&part, &v);
     let out = d.join("deep").join("out");
-    refused(
-        &softshadow(&["report", "--merge", s(&part), "--out", s(&out)]),
-        600,
-        &["picture"],
-    );
+    merge_refused(&part, &out, &["picture"]);
     assert!(!d.join("deep").join("leaked.png").exists());
-    assert!(tree(&out).is_empty(), "{:?}", tree(&out));
 }
 
 #[test]
@@ -133,12 +139,7 @@ fn a_picture_linked_out_of_the_part_is_refused() {
     std::fs::remove_file(part.join(&first)).unwrap();
     std::os::unix::fs::symlink(&secret, part.join(&first)).unwrap();
     let out = d.join("out");
-    refused(
-        &softshadow(&["report", "--merge", s(&part), "--out", s(&out)]),
-        600,
-        &["outside"],
-    );
-    assert!(tree(&out).is_empty(), "{:?}", tree(&out));
+    merge_refused(&part, &out, &["outside"]);
 }
 
 /// A part whose profile is longer than its columns used to panic in the
@@ -155,12 +156,7 @@ fn a_part_is_checked_whole_before_anything_is_written() {
         .push(0.5.into());
     set_results(&part, &v);
     let out = d.join("out");
-    refused(
-        &softshadow(&["report", "--merge", s(&part), "--out", s(&out)]),
-        600,
-        &["profile"],
-    );
-    assert!(tree(&out).is_empty(), "{:?}", tree(&out));
+    merge_refused(&part, &out, &["profile"]);
 }
 
 /// A part claiming fewer cells than it holds used to print that
@@ -173,11 +169,7 @@ fn a_miscounted_part_is_refused() {
     let mut v = results(&part);
     v["config"]["cells"] = 1.into();
     set_results(&part, &v);
-    refused(
-        &softshadow(&["report", "--merge", s(&part), "--out", s(&d.join("out"))]),
-        600,
-        &["cells"],
-    );
+    merge_refused(&part, &d.join("out"), &["cells"]);
 }
 
 /// The parts of a sweep merge into the sweep, and the merge takes its own

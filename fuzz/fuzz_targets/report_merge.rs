@@ -224,7 +224,7 @@ enum Step {
 fn pick<'v>(v: &'v mut Value, b: &mut Bytes<'_>) -> &'v mut Value {
     let mut path = Vec::new();
     let mut at: &Value = v;
-    while b.byte() % 4 != 0 {
+    while !b.byte().is_multiple_of(4) {
         let step = match at {
             Value::Object(map) if !map.is_empty() => {
                 Step::Key(map.keys().nth(b.below(map.len())).unwrap().clone())

@@ -40,7 +40,7 @@ pub(crate) fn one_line(s: &str, max: usize) -> String {
         }
     }
     if out.len() > max {
-        let cut = (0..=max - 3)
+        let cut = (0..=max.saturating_sub(3))
             .rev()
             .find(|&i| out.is_char_boundary(i))
             .unwrap_or(0);
@@ -192,11 +192,11 @@ impl Results {
         for (k, m) in self.machines.iter().enumerate() {
             text(&format!("machines[{k}]"), m, MAX_LINE)?;
         }
-        let scenes: HashSet<&str> = config.scenes.iter().map(String::as_str).collect();
+        let scenes = config.scene_numbers();
         let mut records: HashMap<&str, &SceneRecord> = HashMap::with_capacity(self.scenes.len());
         for (k, s) in self.scenes.iter().enumerate() {
             let at = format!("scenes[{k}]");
-            if !scenes.contains(s.name.as_str()) {
+            if !scenes.contains_key(s.name.as_str()) {
                 return Err(format!(
                     "{at}.name: {} is not one of the sweep's scenes",
                     quote(&s.name)
@@ -239,7 +239,7 @@ impl Results {
             cell(&at, c, record, config, &names, self.machines.len())?;
         }
         for (name, y) in &self.yardsticks {
-            if !scenes.contains(name.as_str()) {
+            if !scenes.contains_key(name.as_str()) {
                 return Err(format!(
                     "yardsticks: {} is not one of the sweep's scenes",
                     quote(name)

@@ -288,6 +288,17 @@ pub struct ConfigRecord {
     pub cells: usize,
 }
 
+impl ConfigRecord {
+    /// Each scene's number in the sweep, by name.
+    pub(crate) fn scene_numbers(&self) -> HashMap<&str, usize> {
+        self.scenes
+            .iter()
+            .enumerate()
+            .map(|(k, s)| (s.as_str(), k))
+            .collect()
+    }
+}
+
 /// The settings a sweep runs on every scene: `exact`, the registry's
 /// comparison settings (or `config.methods`), then the yardstick.
 #[must_use]
@@ -751,13 +762,7 @@ pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, S
 #[must_use]
 pub fn finish(mut results: Results) -> Results {
     results.cells.sort_by_key(|c| c.index);
-    let order: HashMap<&str, usize> = results
-        .config
-        .scenes
-        .iter()
-        .enumerate()
-        .map(|(k, s)| (s.as_str(), k))
-        .collect();
+    let order = results.config.scene_numbers();
     results
         .scenes
         .sort_by_key(|s| order.get(s.name.as_str()).copied().unwrap_or(usize::MAX));

@@ -71,13 +71,7 @@ pub fn write(results: &Results, dir: &Path) -> Result<(), String> {
     let json = serde_json::to_string_pretty(results).map_err(|e| e.to_string())?;
     write_file(&dir.join("results.json"), &json)?;
     let names = Names::new(&results.config);
-    let number: HashMap<&str, usize> = results
-        .config
-        .scenes
-        .iter()
-        .enumerate()
-        .map(|(k, s)| (s.as_str(), k))
-        .collect();
+    let number = results.config.scene_numbers();
     let cells = by_scene(results);
     let mut plots_written: HashMap<&str, Vec<String>> = HashMap::new();
     for scene in &results.scenes {
