@@ -60,7 +60,15 @@ use std::process::ExitCode;
 /// # Errors
 /// One line naming `--out`.
 fn out_dir(dir: &std::path::Path) -> Result<(), String> {
-    let fail = |why: String| format!("--out {}: {why}", dir.display());
+    writable_dir("--out", dir)
+}
+
+/// [`out_dir`] for the folder given to `flag`.
+///
+/// # Errors
+/// One line naming `flag`.
+fn writable_dir(flag: &str, dir: &std::path::Path) -> Result<(), String> {
+    let fail = |why: String| format!("{flag} {}: {why}", dir.display());
     std::fs::create_dir_all(dir).map_err(|e| fail(e.to_string()))?;
     if !dir.is_dir() {
         return Err(fail("not a directory".into()));

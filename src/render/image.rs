@@ -284,6 +284,13 @@ const LEGEND_ROWS: u32 = 18;
 /// The least image width that holds the legend.
 const LEGEND_WIDTH: u32 = 64;
 
+/// The size of [`error_heat_map`]'s image for a frame of `width × height`:
+/// the legend's rows below, at least the legend's width.
+#[must_use]
+pub(crate) fn heat_map_size(width: u32, height: u32) -> (u32, u32) {
+    (width.max(LEGEND_WIDTH), height + LEGEND_ROWS)
+}
+
 /// The signed error `V − V_ref` per pixel ([`heat_colour`]), with a legend
 /// strip below the picture: the colour bar from `−HEAT_RANGE` to
 /// `+HEAT_RANGE` and its labels (`-.25`, `0`, `+.25`). The image is at least
@@ -295,8 +302,8 @@ pub fn error_heat_map(frame: &Frame, visibility: &[f64], reference: &[f64]) -> R
             visibility.get(i).copied().unwrap_or(0.0) - reference.get(i).copied().unwrap_or(0.0);
         heat_colour(e)
     });
-    let width = picture.width.max(LEGEND_WIDTH);
-    let mut out = Rgb::new(width, picture.height + LEGEND_ROWS, [0, 0, 0]);
+    let (width, height) = heat_map_size(picture.width, picture.height);
+    let mut out = Rgb::new(width, height, [0, 0, 0]);
     for y in 0..picture.height {
         let from = 3 * (y * picture.width) as usize;
         let to = 3 * (y * width) as usize;

@@ -3,7 +3,7 @@
 //! Carlo a curve, the Pareto front marked), and the falloff profile across
 //! one penumbra per scene.
 
-use super::{CellRecord, Results, SceneRecord, GROUPS};
+use super::{CellRecord, ConfigRecord, SceneRecord, GROUPS};
 use plotters::prelude::*;
 
 /// One colour per method (base name), by its place in the registry.
@@ -39,34 +39,30 @@ fn short(v: f64) -> String {
 }
 
 /// The points `(ms, rmse)` not dominated by another (lower or equal in
-/// both, lower in one), by increasing time.
+/// both, lower in one), by increasing time: by time then error, each
+/// point kept when its error is below every earlier one's (n log n).
 fn pareto(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut front: Vec<(f64, f64)> = points
-        .iter()
-        .copied()
-        .filter(|&(t, e)| {
-            !points
-                .iter()
-                .any(|&(t2, e2)| t2 <= t && e2 <= e && (t2 < t || e2 < e))
-        })
-        .collect();
-    front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    front.dedup();
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    sorted.dedup();
+    let mut front: Vec<(f64, f64)> = Vec::new();
+    for p in sorted {
+        if front.last().is_none_or(|last| p.1 < last.1) {
+            front.push(p);
+        }
+    }
     front
 }
 
-/// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, as SVG
-/// text; `None` when there is nothing to plot.
+/// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, whose
+/// cells are `cells`, as SVG text; `None` when there is nothing to plot.
 pub(crate) fn error_against_time(
-    results: &Results,
+    config: &ConfigRecord,
     scene: &SceneRecord,
+    cells: &[&CellRecord],
     g: usize,
 ) -> Option<String> {
-    let cells: Vec<&CellRecord> = results
-        .cells
-        .iter()
-        .filter(|c| c.scene == scene.name && c.status == "ok")
-        .collect();
+    let cells: Vec<&CellRecord> = cells.iter().copied().filter(|c| c.status == "ok").collect();
     let point = |c: &CellRecord| -> Option<(f64, f64)> {
         let e = c.errors?[g].rmse;
         let t = c.seconds? * 1e3;
@@ -132,8 +128,8 @@ pub(crate) fn error_against_time(
                 .ok()?
                 .label(format!(
                     "Monte Carlo, {} … {} samples",
-                    results.config.mc.first().copied().unwrap_or(0),
-                    results.config.mc.last().copied().unwrap_or(0)
+                    config.mc.first().copied().unwrap_or(0),
+                    config.mc.last().copied().unwrap_or(0)
                 ))
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
@@ -188,19 +184,19 @@ pub(crate) fn error_against_time(
 }
 
 /// `V` along the scene's profile row: the exact answer and the default
-/// setting of each method that ran, as SVG text.
-pub(crate) fn profile(results: &Results, scene: &SceneRecord) -> Option<String> {
-    if scene.profile_columns.is_empty() {
-        return None;
-    }
-    let x = |k: usize| f64::from(scene.profile_columns[k]);
-    let (x0, x1) = (x(0), x(scene.profile_columns.len() - 1).max(x(0) + 1.0));
-    let cells: Vec<&CellRecord> = results
-        .cells
+/// setting of each method that ran (of `cells`, the scene's), as SVG text.
+pub(crate) fn profile(scene: &SceneRecord, cells: &[&CellRecord]) -> Option<String> {
+    let columns = &scene.profile_columns;
+    let (&first, &last) = (columns.first()?, columns.last()?);
+    let (x0, x1) = (
+        f64::from(first),
+        f64::from(last).max(f64::from(first) + 1.0),
+    );
+    let cells: Vec<&CellRecord> = cells
         .iter()
+        .copied()
         .filter(|c| {
-            c.scene == scene.name
-                && c.status == "ok"
+            c.status == "ok"
                 && c.base != "exact"
                 && c.base != "mc"
                 && c.profile.len() == scene.profile_columns.len()
@@ -231,7 +227,11 @@ pub(crate) fn profile(results: &Results, scene: &SceneRecord) -> Option<String> 
             .draw()
             .ok()?;
         let line = |values: &[f64]| -> Vec<(f64, f64)> {
-            values.iter().enumerate().map(|(k, &v)| (x(k), v)).collect()
+            columns
+                .iter()
+                .zip(values)
+                .map(|(&c, &v)| (f64::from(c), v))
+                .collect()
         };
         for c in &cells {
             let col = colour(&c.base);
@@ -267,5 +267,28 @@ mod tests {
     fn the_pareto_front_keeps_the_undominated() {
         let p = [(1.0, 0.5), (2.0, 0.2), (3.0, 0.3), (4.0, 0.1), (2.0, 0.25)];
         assert_eq!(super::pareto(&p), vec![(1.0, 0.5), (2.0, 0.2), (4.0, 0.1)]);
+        // Against the definition, on small integers: ties in time and in
+        // error, repeated points.
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            f64::from((seed >> 60) as u32)
+        };
+        for _ in 0..200 {
+            let p: Vec<(f64, f64)> = (0..12).map(|_| (next(), next())).collect();
+            let mut brute: Vec<(f64, f64)> = p
+                .iter()
+                .copied()
+                .filter(|&(t, e)| {
+                    !p.iter()
+                        .any(|&(t2, e2)| t2 <= t && e2 <= e && (t2 < t || e2 < e))
+                })
+                .collect();
+            brute.sort_by(|a, b| a.0.total_cmp(&b.0));
+            brute.dedup();
+            assert_eq!(super::pareto(&p), brute, "{p:?}");
+        }
     }
 }
