@@ -299,16 +299,17 @@ fn score_inner(args: &ScoreArgs) -> Result<bool, String> {
         );
     }
     if let Some(dir) = &args.out {
-        let path = dir.join("score-error.png");
+        // With --json, stdout is the JSON object alone.
+        let png = dir.join("score-error.png");
         heat_map(&frame, &values, &exact)
-            .write_png(&path)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        say!("wrote {}", path.display());
-        write(
-            dir,
-            "score-histogram.svg",
-            histogram(&values, &exact, &frame, &score).as_bytes(),
-        )?;
+            .write_png(&png)
+            .map_err(|e| format!("{}: {e}", png.display()))?;
+        let svg = dir.join("score-histogram.svg");
+        write_atomically(&svg, histogram(&values, &exact, &frame, &score).as_bytes())
+            .map_err(|e| format!("{}: {e}", svg.display()))?;
+        if !args.json {
+            say!("wrote {}\nwrote {}", png.display(), svg.display());
+        }
     }
     if args.json {
         say!("{}", score.to_json());
