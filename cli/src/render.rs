@@ -199,10 +199,23 @@ pub fn run(args: &Args) -> Result<(), String> {
             image
                 .write_png(&path)
                 .map_err(|e| format!("{}: {e}", path.display()))?;
-            say!("wrote {}", path.display());
+            if !args.json {
+                say!("wrote {}", path.display());
+            }
         }
     }
-    write_floats(&args.out, &stem, &args.format, &scene, &frame, v, exact_v)?;
+    // With --json, stdout is the JSON object alone.
+    let quiet = args.json;
+    write_floats(
+        &args.out,
+        &stem,
+        &args.format,
+        &scene,
+        &frame,
+        v,
+        exact_v,
+        quiet,
+    )?;
     if args.json {
         let image = frame.to_image(v, f64::NAN);
         let (score, _) = Score::new(&frame, scene.light(), &image, exact_v);
@@ -223,6 +236,7 @@ pub fn run(args: &Args) -> Result<(), String> {
 /// The float outputs of `render`: per pixel `V`, the shaded value
 /// (irradiance factor · `V`, `Φ = 1`) and the error `V − V_exact`, NaN
 /// where no surface; as `.npy` (float64) and/or one `.exr` (float32).
+#[allow(clippy::too_many_arguments)]
 fn write_floats(
     dir: &Path,
     stem: &str,
@@ -231,6 +245,7 @@ fn write_floats(
     frame: &Frame,
     v: &[f64],
     exact: &[f64],
+    quiet: bool,
 ) -> Result<(), String> {
     if !formats.iter().any(|f| *f != Format::Png) {
         return Ok(());
@@ -258,7 +273,9 @@ fn write_floats(
     let write = |name: String, bytes: Vec<u8>| -> Result<(), String> {
         let path = dir.join(name);
         write_atomically(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-        say!("wrote {}", path.display());
+        if !quiet {
+            say!("wrote {}", path.display());
+        }
         Ok(())
     };
     if formats.contains(&Format::Npy) {
