@@ -260,3 +260,52 @@ fn bad_gbuffer_arrays_name_the_array_and_pixel() {
     let e = frame_from_arrays(w, h, &pos, &nrm, &obj, 2).unwrap_err();
     assert_eq!((e.array, e.pixel), ("normal", Some((0, 0))));
 }
+
+/// An image that is Monte Carlo with N samples (another seed) measures at
+/// about N on the yardstick; on a subset, the bootstrap interval holds it.
+#[cfg(feature = "report")]
+#[test]
+fn the_yardstick_finds_monte_carlo_s_own_sample_count() {
+    use softshadow::method::MonteCarlo;
+    use softshadow::render::score::{mc_equal, McOptions};
+    let (scene, frame, _, _) = setup("default", 96, 72);
+    let n = 32;
+    let mc = method::run(
+        &MonteCarlo::new(n).with_seed(977),
+        &Stages::new(&scene),
+        &frame,
+    )
+    .unwrap()
+    .output
+    .visibility;
+    let image = frame.to_image(&mc, f64::NAN);
+    let scored = score(&scene, &frame, &image).unwrap();
+    let counts: Vec<u32> = (1..=8).map(|k| 1 << k).collect();
+    for receivers in [usize::MAX, 1500] {
+        let options = McOptions {
+            counts: counts.clone(),
+            receivers,
+            seed: 5,
+            resamples: 100,
+        };
+        let m = mc_equal(&scene, &frame, &scored, &options).unwrap();
+        let found = m.n.unwrap_or_else(|| panic!("{}", m.text));
+        assert!(
+            found > f64::from(n) / 1.5 && found < f64::from(n) * 1.5,
+            "{receivers}: equal-RMSE N {found} for Monte Carlo with {n}"
+        );
+        if receivers < frame.receivers().len() {
+            let (lo, hi) = m.interval.unwrap();
+            assert_eq!(m.receivers, receivers);
+            assert!(lo <= found && found <= hi && lo < hi, "{lo} {found} {hi}");
+            assert!(
+                lo < f64::from(n) && f64::from(n) < hi,
+                "[{lo}, {hi}] misses {n}"
+            );
+        } else {
+            assert_eq!((m.receivers, m.interval), (frame.receivers().len(), None));
+        }
+        // Monte Carlo's RMSE falls with N.
+        assert!(m.mc_rmse.first() > m.mc_rmse.last());
+    }
+}
