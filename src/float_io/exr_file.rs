@@ -61,7 +61,9 @@ pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, String> {
         if c.sampling != Vec2(1, 1) {
             return Err(format!(
                 ".exr channel {} is subsampled ({}×{}); write full-resolution channels",
-                c.name, c.sampling.0, c.sampling.1
+                c.name.to_string().escape_debug(),
+                c.sampling.0,
+                c.sampling.1
             ));
         }
         decoded = decoded.saturating_add(pixels * c.sample_type.bytes_per_sample() as u64);

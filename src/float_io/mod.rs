@@ -161,7 +161,12 @@ pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, String> {
         }
         Some(ImageKind::Exr) => {
             let image = read_exr(bytes)?;
-            let names: Vec<&str> = image.channels.iter().map(|c| c.name.as_str()).collect();
+            // Names as written, control characters escaped: one line.
+            let names: Vec<String> = image
+                .channels
+                .iter()
+                .map(|c| c.name.escape_debug().to_string())
+                .collect();
             let pick = match image.channels.iter().position(|c| c.name == "V") {
                 Some(k) => k,
                 None if image.channels.len() == 1 => 0,

@@ -250,3 +250,16 @@ fn an_unknown_format_is_named() {
     let e = image_from_bytes(b"\x89PNG\r\n").unwrap_err();
     assert!(e.contains(".npy, .exr or .pfm"), "{e}");
 }
+
+/// Found by the `float_files` fuzz target: a subsampled channel whose name
+/// holds a line break made a two-line error.
+#[test]
+fn channel_names_with_control_characters_stay_on_one_line() {
+    let bytes = include_bytes!("testdata/subsampled-channel-with-newline.exr");
+    let e = image_from_bytes(bytes).unwrap_err();
+    assert!(e.contains("subsampled") && e.contains("\\r\\n"), "{e}");
+    assert!(!e.contains('\n') && !e.contains('\r'), "{e}");
+    let named = exr_bytes(2, 1, &[("a\nb", vec![0.0; 2]), ("c", vec![0.0; 2])]).unwrap();
+    let e = image_from_bytes(&named).unwrap_err();
+    assert!(e.contains("a\\nb") && !e.contains('\n'), "{e}");
+}
