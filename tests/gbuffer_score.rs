@@ -185,13 +185,7 @@ fn assert_close(a: &ErrorSummary, b: &ErrorSummary, what: &str) {
 #[test]
 fn render_then_npy_then_score_reproduces_the_error_table_for_every_default_method() {
     for (name, w, h) in [("default", 64, 48), ("linear-light", 48, 40)] {
-        let scene = builtin(name).unwrap();
-        let stages = Stages::new(&scene);
-        let frame = Frame::from_camera(&camera(&scene, w, h), stages.bvh());
-        let exact = method::run(&Exact, &stages, &frame)
-            .unwrap()
-            .output
-            .visibility;
+        let (scene, frame, exact, _) = setup(name, w, h);
         // The G-buffer through its .npy files, as another renderer reads it.
         let g = GBuffer::from_frame(
             &frame,

@@ -65,6 +65,20 @@ fn out_dir(dir: &std::path::Path) -> Result<(), String> {
     Ok(())
 }
 
+/// Writes `bytes` to `path` atomically (a temporary file renamed) and,
+/// unless `quiet`, says so on stdout.
+///
+/// # Errors
+/// One line naming the file.
+fn write_out(path: &std::path::Path, bytes: &[u8], quiet: bool) -> Result<(), String> {
+    softshadow::render::image::write_atomically(path, bytes)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    if !quiet {
+        say!("wrote {}", path.display());
+    }
+    Ok(())
+}
+
 /// Writes one line to stdout for [`say!`].
 fn stdout_line(args: std::fmt::Arguments<'_>) {
     use std::io::Write;

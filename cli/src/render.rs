@@ -7,7 +7,7 @@ use softshadow::float_io::{exr_bytes, npy_bytes_f64};
 use softshadow::method::{self, Exact, Method};
 use softshadow::render::image::{
     error_heat_map, in_penumbra, irradiance_factor, shaded, shaded_by_ends, visibility_image,
-    write_atomically, ErrorRow,
+    ErrorRow,
 };
 use softshadow::render::score::Score;
 use softshadow::render::{Frame, Stages, Stats};
@@ -270,14 +270,7 @@ fn write_floats(
     ];
     let (w, h) = frame.size();
     let (w, h) = (w as usize, h as usize);
-    let write = |name: String, bytes: Vec<u8>| -> Result<(), String> {
-        let path = dir.join(name);
-        write_atomically(&path, &bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-        if !quiet {
-            say!("wrote {}", path.display());
-        }
-        Ok(())
-    };
+    let write = |name: String, bytes: Vec<u8>| crate::write_out(&dir.join(name), &bytes, quiet);
     if formats.contains(&Format::Npy) {
         for (kind, _, data) in &channels {
             write(format!("{stem}-{kind}.npy"), npy_bytes_f64(&[h, w], data)?)?;

@@ -10,7 +10,7 @@ use softshadow::float_io::{
 };
 use softshadow::method::{Exact, MethodError};
 use softshadow::render::gbuffer::{frame_from_arrays, CameraModel, GBuffer};
-use softshadow::render::image::{error_heat_map, write_atomically, Rgb};
+use softshadow::render::image::{error_heat_map, Rgb};
 use softshadow::render::score::{self as scoring, McOptions, Score};
 use softshadow::render::{Frame, Stages, BACKGROUND};
 use std::path::{Path, PathBuf};
@@ -100,14 +100,6 @@ fn parse_rmse(s: &str) -> Result<f64, String> {
     }
 }
 
-/// Writes `bytes` to `dir/name` atomically and says so.
-fn write(dir: &Path, name: &str, bytes: &[u8]) -> Result<(), String> {
-    let path = dir.join(name);
-    write_atomically(&path, bytes).map_err(|e| format!("{}: {e}", path.display()))?;
-    say!("wrote {}", path.display());
-    Ok(())
-}
-
 /// `softshadow gbuffer`.
 pub fn gbuffer(args: &GbufferArgs) -> Result<(), String> {
     let scene = resolve_scene(&args.scene)?;
@@ -161,7 +153,7 @@ pub fn gbuffer(args: &GbufferArgs) -> Result<(), String> {
         ),
     ];
     for (name, bytes) in &files {
-        write(&args.out, name, bytes)?;
+        crate::write_out(&args.out.join(name), bytes, false)?;
     }
     say!(
         "{w}×{h} pixels, {} receivers (object id ≥ 0), {} in the exact penumbra",
@@ -305,8 +297,8 @@ fn score_inner(args: &ScoreArgs) -> Result<bool, String> {
             .write_png(&png)
             .map_err(|e| format!("{}: {e}", png.display()))?;
         let svg = dir.join("score-histogram.svg");
-        write_atomically(&svg, histogram(&values, &exact, &frame, &score).as_bytes())
-            .map_err(|e| format!("{}: {e}", svg.display()))?;
+        let text = histogram(&values, &exact, &frame, &score);
+        crate::write_out(&svg, text.as_bytes(), true)?;
         if !args.json {
             say!("wrote {}\nwrote {}", png.display(), svg.display());
         }

@@ -5,7 +5,6 @@ use crate::progress::Progress;
 use softshadow::float_io::{self, npy_bytes_f64, read_npy_f64, read_npy_i64, ImageKind};
 use softshadow::glam::DVec3;
 use softshadow::method::{self, Method, MethodError};
-use softshadow::render::image::write_atomically;
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::DOMAIN;
@@ -132,12 +131,8 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     if let Some(path) = &args.out {
         let n = out.visibility.len();
-        let write = |path: &Path, data: &[f64]| -> Result<(), String> {
-            write_atomically(path, &npy_bytes_f64(&[n], data)?)
-                .map_err(|e| format!("{}: {e}", path.display()))?;
-            say!("wrote {}", path.display());
-            Ok(())
-        };
+        let write =
+            |path: &Path, data: &[f64]| crate::write_out(path, &npy_bytes_f64(&[n], data)?, false);
         write(path, &out.visibility)?;
         if let Some(stderr) = &out.stderr {
             write(&path.with_extension("stderr.npy"), stderr)?;

@@ -50,7 +50,7 @@ pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, String> {
         .find(|h| !h.deep)
         .ok_or(".exr: no flat (non-deep) layer")?;
     let (w, h) = (header.layer_size.0, header.layer_size.1);
-    let pixels = (w as u64).checked_mul(h as u64).unwrap_or(u64::MAX);
+    let pixels = (w as u64).saturating_mul(h as u64);
     if pixels > MAX_PIXELS {
         return Err(format!(
             ".exr declares {w}×{h} pixels, over the limit of {MAX_PIXELS}"

@@ -50,7 +50,7 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
     if !(scale.is_finite() && scale != 0.0) {
         return Err(bad("scale must be a non-zero number"));
     }
-    let pixels = (w as u64).checked_mul(h as u64).unwrap_or(u64::MAX);
+    let pixels = (w as u64).saturating_mul(h as u64);
     if pixels > MAX_PIXELS {
         return Err(format!(
             "PFM declares {w}×{h} pixels, over the limit of {MAX_PIXELS}"

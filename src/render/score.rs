@@ -72,8 +72,10 @@ pub fn group_errors(
     })
 }
 
-/// `x` scaled by per-receiver `factors`.
-fn scaled(x: &[f64], factors: &[f64]) -> Vec<f64> {
+/// The shaded values: `x` times the per-receiver `factors`
+/// ([`shading_factors`]).
+#[must_use]
+pub fn scaled(x: &[f64], factors: &[f64]) -> Vec<f64> {
     x.iter().zip(factors).map(|(v, s)| v * s).collect()
 }
 

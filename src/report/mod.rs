@@ -58,7 +58,7 @@ pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
 use crate::render::image::ErrorSummary;
-use crate::render::score::{group_errors, group_masks, shading_factors};
+use crate::render::score::{group_errors, group_masks, scaled, shading_factors};
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
@@ -535,12 +535,7 @@ fn run_cell(
     let exact = &prepared.exact;
     let all = |_| true;
     cell.errors = Some(group_errors(&v, exact, &prepared.groups, all));
-    let shade = |x: &[f64]| -> Vec<f64> {
-        x.iter()
-            .zip(&prepared.shading)
-            .map(|(v, s)| v * s)
-            .collect()
-    };
+    let shade = |x: &[f64]| scaled(x, &prepared.shading);
     cell.shaded = Some(group_errors(
         &shade(&v),
         &shade(exact),
