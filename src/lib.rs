@@ -158,6 +158,8 @@ pub mod definitions {
 pub mod arbitrary;
 #[cfg(feature = "bvh")]
 pub mod bvh;
+#[cfg(feature = "float-io")]
+pub mod float_io;
 pub mod kernel;
 #[cfg(feature = "render")]
 pub mod method;

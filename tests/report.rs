@@ -482,3 +482,87 @@ fn a_picture_side_beyond_the_frame_is_the_frame() {
     assert!(w > 2 * 16 + 4 && h >= 16, "{w} × {h}");
     assert_eq!((w, h, pixels), picture(16));
 }
+
+#[test]
+fn the_error_plots_show_exact_on_the_floor_and_every_setting_labelled_apart() {
+    let settings = [
+        "pcss",
+        "pcss:map=256",
+        "sism",
+        "sism:horizon",
+        "hard",
+        "hard:horizon",
+    ];
+    let config = small(&settings);
+    let results = report::finish(report::run(&cases(&["contact"]), &config, None, &quiet).unwrap());
+    let dir = std::env::temp_dir().join(format!("softshadow-report-plots-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    report::write(&results, &dir).unwrap();
+    let svg = std::fs::read_to_string(dir.join("plots/contact/all.svg")).unwrap();
+    let exact_ms = results
+        .cells
+        .iter()
+        .find(|c| c.method == "exact")
+        .and_then(|c| c.seconds)
+        .unwrap()
+        * 1e3;
+    // The texts drawn, with their positions.
+    let texts: Vec<(f64, f64, String)> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let attr = |name: &str| -> Option<f64> {
+                let at = t.find(&format!(" {name}=\""))? + name.len() + 3;
+                t[at..].split('"').next()?.parse().ok()
+            };
+            let body = t
+                .split_once('>')?
+                .1
+                .split("</text>")
+                .next()?
+                .trim()
+                .to_owned();
+            Some((attr("x")?, attr("y")?, body))
+        })
+        .collect();
+    let exact: Vec<_> = texts
+        .iter()
+        .filter(|t| t.2.starts_with("exact: RMSE 0"))
+        .collect();
+    assert_eq!(exact.len(), 1, "{texts:?}");
+    let shown: f64 = exact[0]
+        .2
+        .split(", ")
+        .nth(1)
+        .unwrap()
+        .trim_end_matches(" ms")
+        .parse()
+        .unwrap();
+    assert!(
+        (shown - exact_ms).abs() <= 0.01 * exact_ms,
+        "{shown} vs {exact_ms}"
+    );
+    let labels: Vec<_> = texts
+        .iter()
+        .filter(|t| settings.contains(&t.2.as_str()))
+        .collect();
+    for s in settings {
+        assert_eq!(
+            labels.iter().filter(|t| t.2 == s).count(),
+            1,
+            "{s}: {texts:?}"
+        );
+    }
+    // Estimated boxes (11 px text, at most 6 px a character) apart.
+    let boxes: Vec<(f64, f64, f64, f64)> = labels
+        .iter()
+        .map(|(x, y, s)| (*x, *y, x + 6.0 * s.len() as f64, y + 11.0))
+        .collect();
+    for (i, a) in boxes.iter().enumerate() {
+        for b in &boxes[i + 1..] {
+            let apart = a.2 <= b.0 || b.2 <= a.0 || a.3 <= b.1 || b.3 <= a.1;
+            assert!(apart, "labels overlap: {a:?} {b:?}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

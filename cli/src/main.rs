@@ -9,6 +9,13 @@
 //!   exact and Monte Carlo references side by side on the default scene.
 //! - `softshadow visibility --scene NAME|FILE --points FILE --method M
 //!   [--seed S]`: the visibility of each receiver point as JSON on stdout.
+//! - `softshadow gbuffer --scene NAME|FILE [--width W --height H] --out
+//!   DIR`: the receivers our camera sees as `.npy` arrays, one `.exr` and
+//!   `camera.json`.
+//! - `softshadow score --scene NAME|FILE --image FILE [--gbuffer DIR]
+//!   [--out DIR] [--json] [--max-rmse X] [--yardstick]`: an image of `V`
+//!   made elsewhere against the exact answer (exit status 3 when it fails
+//!   `--max-rmse`).
 //! - `softshadow report [--scene S]… [--method M]… [--out DIR] [--shard
 //!   i/n] [--merge DIR…]`: the accuracy-against-run-time report.
 //! - `softshadow stability [--out DIR]`: the stability suite.
@@ -45,6 +52,7 @@ mod check;
 mod progress;
 mod render;
 mod report;
+mod score;
 mod selfcheck;
 mod stability;
 mod visibility;
@@ -76,6 +84,20 @@ fn writable_dir(flag: &str, dir: &std::path::Path) -> Result<(), String> {
     let probe = dir.join(format!(".softshadow-probe-{}", std::process::id()));
     std::fs::write(&probe, b"").map_err(|e| fail(format!("not writable: {e}")))?;
     let _ = std::fs::remove_file(&probe);
+    Ok(())
+}
+
+/// Writes `bytes` to `path` atomically (a temporary file renamed) and,
+/// unless `quiet`, says so on stdout.
+///
+/// # Errors
+/// One line naming the file.
+fn write_out(path: &std::path::Path, bytes: &[u8], quiet: bool) -> Result<(), String> {
+    softshadow::render::image::write_atomically(path, bytes)
+        .map_err(|e| format!("{}: {e}", path.display()))?;
+    if !quiet {
+        say!("wrote {}", path.display());
+    }
     Ok(())
 }
 
@@ -151,6 +173,12 @@ enum Command {
     Render(render::Args),
     /// The visibility V(p) of each receiver of a points file, as JSON.
     Visibility(visibility::Args),
+    /// The receivers our camera sees as float arrays (.npy), one .exr and
+    /// camera.json, for scoring an implementation written elsewhere.
+    Gbuffer(score::GbufferArgs),
+    /// Score an image of V made elsewhere (.npy, .exr, .pfm) against the
+    /// exact answer on the same receivers: the report's error table.
+    Score(score::ScoreArgs),
     /// The accuracy-against-run-time report: every scene × method setting,
     /// timed and measured against exact, with the Monte Carlo yardstick.
     Report(report::Args),
@@ -235,6 +263,14 @@ fn main() -> ExitCode {
         }
         Some(Command::Render(args)) => render::run(&args),
         Some(Command::Visibility(args)) => visibility::run(&args),
+        Some(Command::Gbuffer(args)) => score::gbuffer(&args),
+        Some(Command::Score(args)) => {
+            let status = score::score(&args);
+            return match STDOUT_LOST.get() {
+                Some(why) => not_delivered(why),
+                None => status,
+            };
+        }
         Some(Command::Report(args)) => report::run(&args),
         Some(Command::Stability(args)) => stability::run(&args),
     };

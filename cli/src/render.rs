@@ -4,10 +4,12 @@
 
 use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_method};
 use softshadow::definitions::in_penumbra;
+use softshadow::float_io::{exr_bytes, npy_bytes_f64};
 use softshadow::method::{self, Exact, Method};
 use softshadow::render::image::{
-    error_heat_map, shaded, shaded_by_ends, visibility_image, ErrorRow,
+    error_heat_map, irradiance_factor, shaded, shaded_by_ends, visibility_image, ErrorRow,
 };
+use softshadow::render::score::Score;
 use softshadow::render::{Frame, Stages, Stats};
 use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -40,13 +42,33 @@ pub struct Args {
     /// Print each stage's time and what was built.
     #[arg(long)]
     stats: bool,
+    /// What to write, one or more of png (8-bit pictures), npy (H×W
+    /// float64 arrays: visibility, shaded, error; NaN where no surface) and
+    /// exr (one float32 file with the channels V, shaded and error).
+    #[arg(long, value_delimiter = ',', default_value = "png")]
+    format: Vec<Format>,
+    /// Print the errors as one JSON object (the fields of `softshadow
+    /// score --json`, with the method and its time) instead of the table.
+    #[arg(long)]
+    json: bool,
     /// Refuse a render whose estimated peak memory exceeds this many GiB
     /// (default: half of this machine's memory).
     #[arg(long, value_parser = parse_gib)]
     max_memory: Option<f64>,
 }
 
-pub fn parse_gib(s: &str) -> Result<f64, String> {
+/// An output format of `render`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// 8-bit sRGB pictures.
+    Png,
+    /// NumPy float64 arrays.
+    Npy,
+    /// One OpenEXR file of float32 channels.
+    Exr,
+}
+
+pub(crate) fn parse_gib(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(g) if g.is_finite() && g > 0.0 => Ok(g),
         _ => Err(format!("expected a positive number of GiB, got {s:?}")),
@@ -79,7 +101,7 @@ fn default_memory_limit() -> f64 {
 /// receivers (`what` names them: `--width W --height H`, a points file)
 /// whose estimated peak — per receiver, fixed, and the method's maps —
 /// exceeds the limit (`--max-memory` GiB, else half the machine's memory).
-pub fn check_memory(
+pub(crate) fn check_memory(
     what: &str,
     receivers: u64,
     method: &dyn Method,
@@ -112,7 +134,7 @@ pub fn check_memory(
 }
 
 /// The scene's camera at the requested size, and the receivers it sees.
-fn camera_frame(
+pub(crate) fn camera_frame(
     scene: &Scene,
     stages: &Stages,
     name: &str,
@@ -179,27 +201,107 @@ pub fn run(args: &Args) -> Result<(), String> {
         file_part(&run.method)
     );
     let v = &run.output.visibility;
-    let images = [
-        ("visibility", visibility_image(&frame, v)),
-        (
-            "shaded",
-            match &run.output.end_weights {
-                Some(w) => shaded_by_ends(&scene, &frame, w),
-                None => shaded(&scene, &frame, v),
-            },
-        ),
-        ("error", error_heat_map(&frame, v, &exact.output.visibility)),
-    ];
-    for (kind, image) in &images {
-        let path = args.out.join(format!("{stem}-{kind}.png"));
-        image
-            .write_png(&path)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        say!("wrote {}", path.display());
+    let exact_v = &exact.output.visibility;
+    if args.format.contains(&Format::Png) {
+        let images = [
+            ("visibility", visibility_image(&frame, v)),
+            (
+                "shaded",
+                match &run.output.end_weights {
+                    Some(w) => shaded_by_ends(&scene, &frame, w),
+                    None => shaded(&scene, &frame, v),
+                },
+            ),
+            ("error", error_heat_map(&frame, v, exact_v)),
+        ];
+        for (kind, image) in &images {
+            let path = args.out.join(format!("{stem}-{kind}.png"));
+            image
+                .write_png(&path)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            if !args.json {
+                say!("wrote {}", path.display());
+            }
+        }
     }
-    print_table(&frame, &exact, std::slice::from_ref(&run));
+    // With --json, stdout is the JSON object alone.
+    let quiet = args.json;
+    write_floats(
+        &args.out,
+        &stem,
+        &args.format,
+        &scene,
+        &frame,
+        v,
+        exact_v,
+        quiet,
+    )?;
+    if args.json {
+        let image = frame.to_image(v, f64::NAN);
+        let (score, _) = Score::new(&frame, scene.light(), &image, exact_v);
+        let mut json: serde_json::Value =
+            serde_json::from_str(&score.to_json()).map_err(|e| e.to_string())?;
+        json["method"] = run.method.clone().into();
+        json["seconds"] = run.seconds.into();
+        say!("{json}");
+    } else {
+        print_table(&frame, &exact, std::slice::from_ref(&run));
+    }
     if args.stats {
         say!("\nstages:\n{}", stages.stats());
+    }
+    Ok(())
+}
+
+/// The float outputs of `render`: per pixel `V`, the shaded value
+/// (irradiance factor · `V`, `Φ = 1`) and the error `V − V_exact`, NaN
+/// where no surface; as `.npy` (float64) and/or one `.exr` (float32).
+#[allow(clippy::too_many_arguments)]
+fn write_floats(
+    dir: &Path,
+    stem: &str,
+    formats: &[Format],
+    scene: &Scene,
+    frame: &Frame,
+    v: &[f64],
+    exact: &[f64],
+    quiet: bool,
+) -> Result<(), String> {
+    if !formats.iter().any(|f| *f != Format::Png) {
+        return Ok(());
+    }
+    let light = scene.light();
+    let shaded_v: Vec<f64> = frame
+        .receivers()
+        .iter()
+        .zip(v)
+        .map(|(r, v)| {
+            let n = r
+                .normal
+                .unwrap_or_else(|| (light.center() - r.position).normalize_or_zero());
+            irradiance_factor(light, r.position, n) * v
+        })
+        .collect();
+    let error: Vec<f64> = v.iter().zip(exact).map(|(a, b)| a - b).collect();
+    let channels = [
+        ("visibility", "V", frame.to_image(v, f64::NAN)),
+        ("shaded", "shaded", frame.to_image(&shaded_v, f64::NAN)),
+        ("error", "error", frame.to_image(&error, f64::NAN)),
+    ];
+    let (w, h) = frame.size();
+    let (w, h) = (w as usize, h as usize);
+    let write = |name: String, bytes: Vec<u8>| crate::write_out(&dir.join(name), &bytes, quiet);
+    if formats.contains(&Format::Npy) {
+        for (kind, _, data) in &channels {
+            write(format!("{stem}-{kind}.npy"), npy_bytes_f64(&[h, w], data)?)?;
+        }
+    }
+    if formats.contains(&Format::Exr) {
+        let list: Vec<(&str, Vec<f32>)> = channels
+            .iter()
+            .map(|(_, name, data)| (*name, data.iter().map(|&x| x as f32).collect()))
+            .collect();
+        write(format!("{stem}.exr"), exr_bytes(w, h, &list)?)?;
     }
     Ok(())
 }

@@ -79,10 +79,10 @@ pub use machine::machine_line;
 pub use write::{check_accuracy, write, write_accuracy, ACCURACY_MARKER};
 pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
 
-use crate::definitions::in_penumbra;
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
 use crate::render::image::ErrorSummary;
+use crate::render::score::{group_errors, group_masks, scaled, shading_factors};
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
@@ -97,8 +97,9 @@ pub const FORMAT: &str = "softshadow-report/2";
 /// A run longer than this many seconds is not repeated.
 pub const SLOW_RUN: f64 = 2.0;
 
-/// The receiver groups, in table order.
-pub const GROUPS: [&str; 4] = ["all", "penumbra", "ground", "occluders"];
+/// The receiver groups, in table order (the renderer's, shared with
+/// `softshadow score`).
+pub use crate::render::score::GROUPS;
 
 /// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
 #[must_use]
@@ -528,22 +529,10 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
         .output
         .visibility;
     let receivers = frame.receivers();
-    let penumbra: Vec<bool> = exact.iter().map(|&v| in_penumbra(v)).collect();
-    let ground: Vec<bool> = receivers.iter().map(|r| r.object == Some(0)).collect();
-    let groups = [
-        vec![true; receivers.len()],
-        penumbra.clone(),
-        ground.clone(),
-        ground.iter().map(|g| !g).collect(),
-    ];
+    let groups = group_masks(receivers, &exact);
+    let penumbra = groups[1].clone();
     let light = scene.light();
-    let shading: Vec<f64> = receivers
-        .iter()
-        .map(|r| {
-            let l = (light.center() - r.position).normalize_or_zero();
-            r.normal.map_or(1.0, |n| n.dot(l).max(0.0))
-        })
-        .collect();
+    let shading = shading_factors(light, receivers);
     // The profile: the image row with the most exact-penumbra receivers.
     let (w, h) = frame.size();
     let pixels = frame.pixels();
@@ -637,25 +626,15 @@ fn run_cell(
     cell.status = "ok".to_owned();
     cell.seconds = Some(median(&cell.runs));
     let exact = &prepared.exact;
-    cell.errors = Some(
-        prepared
-            .groups
-            .each_ref()
-            .map(|g| ErrorSummary::new(&v, exact, |i| g[i])),
-    );
-    let shade = |x: &[f64]| -> Vec<f64> {
-        x.iter()
-            .zip(&prepared.shading)
-            .map(|(v, s)| v * s)
-            .collect()
-    };
-    let (sv, se) = (shade(&v), shade(exact));
-    cell.shaded = Some(
-        prepared
-            .groups
-            .each_ref()
-            .map(|g| ErrorSummary::new(&sv, &se, |i| g[i])),
-    );
+    let all = |_| true;
+    cell.errors = Some(group_errors(&v, exact, &prepared.groups, all));
+    let shade = |x: &[f64]| scaled(x, &prepared.shading);
+    cell.shaded = Some(group_errors(
+        &shade(&v),
+        &shade(exact),
+        &prepared.groups,
+        all,
+    ));
     cell.profile = prepared.profile.iter().map(|&k| v[k]).collect();
     cell
 }
