@@ -33,15 +33,18 @@ const SCENE: &str = r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius
 
 /// Starts `softshadow args` with its stdout closed before it writes.
 fn with_stdout_closed(args: &[&str]) -> Output {
+    let starting = cli_support::starting();
     let mut child = bin()
         .args(args)
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Close the reading end at once: every write the program makes fails
-    // with a broken pipe.
+    // Close the reading end at once, before any other child can be forked
+    // with a copy of it: every write the program makes fails with a broken
+    // pipe.
     drop(child.stdout.take());
+    drop(starting);
     let mut stderr = Vec::new();
     child
         .stderr
@@ -66,7 +69,7 @@ fn with_redirect(args: &[&str], redirect: &str) -> Output {
         env!("CARGO_BIN_EXE_softshadow"),
         quoted.join(" ")
     );
-    Command::new("sh").arg("-c").arg(&script).output().unwrap()
+    cli_support::output(Command::new("sh").arg("-c").arg(&script))
 }
 
 /// The three pictures of `render --method hard` of `scene.json` in `d`,
@@ -300,8 +303,8 @@ fn special_and_oversized_files_are_refused_without_reading_them() {
     );
     // A FIFO would block the reader until a writer came: refused first.
     let fifo = d.join("fifo.json");
-    let made = Command::new("mkfifo").arg(&fifo).status();
-    if made.is_ok_and(|s| s.success()) {
+    let made = cli_support::output(Command::new("mkfifo").arg(&fifo));
+    if made.status.success() {
         refused(
             &softshadow(&[
                 "visibility",
@@ -783,7 +786,7 @@ fn a_full_disk_leaves_no_partial_picture() {
         env!("CARGO_BIN_EXE_softshadow"),
         d.display()
     );
-    let out = Command::new("sh").arg("-c").arg(&script).output().unwrap();
+    let out = cli_support::output(Command::new("sh").arg("-c").arg(&script));
     assert!(!out.status.success(), "the limit did not bite");
     // The process killed mid-write may leave its hidden temporary.
     pictures_whole(&d, true);
