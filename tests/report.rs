@@ -4,7 +4,7 @@
 
 use softshadow::method::{self, Exact};
 use softshadow::render::{Frame, Stages};
-use softshadow::report::{self, Case, Config, Results, Shard};
+use softshadow::report::{self, Case, Config, ReportError, Results, Shard};
 use softshadow::scene::builtin;
 
 fn cases(names: &[&str]) -> Vec<Case> {
@@ -187,7 +187,7 @@ fn from_json(v: serde_json::Value) -> Results {
 
 /// The error of a merge that must be refused (no dump of the results
 /// when it is not).
-fn refusal(merged: Result<Results, String>) -> String {
+fn refusal(merged: Result<Results, ReportError>) -> ReportError {
     match merged {
         Ok(_) => panic!("merged what must be refused"),
         Err(e) => e,
@@ -206,9 +206,15 @@ fn a_part_whose_profile_outruns_its_columns_is_refused_before_anything_is_writte
         .push(0.5.into());
     let bad = from_json(v);
     let err = refusal(report::merge(vec![bad.clone()]));
-    assert!(err.contains("profile"), "{err}");
+    assert!(
+        matches!(&err, ReportError::NotWhole { what, .. } if what.contains("profile")),
+        "{err:?}"
+    );
     let dir = tmp("profile");
-    assert!(report::write(&bad, &dir).is_err());
+    assert!(matches!(
+        report::write(&bad, &dir),
+        Err(ReportError::NotWhole { .. })
+    ));
     assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
 }
 
@@ -254,8 +260,17 @@ fn shard_of(index: u32, names: &[&str], methods: &[&str]) -> Results {
 #[test]
 fn parts_of_different_sweeps_are_refused() {
     let a = shard_of(1, &["contact", "comb"], &["hard"]);
-    let refused = |parts: Vec<Results>, needle: &str| {
+    // Whole parts of two sweeps are `Parts`; a part that is not whole in
+    // itself is `NotWhole`, the part named.
+    let refused = |parts: Vec<Results>, needle: &str, whole: bool| {
         let err = refusal(report::merge(parts));
+        let kind = if whole {
+            matches!(err, ReportError::Parts { .. })
+        } else {
+            matches!(&err, ReportError::NotWhole { part: Some(p), .. } if p == "part 1")
+        };
+        assert!(kind, "{err:?}");
+        let err = err.to_string();
         assert!(err.contains(needle), "{err:?} lacks {needle:?}");
         assert!(!err.contains('\n'), "{err:?}");
     };
@@ -265,20 +280,22 @@ fn parts_of_different_sweeps_are_refused() {
             shard_of(2, &["contact", "linear-light"], &["hard"]),
         ],
         "scenes",
+        true,
     );
     refused(
         vec![a.clone(), shard_of(2, &["contact", "comb"], &["pcss"])],
         "settings",
+        true,
     );
     let mut v = as_json(&a);
     v["format"] = "softshadow-report/0".into();
-    refused(vec![from_json(v)], "format");
+    refused(vec![from_json(v)], "format", false);
     let mut v = as_json(&a);
     v["cells"][0]["index"] = 10_000.into();
-    refused(vec![from_json(v)], "beyond");
+    refused(vec![from_json(v)], "beyond", false);
     let mut v = as_json(&a);
     v["config"]["cells"] = 1.into();
-    refused(vec![from_json(v)], "cells");
+    refused(vec![from_json(v)], "cells", false);
 }
 
 /// Two parts of 100,000 cells each: the merge used to check each cell

@@ -293,7 +293,10 @@ fn write_floats(
     let write = |name: String, bytes: Vec<u8>| crate::write_out(&dir.join(name), &bytes, quiet);
     if formats.contains(&Format::Npy) {
         for (kind, _, data) in &channels {
-            write(format!("{stem}-{kind}.npy"), npy_bytes_f64(&[h, w], data)?)?;
+            write(
+                format!("{stem}-{kind}.npy"),
+                npy_bytes_f64(&[h, w], data).map_err(|e| e.to_string())?,
+            )?;
         }
     }
     if formats.contains(&Format::Exr) {
@@ -301,7 +304,10 @@ fn write_floats(
             .iter()
             .map(|(_, name, data)| (*name, data.iter().map(|&x| x as f32).collect()))
             .collect();
-        write(format!("{stem}.exr"), exr_bytes(w, h, &list)?)?;
+        write(
+            format!("{stem}.exr"),
+            exr_bytes(w, h, &list).map_err(|e| e.to_string())?,
+        )?;
     }
     Ok(())
 }

@@ -124,13 +124,14 @@ pub fn run(args: &Args) -> Result<(), String> {
             bar.set_position(done as u64);
             bar.set_message(what.to_owned());
         };
-        let part = report::run(&cases, &config, Some(staged.path()), &progress)?;
+        let part = report::run(&cases, &config, Some(staged.path()), &progress)
+            .map_err(|e| e.to_string())?;
         bar.finish_and_clear();
         let results = report::finish(part);
-        report::write(&results, staged.path())?;
+        report::write(&results, staged.path()).map_err(|e| e.to_string())?;
         results
     } else {
-        report::merge_into(&args.merge, staged.path())?
+        report::merge_into(&args.merge, staged.path()).map_err(|e| e.to_string())?
     };
     staged.commit().map_err(|e| format!("--out {e}"))?;
     if let Some(dir) = &args.accuracy {
@@ -138,7 +139,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             .chain(std::env::args().skip(1))
             .collect::<Vec<_>>()
             .join(" ");
-        report::write_accuracy(&results, dir, &command)?;
+        report::write_accuracy(&results, dir, &command).map_err(|e| e.to_string())?;
     }
     let missing = results.config.cells.saturating_sub(results.cells.len());
     say!(

@@ -140,12 +140,25 @@ pub fn gbuffer(args: &GbufferArgs) -> Result<(), String> {
             ("V", f32s(&g.exact, 1, 0)),
             ("object", g.object.iter().map(|&o| o as f32).collect()),
         ],
-    )?;
+    )
+    .map_err(|e| e.to_string())?;
     let files: [(&str, Vec<u8>); 6] = [
-        ("position.npy", npy_bytes_f64(&[hu, wu, 3], &g.position)?),
-        ("normal.npy", npy_bytes_f64(&[hu, wu, 3], &g.normal)?),
-        ("object.npy", npy_bytes_i32(&[hu, wu], &g.object)?),
-        ("exact.npy", npy_bytes_f64(&[hu, wu], &g.exact)?),
+        (
+            "position.npy",
+            npy_bytes_f64(&[hu, wu, 3], &g.position).map_err(|e| e.to_string())?,
+        ),
+        (
+            "normal.npy",
+            npy_bytes_f64(&[hu, wu, 3], &g.normal).map_err(|e| e.to_string())?,
+        ),
+        (
+            "object.npy",
+            npy_bytes_i32(&[hu, wu], &g.object).map_err(|e| e.to_string())?,
+        ),
+        (
+            "exact.npy",
+            npy_bytes_f64(&[hu, wu], &g.exact).map_err(|e| e.to_string())?,
+        ),
         ("gbuffer.exr", exr),
         (
             "camera.json",
@@ -170,11 +183,11 @@ pub fn gbuffer(args: &GbufferArgs) -> Result<(), String> {
 fn array<T>(
     dir: &Path,
     name: &str,
-    read: fn(&[u8]) -> Result<float_io::Array<T>, String>,
+    read: fn(&[u8]) -> Result<float_io::Array<T>, float_io::FormatError>,
 ) -> Result<(PathBuf, float_io::Array<T>), String> {
     let path = dir.join(name);
     let bytes = float_io::read_bytes(&path).map_err(|e| e.to_string())?;
-    let a = read(&bytes).map_err(|m| FloatIoError::new(&path, m).to_string())?;
+    let a = read(&bytes).map_err(|e| FloatIoError::new(&path, e.to_string()).to_string())?;
     Ok((path, a))
 }
 

@@ -160,8 +160,13 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     if let Some(path) = &args.out {
         let n = out.visibility.len();
-        let write =
-            |path: &Path, data: &[f64]| crate::write_out(path, &npy_bytes_f64(&[n], data)?, false);
+        let write = |path: &Path, data: &[f64]| {
+            crate::write_out(
+                path,
+                &npy_bytes_f64(&[n], data).map_err(|e| e.to_string())?,
+                false,
+            )
+        };
         write(path, &out.visibility)?;
         if let Some(stderr) = &out.stderr {
             write(&path.with_extension("stderr.npy"), stderr)?;

@@ -41,14 +41,14 @@ fuzz_target!(|data: &[u8]| {
                     .zip(&a.data)
                     .all(|(x, y)| x.to_bits() == y.to_bits()));
             }
-            Err(e) => one_line(&e),
+            Err(e) => one_line(&e.to_string()),
         },
         1 => match read_npy_i64(bytes) {
             Ok(a) => {
                 assert_eq!(a.data.len(), product(&a.shape));
                 assert!(a.data.len() * 4 <= bytes.len());
             }
-            Err(e) => one_line(&e),
+            Err(e) => one_line(&e.to_string()),
         },
         2 => match read_exr(bytes) {
             Ok(img) => {
@@ -58,18 +58,18 @@ fuzz_target!(|data: &[u8]| {
                     assert_eq!(c.data.len(), img.width * img.height);
                 }
             }
-            Err(e) => one_line(&e),
+            Err(e) => one_line(&e.to_string()),
         },
         3 => match read_pfm(bytes) {
             Ok(img) => {
                 assert_eq!(img.data.len(), img.width * img.height);
                 assert!(img.data.len() * 4 <= bytes.len());
             }
-            Err(e) => one_line(&e),
+            Err(e) => one_line(&e.to_string()),
         },
         _ => match image_from_bytes(bytes) {
             Ok(img) => assert_eq!(img.data.len(), img.width * img.height),
-            Err(e) => one_line(&e),
+            Err(e) => one_line(&e.to_string()),
         },
     }
 });

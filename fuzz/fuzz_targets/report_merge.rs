@@ -387,7 +387,7 @@ fuzz_target!(|data: &[u8]| {
         let staged = Staged::new(&out)?;
         let merged = merge_into(&dirs, staged.path())?;
         staged.commit()?;
-        Ok::<Results, String>(merged)
+        Ok::<Results, report::ReportError>(merged)
     })();
     // The parts are only read; nothing is left beside them.
     for (d, before) in dirs.iter().zip(&parts_before) {
@@ -407,6 +407,7 @@ fuzz_target!(|data: &[u8]| {
     assert_eq!(beside, expected);
     let merged = match merged {
         Err(e) => {
+            let e = e.to_string();
             assert!(!e.contains('\n') && !e.contains('\r'), "{e:?}");
             assert!(e.len() <= 8192, "{} bytes", e.len());
             assert_eq!(

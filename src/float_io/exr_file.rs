@@ -4,7 +4,7 @@
 //! compression.
 
 use super::npy::one_line;
-use super::{EXR_MAX_RATIO, MAX_PIXELS};
+use super::{FormatError, EXR_MAX_RATIO, MAX_PIXELS};
 use exr::prelude::{
     read, AnyChannel, AnyChannels, Encoding, FlatSamples, Image, ReadChannels as _,
     ReadLayers as _, SmallVec, Vec2, WritableImage as _,
@@ -37,45 +37,47 @@ pub struct ExrImage {
 /// resolution level.
 ///
 /// # Errors
-/// One line: not an OpenEXR file, a malformed or truncated one, deep data
-/// only, a subsampled channel, or a layer declaring more than
-/// [`MAX_PIXELS`] pixels or more decoded bytes than [`EXR_MAX_RATIO`] times
-/// the file's length (a hostile header).
-pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, String> {
-    let meta = exr::meta::MetaData::read_from_buffered(bytes, false)
-        .map_err(|e| format!(".exr header: {}", one_line(&e.to_string())))?;
+/// [`FormatError::Malformed`]: not an OpenEXR file, a malformed or
+/// truncated one, or a layer declaring more than [`MAX_PIXELS`] pixels or
+/// more decoded bytes than [`EXR_MAX_RATIO`] times the file's length (a
+/// hostile header); [`FormatError::Unsupported`]: deep data only, a
+/// subsampled channel.
+pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, FormatError> {
+    let meta = exr::meta::MetaData::read_from_buffered(bytes, false).map_err(|e| {
+        FormatError::Malformed(format!(".exr header: {}", one_line(&e.to_string())))
+    })?;
     let header = meta
         .headers
         .iter()
         .find(|h| !h.deep)
-        .ok_or(".exr: no flat (non-deep) layer")?;
+        .ok_or_else(|| FormatError::Unsupported(".exr: no flat (non-deep) layer".to_owned()))?;
     let (w, h) = (header.layer_size.0, header.layer_size.1);
     let pixels = (w as u64).saturating_mul(h as u64);
     if pixels > MAX_PIXELS {
-        return Err(format!(
+        return Err(FormatError::Malformed(format!(
             ".exr declares {w}×{h} pixels, over the limit of {MAX_PIXELS}"
-        ));
+        )));
     }
     let mut decoded: u64 = 0;
     for c in &header.channels.list {
         if c.sampling != Vec2(1, 1) {
-            return Err(format!(
+            return Err(FormatError::Unsupported(format!(
                 ".exr channel {} is subsampled ({}×{}); write full-resolution channels",
                 c.name.to_string().escape_debug(),
                 c.sampling.0,
                 c.sampling.1
-            ));
+            )));
         }
         decoded = decoded.saturating_add(pixels * c.sample_type.bytes_per_sample() as u64);
     }
     let limit = EXR_MAX_RATIO.saturating_mul(bytes.len() as u64);
     if decoded > limit {
-        return Err(format!(
+        return Err(FormatError::Malformed(format!(
             ".exr declares {w}×{h} pixels in {} channels ({decoded} bytes decoded) in a file of {} bytes: \
              truncated, or a hostile header",
             header.channels.list.len(),
             bytes.len()
-        ));
+        )));
     }
     let image = read()
         .no_deep_data()
@@ -85,7 +87,7 @@ pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, String> {
         .all_attributes()
         .non_parallel()
         .from_buffered(Cursor::new(bytes))
-        .map_err(|e| format!(".exr: {}", one_line(&e.to_string())))?;
+        .map_err(|e| FormatError::Malformed(format!(".exr: {}", one_line(&e.to_string()))))?;
     let layer = image.layer_data;
     let (width, height) = (layer.size.0, layer.size.1);
     let channels = layer
@@ -102,7 +104,9 @@ pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, String> {
         })
         .collect::<Vec<_>>();
     if channels.iter().any(|c| c.data.len() != width * height) {
-        return Err(".exr: a channel's size differs from the layer's".to_owned());
+        return Err(FormatError::Malformed(
+            ".exr: a channel's size differs from the layer's".to_owned(),
+        ));
     }
     Ok(ExrImage {
         width,
@@ -116,21 +120,23 @@ pub fn read_exr(bytes: &[u8]) -> Result<ExrImage, String> {
 /// from the top-left), ZIP-compressed (lossless, 16 scan lines a block).
 ///
 /// # Errors
-/// A channel of the wrong length, no channel, an empty image, or the
-/// encoder's error.
+/// [`FormatError::Unwritable`]: a channel of the wrong length, no channel,
+/// an empty image, or the encoder's error.
 pub fn exr_bytes(
     width: usize,
     height: usize,
     channels: &[(&str, Vec<f32>)],
-) -> Result<Vec<u8>, String> {
+) -> Result<Vec<u8>, FormatError> {
     if width == 0 || height == 0 || channels.is_empty() {
-        return Err("an .exr needs pixels and at least one channel".to_owned());
+        return Err(FormatError::Unwritable(
+            "an .exr needs pixels and at least one channel".to_owned(),
+        ));
     }
     if let Some((name, d)) = channels.iter().find(|(_, d)| d.len() != width * height) {
-        return Err(format!(
+        return Err(FormatError::Unwritable(format!(
             "channel {name}: {} values for {width}×{height} pixels",
             d.len()
-        ));
+        )));
     }
     let list: SmallVec<[AnyChannel<FlatSamples>; 4]> = channels
         .iter()
@@ -146,6 +152,6 @@ pub fn exr_bytes(
         .write()
         .non_parallel()
         .to_buffered(&mut out)
-        .map_err(|e| format!(".exr: {e}"))?;
+        .map_err(|e| FormatError::Unwritable(format!(".exr: {e}")))?;
     Ok(out.into_inner())
 }

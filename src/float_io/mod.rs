@@ -58,6 +58,38 @@ pub struct Array<T> {
     pub data: Vec<T>,
 }
 
+/// What is wrong with a float file's bytes, or with values to be written
+/// as one: one line each.
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum FormatError {
+    /// Not a file of the kind read (told by its first bytes).
+    NotThisKind(String),
+    /// A header that is malformed, truncated, or declares what the file
+    /// does not hold or more than the limits allow (a hostile header).
+    Malformed(String),
+    /// A well-formed file holding what is not read here: another dtype, a
+    /// rank or shape that is not an image's, a colour or subsampled
+    /// channel, no channel `V` among several, deep data only.
+    Unsupported(String),
+    /// Values that cannot be written as asked: their count against the
+    /// shape, no channel, no pixels, or the encoder's error.
+    Unwritable(String),
+}
+
+impl fmt::Display for FormatError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            FormatError::NotThisKind(what)
+            | FormatError::Malformed(what)
+            | FormatError::Unsupported(what)
+            | FormatError::Unwritable(what) => f.write_str(what),
+        }
+    }
+}
+
+impl std::error::Error for FormatError {}
+
 /// A file that could not be read or written: the file and the problem, one
 /// line.
 #[derive(Clone, Debug, PartialEq, Eq)]
@@ -141,9 +173,10 @@ pub struct Image {
 /// greyscale `.pfm` (`Pf`).
 ///
 /// # Errors
-/// One line: an unknown format, a wrong dtype or rank, a missing channel, a
-/// truncated or hostile header.
-pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, String> {
+/// [`FormatError::NotThisKind`]: none of the three formats;
+/// [`FormatError::Unsupported`]: a wrong dtype or rank, a missing channel;
+/// [`FormatError::Malformed`]: a truncated or hostile header.
+pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, FormatError> {
     match ImageKind::sniff(bytes) {
         Some(ImageKind::Npy) => {
             let a = read_npy_f64(bytes)?;
@@ -153,10 +186,10 @@ pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, String> {
                     height: h,
                     data: a.data,
                 }),
-                _ => Err(format!(
+                _ => Err(FormatError::Unsupported(format!(
                     "shape {:?}: an image of V is H×W (or H×W×1)",
                     a.shape
-                )),
+                ))),
             }
         }
         Some(ImageKind::Exr) => {
@@ -171,11 +204,11 @@ pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, String> {
                 Some(k) => k,
                 None if image.channels.len() == 1 => 0,
                 None => {
-                    return Err(format!(
+                    return Err(FormatError::Unsupported(format!(
                         "no channel named V and {} channels ({}); write V as a channel named V",
                         names.len(),
                         names.join(", ")
-                    ))
+                    )))
                 }
             };
             let (width, height) = (image.width, image.height);
@@ -187,7 +220,9 @@ pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, String> {
             })
         }
         Some(ImageKind::Pfm) => read_pfm(bytes),
-        None => Err("not a .npy, .exr or .pfm file (by its first bytes)".to_owned()),
+        None => Err(FormatError::NotThisKind(
+            "not a .npy, .exr or .pfm file (by its first bytes)".to_owned(),
+        )),
     }
 }
 
@@ -197,7 +232,7 @@ pub fn image_from_bytes(bytes: &[u8]) -> Result<Image, String> {
 /// [`FloatIoError`]: the file and the problem.
 pub fn read_image(path: &Path) -> Result<Image, FloatIoError> {
     let bytes = read_bytes(path)?;
-    image_from_bytes(&bytes).map_err(|m| FloatIoError::new(path, m))
+    image_from_bytes(&bytes).map_err(|e| FloatIoError::new(path, e.to_string()))
 }
 
 #[cfg(test)]

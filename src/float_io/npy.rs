@@ -1,7 +1,7 @@
 //! NumPy `.npy` through `ndarray-npy`, with the declared size checked
 //! against the bytes before anything is allocated.
 
-use super::Array;
+use super::{Array, FormatError};
 use ndarray::{ArrayD, IxDyn};
 use ndarray_npy::npy::header::Header;
 use ndarray_npy::{ReadNpyExt, ReadableElement, WritableElement, WriteNpyExt};
@@ -21,7 +21,11 @@ struct Checked {
 /// `allowed` (`what` names them for the error): the header's own length
 /// fits the file, the shape's element count times the item size is exactly
 /// the data after the header.
-fn check(bytes: &[u8], allowed: &[(&'static str, usize)], what: &str) -> Result<Checked, String> {
+fn check(
+    bytes: &[u8],
+    allowed: &[(&'static str, usize)],
+    what: &str,
+) -> Result<Checked, FormatError> {
     // The header's length field, before the crate allocates a buffer of
     // that length (up to 4 GiB for format 2 and 3).
     if bytes.len() >= 10 && bytes.starts_with(b"\x93NUMPY") {
@@ -34,21 +38,22 @@ fn check(bytes: &[u8], allowed: &[(&'static str, usize)], what: &str) -> Result<
             _ => (usize::MAX, 12),
         };
         if len > bytes.len().saturating_sub(at) {
-            return Err(format!(
+            return Err(FormatError::Malformed(format!(
                 "truncated or hostile .npy header: it declares {len} header bytes, the file has {}",
                 bytes.len().saturating_sub(at)
-            ));
+            )));
         }
     }
     let mut rest = bytes;
-    let header = Header::from_reader(&mut rest)
-        .map_err(|e| format!(".npy header: {}", one_line(&e.to_string())))?;
+    let header = Header::from_reader(&mut rest).map_err(|e| {
+        FormatError::Malformed(format!(".npy header: {}", one_line(&e.to_string())))
+    })?;
     let descr = descriptor(&header.type_descriptor);
     let Some(&(name, size)) = allowed.iter().find(|(d, _)| Some(*d) == descr.as_deref()) else {
-        return Err(format!(
+        return Err(FormatError::Unsupported(format!(
             "dtype {}: expected {what}",
             descr.unwrap_or_else(|| header.type_descriptor.to_string())
-        ));
+        )));
     };
     let count = header
         .shape
@@ -60,7 +65,7 @@ fn check(bytes: &[u8], allowed: &[(&'static str, usize)], what: &str) -> Result<
             descr: name,
             shape: header.shape,
         }),
-        Some(n) => Err(format!(
+        Some(n) => Err(FormatError::Malformed(format!(
             "shape {:?} of {name} is {n} bytes of data, the file has {} after its header{}",
             header.shape,
             rest.len(),
@@ -69,18 +74,18 @@ fn check(bytes: &[u8], allowed: &[(&'static str, usize)], what: &str) -> Result<
             } else {
                 ""
             }
-        )),
-        None => Err(format!(
+        ))),
+        None => Err(FormatError::Malformed(format!(
             "shape {:?}: the declared size overflows (a hostile header)",
             header.shape
-        )),
+        ))),
     }
 }
 
 /// The values of an array of `T` in the file, row-major.
-fn values<T: ReadableElement + Copy>(bytes: &[u8]) -> Result<Vec<T>, String> {
+fn values<T: ReadableElement + Copy>(bytes: &[u8]) -> Result<Vec<T>, FormatError> {
     let a = ArrayD::<T>::read_npy(bytes)
-        .map_err(|e| format!(".npy data: {}", one_line(&e.to_string())))?;
+        .map_err(|e| FormatError::Malformed(format!(".npy data: {}", one_line(&e.to_string()))))?;
     Ok(a.iter().copied().collect())
 }
 
@@ -88,9 +93,10 @@ fn values<T: ReadableElement + Copy>(bytes: &[u8]) -> Result<Vec<T>, String> {
 /// order) from an `.npy` file's bytes, as `f64` in row-major order.
 ///
 /// # Errors
-/// One line: not an `.npy`, another dtype, a size that does not match the
-/// file (truncated or hostile).
-pub fn read_npy_f64(bytes: &[u8]) -> Result<Array<f64>, String> {
+/// [`FormatError::Malformed`]: not an `.npy`, a size that does not match
+/// the file (truncated or hostile); [`FormatError::Unsupported`]: another
+/// dtype.
+pub fn read_npy_f64(bytes: &[u8]) -> Result<Array<f64>, FormatError> {
     let c = check(bytes, &FLOATS, "float32 or float64")?;
     let data = if c.descr.ends_with('8') {
         values::<f64>(bytes)?
@@ -108,7 +114,7 @@ pub fn read_npy_f64(bytes: &[u8]) -> Result<Array<f64>, String> {
 ///
 /// # Errors
 /// As [`read_npy_f64`].
-pub fn read_npy_i64(bytes: &[u8]) -> Result<Array<i64>, String> {
+pub fn read_npy_i64(bytes: &[u8]) -> Result<Array<i64>, FormatError> {
     let c = check(bytes, &INTS, "int32 or int64")?;
     let data = if c.descr.ends_with('8') {
         values::<i64>(bytes)?
@@ -122,19 +128,25 @@ pub fn read_npy_i64(bytes: &[u8]) -> Result<Array<i64>, String> {
 }
 
 /// The `.npy` bytes of `data` with `shape` (row-major, little-endian).
-fn bytes_of<T: WritableElement + Clone>(shape: &[usize], data: &[T]) -> Result<Vec<u8>, String> {
-    let a = ArrayD::from_shape_vec(IxDyn(shape), data.to_vec())
-        .map_err(|e| format!("shape {shape:?} for {} values: {e}", data.len()))?;
+fn bytes_of<T: WritableElement + Clone>(
+    shape: &[usize],
+    data: &[T],
+) -> Result<Vec<u8>, FormatError> {
+    let a = ArrayD::from_shape_vec(IxDyn(shape), data.to_vec()).map_err(|e| {
+        FormatError::Unwritable(format!("shape {shape:?} for {} values: {e}", data.len()))
+    })?;
     let mut out = Vec::new();
-    a.write_npy(&mut out).map_err(|e| e.to_string())?;
+    a.write_npy(&mut out)
+        .map_err(|e| FormatError::Unwritable(e.to_string()))?;
     Ok(out)
 }
 
 /// The `.npy` bytes (`<f8`) of `data` with `shape`, row-major.
 ///
 /// # Errors
-/// `data.len()` is not the shape's element count.
-pub fn npy_bytes_f64(shape: &[usize], data: &[f64]) -> Result<Vec<u8>, String> {
+/// [`FormatError::Unwritable`]: `data.len()` is not the shape's element
+/// count.
+pub fn npy_bytes_f64(shape: &[usize], data: &[f64]) -> Result<Vec<u8>, FormatError> {
     bytes_of(shape, data)
 }
 
@@ -142,7 +154,7 @@ pub fn npy_bytes_f64(shape: &[usize], data: &[f64]) -> Result<Vec<u8>, String> {
 ///
 /// # Errors
 /// As [`npy_bytes_f64`].
-pub fn npy_bytes_f32(shape: &[usize], data: &[f32]) -> Result<Vec<u8>, String> {
+pub fn npy_bytes_f32(shape: &[usize], data: &[f32]) -> Result<Vec<u8>, FormatError> {
     bytes_of(shape, data)
 }
 
@@ -150,7 +162,7 @@ pub fn npy_bytes_f32(shape: &[usize], data: &[f32]) -> Result<Vec<u8>, String> {
 ///
 /// # Errors
 /// As [`npy_bytes_f64`].
-pub fn npy_bytes_i32(shape: &[usize], data: &[i32]) -> Result<Vec<u8>, String> {
+pub fn npy_bytes_i32(shape: &[usize], data: &[i32]) -> Result<Vec<u8>, FormatError> {
     bytes_of(shape, data)
 }
 

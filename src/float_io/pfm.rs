@@ -4,22 +4,25 @@
 //! **bottom** of the image up. Greyscale (`Pf`) only: a colour map (`PF`)
 //! is refused, since `V` is one value per pixel.
 
-use super::{Image, MAX_PIXELS};
+use super::{FormatError, Image, MAX_PIXELS};
 
 /// The image of a greyscale `.pfm` file's bytes, row 0 the top.
 ///
 /// # Errors
-/// One line: not a PFM, a colour PFM, a malformed header, a size over
-/// [`MAX_PIXELS`] or one that does not match the data exactly.
-pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
+/// [`FormatError::NotThisKind`]: not a PFM; [`FormatError::Unsupported`]:
+/// a colour PFM; [`FormatError::Malformed`]: a malformed header, a size
+/// over [`MAX_PIXELS`] or one that does not match the data exactly.
+pub fn read_pfm(bytes: &[u8]) -> Result<Image, FormatError> {
     if bytes.starts_with(b"PF") {
-        return Err(
+        return Err(FormatError::Unsupported(
             "a colour PFM (PF, three channels); V is one value per pixel: write a greyscale PFM (Pf)"
                 .to_owned(),
-        );
+        ));
     }
     if !bytes.starts_with(b"Pf") {
-        return Err("not a PFM file (no Pf)".to_owned());
+        return Err(FormatError::NotThisKind(
+            "not a PFM file (no Pf)".to_owned(),
+        ));
     }
     // Three whitespace-separated tokens after the magic, within the first
     // few hundred bytes, each ended by one whitespace byte.
@@ -34,12 +37,14 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
             at += 1;
         }
         if at >= bytes.len() || start == at || !bytes[at].is_ascii_whitespace() {
-            return Err("malformed PFM header (Pf, width height, scale)".to_owned());
+            return Err(FormatError::Malformed(
+                "malformed PFM header (Pf, width height, scale)".to_owned(),
+            ));
         }
         tokens.push(std::str::from_utf8(&bytes[start..at]).unwrap_or(""));
         at += 1;
     }
-    let bad = |what: &str| format!("PFM header: {what}");
+    let bad = |what: &str| FormatError::Malformed(format!("PFM header: {what}"));
     let w: usize = tokens[0].parse().map_err(|_| bad("width is not a count"))?;
     let h: usize = tokens[1]
         .parse()
@@ -52,17 +57,17 @@ pub fn read_pfm(bytes: &[u8]) -> Result<Image, String> {
     }
     let pixels = (w as u64).saturating_mul(h as u64);
     if pixels > MAX_PIXELS {
-        return Err(format!(
+        return Err(FormatError::Malformed(format!(
             "PFM declares {w}×{h} pixels, over the limit of {MAX_PIXELS}"
-        ));
+        )));
     }
     let data = &bytes[at..];
     if data.len() as u64 != 4 * pixels {
-        return Err(format!(
+        return Err(FormatError::Malformed(format!(
             "PFM declares {w}×{h} pixels ({} bytes), the file has {} after its header",
             4 * pixels,
             data.len()
-        ));
+        )));
     }
     let little = scale < 0.0;
     let value = |k: usize| {

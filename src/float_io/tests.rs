@@ -37,9 +37,14 @@ fn npy_float64_float32_and_int32_round_trip() {
     let a = read_npy_i64(&npy_bytes_i32(&[5], &ids).unwrap()).unwrap();
     assert_eq!(a.data, ids.map(i64::from));
     // Integers are not floats, floats are not integers.
-    let e = read_npy_f64(&npy_bytes_i32(&[5], &ids).unwrap()).unwrap_err();
+    let e = read_npy_f64(&npy_bytes_i32(&[5], &ids).unwrap())
+        .unwrap_err()
+        .to_string();
     assert!(e.contains("<i4") && e.contains("float"), "{e}");
-    assert!(read_npy_i64(&bytes).unwrap_err().contains("<f8"));
+    assert!(read_npy_i64(&bytes)
+        .unwrap_err()
+        .to_string()
+        .contains("<f8"));
     assert!(npy_bytes_f64(&[2, 2], &[1.0]).is_err());
 }
 
@@ -129,7 +134,7 @@ fn hostile_and_truncated_npy_headers_are_refused_before_allocating() {
         ("not a dict at all", 1, &[0u8; 8][..], "header"),
     ] {
         let bytes = npy_with(dict, major, data);
-        let e = read_npy_f64(&bytes).unwrap_err();
+        let e = read_npy_f64(&bytes).unwrap_err().to_string();
         assert!(e.contains(needle), "{dict}: {e}");
         assert!(!e.contains('\n'), "{e}");
     }
@@ -137,11 +142,11 @@ fn hostile_and_truncated_npy_headers_are_refused_before_allocating() {
     let mut bytes = b"\x93NUMPY\x02\x00".to_vec();
     bytes.extend(u32::MAX.to_le_bytes());
     bytes.extend(b"{'descr'");
-    let e = read_npy_f64(&bytes).unwrap_err();
+    let e = read_npy_f64(&bytes).unwrap_err().to_string();
     assert!(e.contains("header"), "{e}");
     // Every prefix of a good file is refused with one line, never a panic.
     for n in 0..ok.len() {
-        let e = read_npy_f64(&ok[..n]).unwrap_err();
+        let e = read_npy_f64(&ok[..n]).unwrap_err().to_string();
         assert!(!e.contains('\n'), "{e}");
     }
 }
@@ -164,7 +169,7 @@ fn exr_round_trips_float32_channels_and_picks_v() {
     let one = exr_bytes(w, h, &[("Y", v.clone())]).unwrap();
     assert!(same(&image_from_bytes(&one).unwrap().data, &want));
     let two = exr_bytes(w, h, &[("R", v.clone()), ("G", v)]).unwrap();
-    let e = image_from_bytes(&two).unwrap_err();
+    let e = image_from_bytes(&two).unwrap_err().to_string();
     assert!(
         e.contains("no channel named V") && e.contains("G, R"),
         "{e}"
@@ -199,16 +204,16 @@ fn hostile_and_truncated_exr_headers_are_refused() {
     let mut hostile = bytes.clone();
     hostile[at + 8..at + 12].copy_from_slice(&99_999i32.to_le_bytes());
     hostile[at + 12..at + 16].copy_from_slice(&99_999i32.to_le_bytes());
-    let e = read_exr(&hostile).unwrap_err();
+    let e = read_exr(&hostile).unwrap_err().to_string();
     assert!(e.contains("100000×100000"), "{e}");
     // A million pixels declared in a file of a few hundred bytes.
     hostile[at + 8..at + 12].copy_from_slice(&999i32.to_le_bytes());
     hostile[at + 12..at + 16].copy_from_slice(&999i32.to_le_bytes());
-    let e = read_exr(&hostile).unwrap_err();
+    let e = read_exr(&hostile).unwrap_err().to_string();
     assert!(e.contains("hostile"), "{e}");
     // Every prefix: an error of one line, never a panic.
     for n in 0..bytes.len() {
-        if let Err(e) = image_from_bytes(&bytes[..n]) {
+        if let Err(e) = image_from_bytes(&bytes[..n]).map_err(|e| e.to_string()) {
             assert!(!e.contains('\n'), "{e}");
         }
     }
@@ -240,14 +245,14 @@ fn pfm_round_trips_top_row_first_and_refuses_colour_and_bad_sizes() {
         (&b"Pf\n1 1\n0\n\0\0\0\0"[..], "scale"),
         (&b"Pf\n1 1"[..], "malformed"),
     ] {
-        let e = image_from_bytes(bad).unwrap_err();
+        let e = image_from_bytes(bad).unwrap_err().to_string();
         assert!(e.contains(needle), "{e}");
     }
 }
 
 #[test]
 fn an_unknown_format_is_named() {
-    let e = image_from_bytes(b"\x89PNG\r\n").unwrap_err();
+    let e = image_from_bytes(b"\x89PNG\r\n").unwrap_err().to_string();
     assert!(e.contains(".npy, .exr or .pfm"), "{e}");
 }
 
@@ -256,10 +261,51 @@ fn an_unknown_format_is_named() {
 #[test]
 fn channel_names_with_control_characters_stay_on_one_line() {
     let bytes = include_bytes!("testdata/subsampled-channel-with-newline.exr");
-    let e = image_from_bytes(bytes).unwrap_err();
+    let e = image_from_bytes(bytes).unwrap_err().to_string();
     assert!(e.contains("subsampled") && e.contains("\\r\\n"), "{e}");
     assert!(!e.contains('\n') && !e.contains('\r'), "{e}");
     let named = exr_bytes(2, 1, &[("a\nb", vec![0.0; 2]), ("c", vec![0.0; 2])]).unwrap();
-    let e = image_from_bytes(&named).unwrap_err();
+    let e = image_from_bytes(&named).unwrap_err().to_string();
     assert!(e.contains("a\\nb") && !e.contains('\n'), "{e}");
+}
+
+/// Each fault is of its kind, so that a caller can tell a file of another
+/// kind from a damaged one and from one holding what is not an image.
+#[test]
+fn faults_are_typed_by_what_is_wrong() {
+    let kind = |r: Result<Image, FormatError>| match r {
+        Err(FormatError::NotThisKind(_)) => "not this kind",
+        Err(FormatError::Malformed(_)) => "malformed",
+        Err(FormatError::Unsupported(_)) => "unsupported",
+        Err(FormatError::Unwritable(_)) => "unwritable",
+        Ok(_) => "read",
+    };
+    let npy = npy_bytes_f64(&[2, 3], &values(6)).unwrap();
+    assert_eq!(kind(image_from_bytes(&npy)), "read");
+    assert_eq!(kind(image_from_bytes(b"\x89PNG\r\n")), "not this kind");
+    assert_eq!(kind(read_pfm(b"P6\n1 1\n255\n\0\0\0")), "not this kind");
+    assert_eq!(kind(image_from_bytes(&npy[..npy.len() - 1])), "malformed");
+    assert_eq!(
+        kind(image_from_bytes(b"Pf\n2 2\n-1\n\0\0\0\0")),
+        "malformed"
+    );
+    assert_eq!(
+        kind(image_from_bytes(b"PF\n1 1\n-1\n\0\0\0\0")),
+        "unsupported"
+    );
+    let cube = npy_bytes_f64(&[2, 2, 2], &values(8)).unwrap();
+    assert_eq!(kind(image_from_bytes(&cube)), "unsupported");
+    let ids = npy_bytes_i32(&[2, 2], &[1, 2, 3, 4]).unwrap();
+    assert!(matches!(
+        read_npy_f64(&ids),
+        Err(FormatError::Unsupported(_))
+    ));
+    assert!(matches!(
+        npy_bytes_f64(&[2, 2], &values(3)),
+        Err(FormatError::Unwritable(_))
+    ));
+    assert!(matches!(
+        exr_bytes(0, 1, &[("V", vec![])]),
+        Err(FormatError::Unwritable(_))
+    ));
 }

@@ -6,6 +6,7 @@
 //! name the sweep gives the cell — in one pass over them.
 
 use super::names::Names;
+use super::ReportError;
 use super::{base, CellRecord, ConfigRecord, Errors, Results, SceneRecord, Yardstick, FORMAT};
 use crate::scene::LightKind;
 use std::collections::{HashMap, HashSet};
@@ -88,8 +89,14 @@ impl ConfigRecord {
     /// settings, and `cells` their product.
     ///
     /// # Errors
-    /// The first thing that is not, as one line naming the field.
-    pub fn check(&self) -> Result<(), String> {
+    /// [`ReportError::NotWhole`]: the first thing that is not, naming the
+    /// field.
+    pub fn check(&self) -> Result<(), ReportError> {
+        self.first_fault().map_err(ReportError::not_whole)
+    }
+
+    /// [`ConfigRecord::check`]'s test, its fault as text.
+    fn first_fault(&self) -> Result<(), String> {
         if self.side == 0 || self.side > MAX_SIDE {
             return Err(format!(
                 "config.side: {} is not within 1..={MAX_SIDE}",
@@ -176,8 +183,14 @@ impl Results {
     /// line. Linear in the size of the results.
     ///
     /// # Errors
-    /// The first thing that is not, as one line naming where (`cells[3].profile`).
-    pub fn check(&self) -> Result<(), String> {
+    /// [`ReportError::NotWhole`]: the first thing that is not, naming
+    /// where (`cells[3].profile`).
+    pub fn check(&self) -> Result<(), ReportError> {
+        self.first_fault().map_err(ReportError::not_whole)
+    }
+
+    /// [`Results::check`]'s test, its fault as text.
+    fn first_fault(&self) -> Result<(), String> {
         if self.format != FORMAT {
             return Err(format!(
                 "format: {} is not {FORMAT:?} (another version's report, or not a report)",
@@ -185,7 +198,7 @@ impl Results {
             ));
         }
         let config = &self.config;
-        config.check()?;
+        config.first_fault()?;
         if self.machines.is_empty() {
             return Err("machines: none".to_owned());
         }

@@ -17,7 +17,7 @@
 
 use super::check::quote;
 use super::names::{file_part, picture_size, Names};
-use super::{merge_labelled, write, Results};
+use super::{merge_labelled, write, ReportError, Results};
 use crate::render::image::write_atomically;
 use crate::scene::file::{read_input, MAX_TEXT_BYTES};
 use std::collections::HashMap;
@@ -45,8 +45,8 @@ impl Staged {
     /// `out` that is not a folder, holds anything but a report's entries
     /// (hidden temporaries of an earlier run aside), or has no writable
     /// folder around it; one line naming it.
-    pub fn new(out: &Path) -> Result<Staged, String> {
-        let fail = |why: String| format!("{}: {why}", out.display());
+    pub fn new(out: &Path) -> Result<Staged, ReportError> {
+        let fail = |why: String| ReportError::file(out, why);
         std::fs::create_dir_all(out).map_err(|e| fail(e.to_string()))?;
         let abs = std::fs::canonicalize(out).map_err(|e| fail(e.to_string()))?;
         if !abs.is_dir() {
@@ -106,28 +106,28 @@ impl Staged {
     /// # Errors
     /// A rename or removal that fails (the previous report is put back
     /// when the new one cannot take its place).
-    pub fn commit(mut self) -> Result<(), String> {
+    pub fn commit(mut self) -> Result<(), ReportError> {
         let _ = std::fs::remove_dir_all(&self.old);
         let had = std::fs::symlink_metadata(&self.out).is_ok();
         if had {
             std::fs::rename(&self.out, &self.old)
-                .map_err(|e| format!("{}: cannot move it aside: {e}", self.out.display()))?;
+                .map_err(|e| ReportError::file(&self.out, format!("cannot move it aside: {e}")))?;
         }
         if let Err(e) = std::fs::rename(&self.tmp, &self.out) {
             if had {
                 let _ = std::fs::rename(&self.old, &self.out);
             }
-            return Err(format!(
-                "{}: cannot rename into place: {e}",
-                self.out.display()
+            return Err(ReportError::file(
+                &self.out,
+                format!("cannot rename into place: {e}"),
             ));
         }
         self.committed = true;
         if had {
             std::fs::remove_dir_all(&self.old).map_err(|e| {
-                format!(
-                    "{}: cannot remove the previous report moved aside: {e}",
-                    self.old.display()
+                ReportError::file(
+                    &self.old,
+                    format!("cannot remove the previous report moved aside: {e}"),
                 )
             })?;
         }
@@ -149,12 +149,14 @@ impl Drop for Staged {
 /// # Errors
 /// One line naming the file: it cannot be read, is not the results'
 /// JSON, or is not whole.
-pub fn read_part(dir: &Path) -> Result<Results, String> {
+pub fn read_part(dir: &Path) -> Result<Results, ReportError> {
     let path = dir.join("results.json");
-    let fail = |e: String| format!("{}: {e}", path.display());
-    let bytes = read_input(&path, MAX_TEXT_BYTES).map_err(|e| fail(e.to_string()))?;
-    let results: Results = serde_json::from_slice(&bytes).map_err(|e| fail(e.to_string()))?;
-    results.check().map_err(fail)?;
+    let bytes = read_input(&path, MAX_TEXT_BYTES).map_err(|e| ReportError::file(&path, e))?;
+    let results: Results =
+        serde_json::from_slice(&bytes).map_err(|e| ReportError::file(&path, e))?;
+    results
+        .check()
+        .map_err(|e| e.of_part(&path.display().to_string()))?;
     Ok(results)
 }
 
@@ -169,11 +171,11 @@ pub fn read_part(dir: &Path) -> Result<Results, String> {
 /// different sweeps or sharing a cell, a picture that is missing, leads
 /// out of its part or is not a PNG of its size, a file that cannot be
 /// written.
-pub fn merge_into(dirs: &[PathBuf], out: &Path) -> Result<Results, String> {
+pub fn merge_into(dirs: &[PathBuf], out: &Path) -> Result<Results, ReportError> {
     let parts: Vec<(String, Results)> = dirs
         .iter()
         .map(|d| Ok((d.join("results.json").display().to_string(), read_part(d)?)))
-        .collect::<Result<_, String>>()?;
+        .collect::<Result<_, ReportError>>()?;
     let mut from: HashMap<usize, usize> = HashMap::new();
     for (p, (_, part)) in parts.iter().enumerate() {
         for c in part.cells.iter().filter(|c| c.picture.is_some()) {
@@ -190,8 +192,8 @@ pub fn merge_into(dirs: &[PathBuf], out: &Path) -> Result<Results, String> {
         let root = match &roots[p] {
             Some(r) => r.clone(),
             None => {
-                let r = std::fs::canonicalize(&dirs[p])
-                    .map_err(|e| format!("{}: {e}", dirs[p].display()))?;
+                let r =
+                    std::fs::canonicalize(&dirs[p]).map_err(|e| ReportError::file(&dirs[p], e))?;
                 roots[p] = Some(r.clone());
                 r
             }
@@ -200,9 +202,9 @@ pub fn merge_into(dirs: &[PathBuf], out: &Path) -> Result<Results, String> {
         let bytes = read_picture(&dirs[p].join(name), &root, size)?;
         let to = out.join(name);
         if let Some(parent) = to.parent() {
-            std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+            std::fs::create_dir_all(parent).map_err(|e| ReportError::file(parent, e))?;
         }
-        write_atomically(&to, &bytes).map_err(|e| format!("{}: {e}", to.display()))?;
+        write_atomically(&to, &bytes).map_err(|e| ReportError::file(&to, e))?;
     }
     write(&merged, out)?;
     Ok(merged)
@@ -210,8 +212,8 @@ pub fn merge_into(dirs: &[PathBuf], out: &Path) -> Result<Results, String> {
 
 /// The picture at `path`, which must lie inside `root` (links resolved),
 /// be a regular file of at most [`MAX_TEXT_BYTES`] and a PNG of `size`.
-fn read_picture(path: &Path, root: &Path, size: (u32, u32)) -> Result<Vec<u8>, String> {
-    let fail = |e: String| format!("{}: {e}", path.display());
+fn read_picture(path: &Path, root: &Path, size: (u32, u32)) -> Result<Vec<u8>, ReportError> {
+    let fail = |e: String| ReportError::file(path, e);
     let real = std::fs::canonicalize(path).map_err(|e| fail(format!("picture: {e}")))?;
     if !real.starts_with(root) {
         return Err(fail(format!(

@@ -64,6 +64,7 @@
 //! two of them; it is linear in the parts' size.
 
 mod check;
+mod error;
 mod folder;
 mod machine;
 mod names;
@@ -74,6 +75,7 @@ mod write;
 mod yardstick;
 
 pub use check::{MAX_LINE, MAX_NAME, MAX_SIDE};
+pub use error::ReportError;
 pub use folder::{merge_into, read_part, Staged};
 pub use machine::machine_line;
 pub use write::{check_accuracy, write, write_accuracy, ACCURACY_MARKER};
@@ -399,13 +401,15 @@ pub fn run(
     config: &Config,
     out: Option<&std::path::Path>,
     progress: Progress<'_>,
-) -> Result<Results, String> {
+) -> Result<Results, ReportError> {
     let settings = settings(config);
     let methods: Vec<Arc<dyn Method>> = settings
         .iter()
         .map(|s| match config.own.iter().find(|m| m.name() == *s) {
             Some(own) => Ok(Arc::clone(own)),
-            None => registry::parse(s).map(Arc::from).map_err(|e| e.to_string()),
+            None => registry::parse(s)
+                .map(Arc::from)
+                .map_err(ReportError::Method),
         })
         .collect::<Result<_, _>>()?;
     let machine = check::one_line(&machine_line(), MAX_LINE);
@@ -658,10 +662,12 @@ fn picture(
     method: &dyn Method,
     config: &Config,
     path: &std::path::Path,
-) -> Result<(), String> {
+) -> Result<(), ReportError> {
     use crate::render::image::{error_heat_map, shaded, shaded_by_ends};
     let stages = Stages::new(&case.scene);
-    let run = method::run(method, &stages, &prepared.frame).map_err(|e| e.to_string())?;
+    let run = method::run(method, &stages, &prepared.frame).map_err(|e| {
+        ReportError::file(path, format!("the picture's run of {}: {e}", method.name()))
+    })?;
     let v = &run.output.visibility;
     let scene = &case.scene;
     let left = match &run.output.end_weights {
@@ -672,11 +678,11 @@ fn picture(
     let factor = names::picture_factor(config.side, config.picture_side, &case.name);
     let image = write::side_by_side(&left.downsample(factor), &right.downsample(factor));
     if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+        std::fs::create_dir_all(parent).map_err(|e| ReportError::file(parent, e))?;
     }
     image
         .write_png(path)
-        .map_err(|e| format!("{}: {e}", path.display()))
+        .map_err(|e| ReportError::file(path, e))
 }
 
 /// Joins parts of one sweep into one, keeping each cell's machine, and
@@ -688,7 +694,7 @@ fn picture(
 /// # Errors
 /// One line: no part, a part that is not whole, parts of different
 /// sweeps, disagreeing on a scene or sharing a cell.
-pub fn merge(parts: Vec<Results>) -> Result<Results, String> {
+pub fn merge(parts: Vec<Results>) -> Result<Results, ReportError> {
     merge_labelled(
         parts
             .into_iter()
@@ -699,12 +705,15 @@ pub fn merge(parts: Vec<Results>) -> Result<Results, String> {
 }
 
 /// [`merge`], the parts named by their labels in messages.
-pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, String> {
+pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, ReportError> {
     for (label, part) in &parts {
-        part.check().map_err(|e| format!("{label}: {e}"))?;
+        part.check().map_err(|e| e.of_part(label))?;
     }
+    let parted = |what: String| ReportError::Parts { what };
     let mut parts = parts.into_iter();
-    let (first, mut all) = parts.next().ok_or("nothing to merge")?;
+    let (first, mut all) = parts
+        .next()
+        .ok_or_else(|| parted("nothing to merge".to_owned()))?;
     let mut machines: HashMap<String, usize> = all
         .machines
         .iter()
@@ -720,7 +729,9 @@ pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, S
     let mut cells: HashSet<usize> = all.cells.iter().map(|c| c.index).collect();
     for (label, part) in parts {
         if let Some(what) = all.config.differs(&part.config) {
-            return Err(format!("{label} is of another sweep than {first}: {what}"));
+            return Err(parted(format!(
+                "{label} is of another sweep than {first}: {what}"
+            )));
         }
         let remap: Vec<usize> = part
             .machines
@@ -736,10 +747,10 @@ pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, S
         for mut s in part.scenes {
             if let Some(&k) = scenes.get(&s.name) {
                 if !check::same_scene(&all.scenes[k], &s) {
-                    return Err(format!(
+                    return Err(parted(format!(
                         "{label} and {first} disagree on scene {} (its receivers or exact profile)",
                         check::quote(&s.name)
-                    ));
+                    )));
                 }
                 continue;
             }
@@ -749,12 +760,12 @@ pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, S
         }
         for mut c in part.cells {
             if !cells.insert(c.index) {
-                return Err(format!(
+                return Err(parted(format!(
                     "cell {} ({}, {}) is in two parts ({label} and one before it)",
                     c.index,
                     check::quote(&c.scene),
                     check::quote(&c.method)
-                ));
+                )));
             }
             c.machine = remap[c.machine];
             all.cells.push(c);
@@ -763,7 +774,7 @@ pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, S
     let merged = finish(all);
     merged
         .check()
-        .map_err(|e| format!("the merged results: {e}"))?;
+        .map_err(|e| e.of_part("the merged results"))?;
     Ok(merged)
 }
 

@@ -4,6 +4,7 @@
 use super::names::Names;
 use super::papers::PAPERS;
 use super::plots;
+use super::ReportError;
 use super::{CellRecord, Errors, Results, SceneRecord, GROUPS, SLOW_RUN};
 use crate::method::registry::REGISTRY;
 use crate::render::image::Rgb;
@@ -38,13 +39,13 @@ pub(crate) fn side_by_side(a: &Rgb, b: &Rgb) -> Rgb {
     }
 }
 
-fn write_file(path: &Path, text: &str) -> Result<(), String> {
+fn write_file(path: &Path, text: &str) -> Result<(), ReportError> {
     if let Some(parent) = path.parent() {
-        std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
+        std::fs::create_dir_all(parent).map_err(|e| ReportError::file(parent, e))?;
     }
     // Atomically: a reader never sees half a report, a symlink is replaced.
     crate::render::image::write_atomically(path, text.as_bytes())
-        .map_err(|e| format!("{}: {e}", path.display()))
+        .map_err(|e| ReportError::file(path, e))
 }
 
 /// The cells of each scene, by name, in the results' order.
@@ -64,12 +65,13 @@ fn by_scene(results: &Results) -> HashMap<&str, Vec<&CellRecord>> {
 ///
 /// # Errors
 /// Results that are not whole; a file that cannot be written.
-pub fn write(results: &Results, dir: &Path) -> Result<(), String> {
+pub fn write(results: &Results, dir: &Path) -> Result<(), ReportError> {
     results
         .check()
-        .map_err(|e| format!("the results are not whole: {e}"))?;
-    let json = serde_json::to_string_pretty(results).map_err(|e| e.to_string())?;
-    write_file(&dir.join("results.json"), &json)?;
+        .map_err(|e| e.of_part("the results are not whole"))?;
+    let path = dir.join("results.json");
+    let json = serde_json::to_string_pretty(results).map_err(|e| ReportError::file(&path, e))?;
+    write_file(&path, &json)?;
     let names = Names::new(&results.config);
     let number = results.config.scene_numbers();
     let cells = by_scene(results);
@@ -341,7 +343,7 @@ fn accuracy_pages() -> impl Iterator<Item = String> {
 ///
 /// # Errors
 /// One line naming the page.
-pub fn check_accuracy(dir: &Path) -> Result<(), String> {
+pub fn check_accuracy(dir: &Path) -> Result<(), ReportError> {
     for page in accuracy_pages() {
         read_page(&dir.join(page))?;
     }
@@ -350,8 +352,8 @@ pub fn check_accuracy(dir: &Path) -> Result<(), String> {
 
 /// An accuracy page's text (`None`: there is none), read as every input
 /// is: a regular file (never a FIFO or device) within [`MAX_TEXT_BYTES`].
-fn read_page(path: &Path) -> Result<Option<String>, String> {
-    let fail = |e: String| format!("{}: {e}", path.display());
+fn read_page(path: &Path) -> Result<Option<String>, ReportError> {
+    let fail = |e: String| ReportError::file(path, e);
     match std::fs::metadata(path) {
         Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
         Err(e) => return Err(fail(format!("cannot read: {e}"))),
@@ -371,7 +373,7 @@ fn read_page(path: &Path) -> Result<Option<String>, String> {
 ///
 /// # Errors
 /// A page that cannot be read or written.
-pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<(), String> {
+pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<(), ReportError> {
     let cells = by_scene(results);
     let mut methods = String::new();
     let _ = writeln!(
@@ -516,7 +518,7 @@ fn horizon_table(s: &mut String, results: &Results) {
 
 /// Rewrites what is below the marker of the page at `path` (a new page
 /// gets `title` and the marker).
-fn update_page(path: &Path, title: &str, tables: &str) -> Result<(), String> {
+fn update_page(path: &Path, title: &str, tables: &str) -> Result<(), ReportError> {
     let head = match read_page(path)? {
         Some(text) => match text.find(ACCURACY_MARKER) {
             Some(k) => text[..k].to_owned(),
