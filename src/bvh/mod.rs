@@ -8,7 +8,8 @@
 //!
 //! # How it decides
 //!
-//! The tree is built by `obvhs` (PLOC with reinsertion, `Bvh2`) over boxes
+//! The tree is built by `obvhs` (PLOC, `Bvh2`; then our reinsertion,
+//! `reinsert.rs`) over boxes
 //! computed in `f64` and rounded *outward* to `f32` (a run of nested boxes,
 //! on which PLOC is quadratic, given to it as one box and split in halves
 //! by us: `nested.rs`), then collapsed into a
@@ -39,7 +40,8 @@
 //! # Layout
 //!
 //! This file holds the tree and its build; `nested.rs` the runs of nested
-//! boxes the build groups; `node.rs` the quantised 4-wide
+//! boxes the build groups; `reinsert.rs` the improvement of the binary
+//! tree by moving subtrees, its work bounded; `node.rs` the quantised 4-wide
 //! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
 //! traversal ([`Bvh::segment_unoccluded`]; on a tree the caches do not
 //! hold, several nodes at a time, so that their loads overlap);
@@ -61,6 +63,7 @@ mod node;
 mod occluders;
 mod packet;
 mod ray;
+mod reinsert;
 #[cfg(test)]
 mod tests;
 
@@ -71,7 +74,6 @@ use glam::{DVec3, Vec3A};
 use node::{Node, LEAF, WIDTH};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
-use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::bvh2::Bvh2;
 use obvhs::BvhBuildParams;
 use ray::{GROUP, GROUPED_FROM, GROUPED_STACK};
@@ -145,6 +147,30 @@ fn f32_up(v: f64) -> f32 {
     let r = v as f32;
     let r = if f64::from(r) < v { r.next_up() } else { r };
     r.clamp(-f32::MAX, f32::MAX)
+}
+
+/// The binary tree over `boxes` our tree is collapsed from, one box a
+/// leaf (the 4-wide node test then culls single triangles, cheaper than
+/// their exact test: measured 1.2–2× the rays/s of 4 or 8 per leaf on
+/// benches/rays.rs): [`ploc_tree`], then our reinsertion (`reinsert.rs`:
+/// the improvement of obvhs's reinsertion passes, whose searches are
+/// quadratic on heavily overlapping boxes, within a budget of order
+/// `n log n`). Also returns the reinsertion's work.
+fn binary_tree(boxes: &[Aabb]) -> (Bvh2, reinsert::Work) {
+    let mut tree = ploc_tree(boxes);
+    let work = reinsert::optimise(&mut tree);
+    (tree, work)
+}
+
+/// obvhs's PLOC over `boxes`, one a leaf, with its slowest preset's search
+/// and no reinsertion.
+fn ploc_tree(boxes: &[Aabb]) -> Bvh2 {
+    let params = BvhBuildParams {
+        max_prims_per_leaf: 1,
+        reinsertion_batch_ratio: 0.0,
+        ..BvhBuildParams::very_slow_build()
+    };
+    build_bvh2(boxes, params, &mut Duration::default())
 }
 
 /// Whether every coordinate is finite and at most `f32::MAX` in magnitude:
@@ -234,33 +260,8 @@ impl Bvh {
         if boxes.is_empty() {
             return bvh;
         }
-        // One triangle per leaf: the 4-wide node test then culls single
-        // triangles, cheaper than their exact test (measured: 1.2–2× the
-        // rays/s of 4 or 8 per leaf on benches/rays.rs). obvhs's slowest
-        // preset: its two full reinsertion passes visit 16 % fewer nodes
-        // per ray than `medium_build` on the 100k-triangle soup of
-        // `examples/ray_corpus.rs` (soup rays/s 1.26×), for a build about
-        // 4× as long. The passes run here rather than in `build_bvh2`,
-        // whose debug-build validation rejects their result when many
-        // boxes coincide (a stale `max_depth`, which only obvhs's own
-        // traversal uses).
-        let preset = BvhBuildParams::very_slow_build();
-        let params = BvhBuildParams {
-            max_prims_per_leaf: 1,
-            reinsertion_batch_ratio: 0.0,
-            ..preset
-        };
         let groups = nested::Groups::find(&boxes);
-        let ploc_boxes = groups.as_ref().map_or(&boxes[..], |g| &g.boxes[..]);
-        let mut tree = build_bvh2(ploc_boxes, params, &mut Duration::default());
-        let mut reinsertion = ReinsertionOptimizer::default();
-        let ratio = preset.reinsertion_batch_ratio;
-        reinsertion.run(&mut tree, ratio, None);
-        reinsertion.run(
-            &mut tree,
-            ratio * preset.post_collapse_reinsertion_batch_ratio_multiplier,
-            None,
-        );
+        let (tree, _) = binary_tree(groups.as_ref().map_or(&boxes[..], |g| &g.boxes[..]));
         let groups = groups.unwrap_or_else(|| nested::Groups::identity(&boxes));
         bvh.collapse(&tree, &boxes, &kept, &groups);
         bvh
