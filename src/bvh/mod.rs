@@ -58,6 +58,8 @@
 
 mod closest;
 mod hull;
+mod lanes;
+mod leaf;
 mod nested;
 mod node;
 mod occluders;
@@ -66,9 +68,11 @@ mod ray;
 mod reinsert;
 #[cfg(test)]
 mod tests;
+mod wide;
 
 pub use closest::Hit;
 pub use occluders::Occluders;
+pub use ray::OcclusionCounts;
 
 use glam::{DVec3, Vec3A};
 use node::{Node, LEAF, WIDTH};
@@ -76,7 +80,6 @@ use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
 use obvhs::bvh2::Bvh2;
 use obvhs::BvhBuildParams;
-use ray::{GROUP, GROUPED_FROM, GROUPED_STACK};
 use std::fmt;
 use std::time::Duration;
 
@@ -90,6 +93,162 @@ enum Item {
     Members(usize, usize),
 }
 
+/// obvhs's binary tree and the groups it was built over, read as a tree
+/// of [`Item`]s: what both of our trees are collapsed from.
+pub(super) struct Source<'a> {
+    tree: &'a Bvh2,
+    /// The boxes of the kept triangles.
+    boxes: &'a [Aabb],
+    groups: &'a nested::Groups,
+}
+
+impl Source<'_> {
+    /// The root, as an item.
+    fn root(&self) -> Item {
+        self.normal(Item::Node(0))
+    }
+
+    /// The box of an item.
+    fn aabb(&self, item: Item) -> Aabb {
+        let (prims, order) = (&self.tree.primitive_indices, &self.groups.order);
+        match item {
+            Item::Node(n) => *self.tree.nodes[n].aabb(),
+            Item::Leaf(first, count) => prims[first..first + count]
+                .iter()
+                .fold(Aabb::empty(), |b, &i| b.union(&self.groups.boxes[i as usize])),
+            Item::Members(first, count) => order[first..first + count]
+                .iter()
+                .fold(Aabb::empty(), |b, &i| b.union(&self.boxes[i as usize])),
+        }
+    }
+
+    /// An obvhs leaf as the run of its primitives; one primitive as the run
+    /// of its members.
+    fn normal(&self, item: Item) -> Item {
+        let item = match item {
+            Item::Node(n) if self.tree.nodes[n].is_leaf() => {
+                let node = &self.tree.nodes[n];
+                Item::Leaf(node.first_index as usize, node.prim_count as usize)
+            }
+            other => other,
+        };
+        match item {
+            Item::Leaf(first, 1) => {
+                let (at, count) = self.groups.ranges[self.tree.primitive_indices[first] as usize];
+                Item::Members(at as usize, count as usize)
+            }
+            other => other,
+        }
+    }
+
+    /// The two children of an item (runs split in halves); `None` for one
+    /// triangle.
+    fn children(&self, item: Item) -> Option<[Item; 2]> {
+        let halves =
+            |first: usize, count: usize| (first, count / 2, first + count / 2, count - count / 2);
+        match item {
+            Item::Node(n) => {
+                let first = self.tree.nodes[n].first_index as usize;
+                Some([
+                    self.normal(Item::Node(first)),
+                    self.normal(Item::Node(first + 1)),
+                ])
+            }
+            Item::Leaf(first, count) if count > 1 => {
+                let (a, na, b, nb) = halves(first, count);
+                Some([self.normal(Item::Leaf(a, na)), self.normal(Item::Leaf(b, nb))])
+            }
+            Item::Members(first, count) if count > 1 => {
+                let (a, na, b, nb) = halves(first, count);
+                Some([Item::Members(a, na), Item::Members(b, nb)])
+            }
+            Item::Leaf(..) | Item::Members(..) => None,
+        }
+    }
+
+    /// The lanes of a node made from `item`: up to `width` descendants,
+    /// found by repeatedly opening, of the entries `openable` accepts, the
+    /// one of largest area.
+    fn open(&self, item: Item, width: usize, openable: impl Fn(Item) -> bool) -> Vec<Item> {
+        let mut lanes = vec![item];
+        while lanes.len() < width {
+            let widest = lanes
+                .iter()
+                .enumerate()
+                .filter(|(_, &item)| openable(item) && self.children(item).is_some())
+                .max_by(|(_, &a), (_, &b)| {
+                    self.aabb(a).half_area().total_cmp(&self.aabb(b).half_area())
+                })
+                .map(|(k, _)| k);
+            let Some(k) = widest else { break };
+            let [left, right] = self.children(lanes[k]).expect("filtered");
+            lanes[k] = left;
+            lanes.push(right);
+        }
+        // (obvhs leaves and groups are never empty; an empty run would not
+        // end.)
+        lanes.retain(|item| !matches!(item, Item::Leaf(_, 0) | Item::Members(_, 0)));
+        lanes
+    }
+
+    /// The number of triangles under each of obvhs's nodes.
+    fn counts(&self) -> Vec<u32> {
+        let nodes = &self.tree.nodes;
+        let mut counts = vec![0u32; nodes.len()];
+        // Parents before children, then children summed into parents.
+        let mut order = vec![0usize];
+        let mut k = 0;
+        while k < order.len() {
+            let node = &nodes[order[k]];
+            if !node.is_leaf() {
+                order.push(node.first_index as usize);
+                order.push(node.first_index as usize + 1);
+            }
+            k += 1;
+        }
+        for &n in order.iter().rev() {
+            let node = &nodes[n];
+            let first = node.first_index as usize;
+            counts[n] = if node.is_leaf() {
+                self.tree.primitive_indices[first..first + node.prim_count as usize]
+                    .iter()
+                    .map(|&prim| self.groups.ranges[prim as usize].1)
+                    .sum()
+            } else {
+                counts[first] + counts[first + 1]
+            };
+        }
+        counts
+    }
+
+    /// The indices (in the kept boxes) of the triangles under `item`, in
+    /// order.
+    fn members(&self, item: Item, out: &mut Vec<u32>) {
+        match item {
+            Item::Node(n) => {
+                let first = self.tree.nodes[n].first_index as usize;
+                if self.tree.nodes[n].is_leaf() {
+                    self.members(Item::Leaf(first, self.tree.nodes[n].prim_count as usize), out);
+                } else {
+                    self.members(Item::Node(first), out);
+                    self.members(Item::Node(first + 1), out);
+                }
+            }
+            Item::Leaf(first, count) => {
+                for &prim in &self.tree.primitive_indices[first..first + count] {
+                    let (at, count) = self.groups.ranges[prim as usize];
+                    out.extend_from_slice(
+                        &self.groups.order[at as usize..(at + count) as usize],
+                    );
+                }
+            }
+            Item::Members(first, count) => {
+                out.extend_from_slice(&self.groups.order[first..first + count]);
+            }
+        }
+    }
+}
+
 /// A BVH over a scene's occluders (owns them). Immutable once built, `Sync`:
 /// share one between threads.
 pub struct Bvh {
@@ -101,10 +260,13 @@ pub struct Bvh {
     ids: Vec<u32>,
     /// The depth of the tree (the root alone, or no tree: 1).
     depth: usize,
-    /// Whether [`Bvh::segment_unoccluded`] walks the tree several nodes at
-    /// a time (trees of [`GROUPED_FROM`] bytes or more whose grouped stack
-    /// fits [`GROUPED_STACK`] entries).
-    grouped: bool,
+    /// The occlusion tree (`wide.rs`): its nodes, the root first (none
+    /// when there is no tree), its leaf packs and its depth.
+    wide: Vec<wide::WideNode>,
+    packs: Vec<leaf::Pack>,
+    /// Each pack's occluder indices, lane by lane.
+    pack_ids: Vec<[u32; leaf::PACK]>,
+    wide_depth: usize,
     /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
     /// tree and tested by every query, and their indices in `occluders`.
     outliers: Vec<[DVec3; 3]>,
@@ -242,7 +404,10 @@ impl Bvh {
             triangles: Vec::with_capacity(kept.len()),
             ids: Vec::with_capacity(kept.len()),
             depth: 1,
-            grouped: false,
+            wide: Vec::new(),
+            packs: Vec::new(),
+            pack_ids: Vec::new(),
+            wide_depth: 1,
             outliers,
             outlier_ids,
             bounds,
@@ -263,7 +428,13 @@ impl Bvh {
         let groups = nested::Groups::find(&boxes);
         let (tree, _) = binary_tree(groups.as_ref().map_or(&boxes[..], |g| &g.boxes[..]));
         let groups = groups.unwrap_or_else(|| nested::Groups::identity(&boxes));
-        bvh.collapse(&tree, &boxes, &kept, &groups);
+        let source = Source {
+            tree: &tree,
+            boxes: &boxes,
+            groups: &groups,
+        };
+        bvh.collapse(&source, &kept);
+        bvh.collapse_wide(&source, &kept);
         bvh
     }
 
@@ -271,83 +442,18 @@ impl Bvh {
     /// descendants (repeatedly opening the entry of largest area), every
     /// leaf lane holds one triangle, and the triangles are copied in leaf
     /// order.
-    fn collapse(&mut self, tree: &Bvh2, boxes: &[Aabb], kept: &[u32], groups: &nested::Groups) {
-        let prims = &tree.primitive_indices;
-        let order = &groups.order;
-        let aabb = |item: Item| -> Aabb {
-            match item {
-                Item::Node(n) => *tree.nodes[n].aabb(),
-                Item::Leaf(first, count) => prims[first..first + count]
-                    .iter()
-                    .fold(Aabb::empty(), |b, &i| b.union(&groups.boxes[i as usize])),
-                Item::Members(first, count) => order[first..first + count]
-                    .iter()
-                    .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize])),
-            }
-        };
-        // An obvhs leaf is the run of its primitives; one primitive, the
-        // run of its members.
-        let normal = |item: Item| {
-            let item = match item {
-                Item::Node(n) if tree.nodes[n].is_leaf() => {
-                    let node = &tree.nodes[n];
-                    Item::Leaf(node.first_index as usize, node.prim_count as usize)
-                }
-                other => other,
-            };
-            match item {
-                Item::Leaf(first, 1) => {
-                    let (at, count) = groups.ranges[prims[first] as usize];
-                    Item::Members(at as usize, count as usize)
-                }
-                other => other,
-            }
-        };
-        let halves =
-            |first: usize, count: usize| (first, count / 2, first + count / 2, count - count / 2);
-        let children = |item: Item| -> Option<[Item; 2]> {
-            match item {
-                Item::Node(n) => {
-                    let first = tree.nodes[n].first_index as usize;
-                    Some([normal(Item::Node(first)), normal(Item::Node(first + 1))])
-                }
-                Item::Leaf(first, count) if count > 1 => {
-                    let (a, na, b, nb) = halves(first, count);
-                    Some([normal(Item::Leaf(a, na)), normal(Item::Leaf(b, nb))])
-                }
-                Item::Members(first, count) if count > 1 => {
-                    let (a, na, b, nb) = halves(first, count);
-                    Some([Item::Members(a, na), Item::Members(b, nb)])
-                }
-                Item::Leaf(..) | Item::Members(..) => None,
-            }
-        };
+    fn collapse(&mut self, source: &Source<'_>, kept: &[u32]) {
         // (entry, our node, depth of our node)
-        let mut work = vec![(normal(Item::Node(0)), 0usize, 1usize)];
+        let mut work = vec![(source.root(), 0usize, 1usize)];
         self.nodes.push(Node::EMPTY_NODE);
         let mut depth = 1;
         while let Some((src, dst, level)) = work.pop() {
             depth = depth.max(level);
-            let mut lanes = vec![src];
-            while lanes.len() < WIDTH {
-                let widest = lanes
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, &item)| children(item).is_some())
-                    .max_by(|(_, &a), (_, &b)| aabb(a).half_area().total_cmp(&aabb(b).half_area()))
-                    .map(|(k, _)| k);
-                let Some(k) = widest else { break };
-                let [left, right] = children(lanes[k]).expect("filtered");
-                lanes[k] = left;
-                lanes.push(right);
-            }
-            // (obvhs leaves and groups are never empty; an empty run would
-            // not end.)
-            lanes.retain(|item| !matches!(item, Item::Leaf(_, 0) | Item::Members(_, 0)));
+            let lanes = source.open(src, WIDTH, |_| true);
             let lane_boxes: Vec<([f32; 3], [f32; 3])> = lanes
                 .iter()
                 .map(|&item| {
-                    let b = aabb(item);
+                    let b = source.aabb(item);
                     (b.min.to_array(), b.max.to_array())
                 })
                 .collect();
@@ -355,7 +461,7 @@ impl Bvh {
             for (lane, &item) in lanes.iter().enumerate() {
                 node.child[lane] = match item {
                     Item::Members(first, 1) => {
-                        let id = kept[order[first] as usize];
+                        let id = kept[source.groups.order[first] as usize];
                         self.ids.push(id);
                         self.triangles.push(self.occluders.triangles()[id as usize]);
                         LEAF | (self.triangles.len() - 1) as u32
@@ -370,9 +476,6 @@ impl Bvh {
             self.nodes[dst] = node;
         }
         self.depth = depth;
-        let bytes = self.nodes.len() * std::mem::size_of::<Node>()
-            + self.triangles.len() * std::mem::size_of::<[DVec3; 3]>();
-        self.grouped = bytes >= GROUPED_FROM && self.grouped_stack_need(GROUP) <= GROUPED_STACK;
     }
 
     /// Stack entries a depth-first traversal can need: at most `WIDTH − 1`
@@ -380,20 +483,6 @@ impl Bvh {
     /// visited.
     pub(super) fn stack_need(&self) -> usize {
         self.depth * (WIDTH - 1) + 1
-    }
-
-    /// Stack entries the any-hit walk taking `group` nodes at a time can
-    /// need. It pops the top `g ≤ group` entries of its stack and pushes
-    /// their hit inner children, the shallowest member's first: the stack
-    /// stays sorted by depth, bottom to top (the popped entries are the
-    /// deepest, their children deeper still, and pushed in nondecreasing
-    /// depth). So when a step pops a node at depth `d − 1`, every entry at
-    /// depth `≥ d` lies above it and is popped too: the entries at depth `d`
-    /// are then only the children of that step's members, at most
-    /// `group · WIDTH`, and no later step adds any until one pops a node at
-    /// depth `d − 1` again. The inner nodes lie at depths `2..=depth`.
-    fn grouped_stack_need(&self, group: usize) -> usize {
-        (group * WIDTH * (self.depth - 1)).max(1)
     }
 
     /// The triangles it was built over.

@@ -1,0 +1,328 @@
+//! The leaves of the occlusion tree: up to [`PACK`] triangles in
+//! structure-of-arrays `f32`, tested together by the sign-of-volumes test
+//! evaluated in `f32` with a proven error bound. A lane whose every sign
+//! the bound makes certain is decided there; any other lane goes to the
+//! exact `f64` test ([`segment_blocked`]). The answer is therefore exactly
+//! the exact test's.
+//!
+//! # The test
+//!
+//! The open segment `(P, X)` meets the closed triangle `(A, B, C)` iff the
+//! three edge volumes `e₀ = det[X − P; A − P; B − P]`, `e₁ = det[X − P;
+//! B − P; C − P]`, `e₂ = det[X − P; C − P; A − P]` have no strictly
+//! opposite pair and are not all zero, and the plane volumes `s_P =
+//! det[A − P; B − P; C − P]` and `s_X = det[A − X; B − X; C − X]` are
+//! nonzero and of opposite signs ([`segment_blocked`]'s definition). With
+//! `a = A − P`, `b = B − P`, `c = C − P` and the edges `E_ab = B − A`,
+//! `E_bc = C − B`, `E_ca = A − C`, the same determinants are
+//!
+//! - `e₀ = d · (a × E_ab)`, `e₁ = d · (b × E_bc)`, `e₂ = d · (c × E_ca)`
+//!   (`d = X − P`; `a × b = a × (b − a)`),
+//! - `s_P = a · N`, `s_X = (A − X) · N`, `N = E_ca × E_ab`,
+//!
+//! products of a difference from an endpoint and of edges, whose errors
+//! scale with the triangle's size rather than with its distance (the
+//! forms of [`segment_blocked`] multiply two distances).
+//!
+//! # The bound
+//!
+//! Let `u = 2⁻²⁴`. The stored corners are the triangle's rounded to
+//! nearest `f32`, `A′ = A + O(ε_c)` (`ε_c` the pack's largest rounding,
+//! `0` for corners that are `f32` values); the ray's are `P′ = fl₃₂(P)`,
+//! `X′ = fl₃₂(X)`, `d′ = fl₃₂(fl₆₄(X − P))`, with `ε_r` bounding `|P −
+//! P′|∞` and `|X − X′|∞` and `ε_d` bounding `|d′ − (X − P)|∞` (all
+//! computed exactly in `f64` and rounded up). The test computes, in `f32`,
+//! `a = fl(A′ − P′)` (and `b`, `c`, `A′ − X′` alike), `E = fl(B′ − A′)`
+//! (and the other edges), then each determinant as a cross product and a
+//! dot product. With `M` the pack's largest corner magnitude, `R =
+//! max(|P′|∞, |X′|∞)`, `S = M + R` and `L` the pack's largest edge
+//! `|B′ − A′|∞`:
+//!
+//! - `Â = S (1 + u) + ε_c + ε_r` bounds both the computed `|a|∞` and the
+//!   true `|A − P|∞` (and `A − X`'s), and `ε_a = u S + ε_c + ε_r` their
+//!   difference (one rounding of a difference of stored values, plus the
+//!   roundings of the corner and the endpoint);
+//! - `Ê = L (1 + u) + 2 ε_c` bounds the computed and the true edge, `ε_E =
+//!   u L + 2 ε_c` their difference;
+//! - `D̂ = |d′|∞ + ε_d` bounds the computed and the true `d`.
+//!
+//! A determinant `det[r₁; r₂; r₃] = r₁ · (r₂ × r₃)` is a sum of six terms
+//! each at most `|r₁|∞ |r₂|∞ |r₃|∞`. Evaluated as written (the cross
+//! product's components with two products and a difference, then three
+//! products and two sums) each term carries at most five roundings, so
+//! the computed value is within `6 γ₅ |r₁| |r₂| |r₃|` of the determinant
+//! of the computed rows (`γ₅ = 5u/(1 − 5u)`, Higham §3.1). The computed
+//! rows differ from the true ones by `δ₁, δ₂, δ₃`, and by
+//! multilinearity `det[r₁ + δ₁; …] − det[r₁; …]` telescopes into three
+//! determinants each with one row a `δ`: at most `6 (δ₁ r̂₂ r̂₃ + r̂₁ δ₂ r̂₃ +
+//! r̂₁ r̂₂ δ₃)` with each `r̂` bounding both the computed and the true row.
+//! So the computed edge volumes are within
+//!
+//! `B_e = 6 (γ₅ D̂ Â Ê + ε_d Â Ê + D̂ ε_a Ê + D̂ Â ε_E) + F`
+//!
+//! of the exact ones, and both plane volumes within
+//!
+//! `B_s = 6 (γ₅ Â Ê² + ε_a Ê² + 2 Â Ê ε_E) + F`.
+//!
+//! `F = 2⁻¹⁰⁰` covers underflow: the test runs only where `M` and `R` are
+//! at most `2⁴⁰` (elsewhere every lane goes to the exact test), so every
+//! row is below `2⁴²` in magnitude, no value overflows, and the absolute
+//! error of the products that underflow (at most `2⁻¹⁵⁰` each, carried
+//! through by factors below `2⁴²`) stays below `2⁻¹⁰⁴`. The bounds are
+//! computed in `f64` from the `f32` inputs (a dozen roundings of `2⁻⁵³`)
+//! and widened by `2⁻²²` before they are rounded to `f32`.
+//!
+//! # Certain lanes
+//!
+//! A computed volume above its bound is certainly positive, below minus
+//! its bound certainly negative. A lane is
+//!
+//! - *a certain miss* when two edge volumes are certainly of opposite
+//!   signs, or both plane volumes are certainly of one sign (the segment
+//!   ends on one side of the plane);
+//! - *a certain hit* when all three edge volumes are certainly of one sign
+//!   (so none is zero and none opposite) and the plane volumes are
+//!   certainly of opposite signs;
+//! - *uncertain* otherwise — a segment grazing an edge or a vertex
+//!   (through a shared edge, every edge volume there is zero), ending on
+//!   or near the triangle's plane, a degenerate triangle, coordinates
+//!   beyond the `f32` test's range — and decided by [`segment_blocked`].
+//!
+//! Every lane's answer is thus the exact test's. Each lane runs the same
+//! `f32` operations in the same order, so the verdicts do not depend on
+//! how many lanes are evaluated at once or on the instructions used
+//! (`tests::lanes_decide_as_one_triangle_at_a_time`).
+//!
+//! [`segment_blocked`]: crate::kernel::segment::segment_blocked
+
+use super::f32_up;
+use super::lanes::Lanes;
+use glam::DVec3;
+
+/// Triangles per leaf pack.
+pub(super) const PACK: usize = 8;
+
+/// `u = 2⁻²⁴`, the unit roundoff of `f32`.
+const U: f64 = 1.0 / (1u32 << 24) as f64;
+/// `γ₅ = 5u / (1 − 5u)`.
+const GAMMA5: f64 = 5.0 * U / (1.0 - 5.0 * U);
+/// `F`: the bound's floor, covering underflow.
+const FLOOR: f64 = 1.0 / (1u128 << 100) as f64;
+/// The largest corner and endpoint magnitude the `f32` test takes, `2⁴⁰`.
+const REACH: f64 = (1u64 << 40) as f64;
+/// The widening of a bound computed in `f64` before rounding it to `f32`.
+const WIDEN: f64 = 1.0 + 1.0 / (1u32 << 22) as f64;
+
+/// Up to [`PACK`] triangles, corner by corner, axis by axis, lane by lane,
+/// with what their error bound needs. 320 bytes (their occluder indices,
+/// needed only where a lane goes to the exact test, are kept apart).
+#[derive(Clone, Copy, Debug)]
+#[repr(C, align(64))]
+pub(super) struct Pack {
+    /// Lanes in use, `1..=PACK`.
+    pub(super) count: u32,
+    /// `M`: at least every stored corner's `|·|∞`; `+∞` beyond [`REACH`].
+    magnitude: f32,
+    /// `ε_c`: at least every corner's rounding `|A − A′|∞`.
+    corner_error: f32,
+    /// `Ê = L (1 + u) + 2 ε_c`.
+    edge: f32,
+    /// `ε_E = u L + 2 ε_c`.
+    edge_error: f32,
+    /// (The corners' rows start 32 bytes in.)
+    _pad: [u32; 3],
+    /// `corner[k][axis][lane]`: corner `k` of the lane's triangle, rounded
+    /// to nearest `f32`. Lanes from `count` on repeat lane 0.
+    pub(super) corner: [[[f32; PACK]; 3]; 3],
+}
+
+impl Pack {
+    /// The pack of `triangles` (1 to [`PACK`] of them, finite), and each
+    /// lane's occluder index (`ids[lane]`, lanes beyond the triangles
+    /// repeating the first).
+    pub(super) fn new(triangles: &[([DVec3; 3], u32)]) -> (Pack, [u32; PACK]) {
+        assert!((1..=PACK).contains(&triangles.len()));
+        let mut pack = Pack {
+            corner: [[[0.0; PACK]; 3]; 3],
+            count: triangles.len() as u32,
+            magnitude: 0.0,
+            corner_error: 0.0,
+            edge: 0.0,
+            edge_error: 0.0,
+            _pad: [0; 3],
+        };
+        let mut ids = [triangles[0].1; PACK];
+        let (mut m, mut c, mut l) = (0.0f64, 0.0f64, 0.0f64);
+        for lane in 0..PACK {
+            let (t, id) = triangles[if lane < triangles.len() { lane } else { 0 }];
+            ids[lane] = id;
+            let stored = t.map(|v| v.as_vec3().as_dvec3());
+            for k in 0..3 {
+                for axis in 0..3 {
+                    pack.corner[k][axis][lane] = stored[k][axis] as f32;
+                }
+                // Exact in `f64`: a value less its nearest `f32`, and a
+                // difference of two `f32` values.
+                m = m.max(stored[k].abs().max_element());
+                c = c.max((t[k] - stored[k]).abs().max_element());
+                l = l.max((stored[(k + 1) % 3] - stored[k]).abs().max_element());
+            }
+        }
+        pack.magnitude = if m <= REACH { f32_up(m) } else { f32::INFINITY };
+        pack.corner_error = f32_up(c);
+        pack.edge = f32_up((l * (1.0 + U) + 2.0 * c) * WIDEN);
+        pack.edge_error = f32_up((l * U + 2.0 * c) * WIDEN);
+        (pack, ids)
+    }
+}
+
+/// What the leaf test needs of a segment `(p, x)`, computed once a ray
+/// (on its first leaf).
+pub(super) struct LeafRay {
+    p: [f32; 3],
+    x: [f32; 3],
+    d: [f32; 3],
+    /// `R = max(|P′|∞, |X′|∞)`; `+∞` beyond [`REACH`].
+    reach: f32,
+    /// `ε_r`.
+    end_error: f32,
+    /// `6 (γ₅ D̂ + ε_d)` and `6 D̂`: the edge bound's factors.
+    k_edge: f64,
+    k_length: f64,
+}
+
+impl LeafRay {
+    /// The constants of the segment `(p, x)` (finite endpoints).
+    #[inline(always)]
+    pub(super) fn new(p: DVec3, x: DVec3) -> LeafRay {
+        let d = x - p;
+        let (p32, x32, d32) = (p.as_vec3(), x.as_vec3(), d.as_vec3());
+        // Each difference exact in `f64`.
+        let end_error = (p - p32.as_dvec3())
+            .abs()
+            .max((x - x32.as_dvec3()).abs())
+            .max_element();
+        let length_error = ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON))
+            .max_element()
+            * WIDEN;
+        let length = f64::from(d32.abs().max_element()) + length_error;
+        let reach = f64::from(p32.abs().max(x32.abs()).max_element());
+        LeafRay {
+            p: p32.to_array(),
+            x: x32.to_array(),
+            d: d32.to_array(),
+            reach: if reach <= REACH {
+                reach as f32
+            } else {
+                f32::INFINITY
+            },
+            end_error: f32_up(end_error),
+            k_edge: 6.0 * (GAMMA5 * length + length_error),
+            k_length: 6.0 * length,
+        }
+    }
+
+    /// The bounds `(B_e, B_s)` of `pack`'s volumes (see the module docs);
+    /// `None` where the `f32` test does not apply.
+    #[inline(always)]
+    fn bounds(&self, pack: &Pack) -> Option<(f32, f32)> {
+        let s = f64::from(pack.magnitude) + f64::from(self.reach);
+        if s > 2.0 * REACH {
+            return None;
+        }
+        let errors = f64::from(pack.corner_error) + f64::from(self.end_error);
+        let (a, eps_a) = (s * (1.0 + U) + errors, s * U + errors);
+        let (e, eps_e) = (f64::from(pack.edge), f64::from(pack.edge_error));
+        let edge = self.k_edge * a * e + self.k_length * (eps_a * e + a * eps_e) + FLOOR;
+        let plane = 6.0 * e * ((GAMMA5 * a + eps_a) * e + 2.0 * a * eps_e) + FLOOR;
+        Some(((edge * WIDEN) as f32, (plane * WIDEN) as f32))
+    }
+}
+
+/// The lanes of `pack` the segment certainly meets and those the `f32`
+/// test leaves uncertain, as bit masks (lanes in use only), on the lanes
+/// `s`.
+#[inline(always)]
+pub(super) fn test<S: Lanes<PACK>>(s: S, pack: &Pack, ray: &LeafRay) -> (u32, u32) {
+    let used = (1u32 << pack.count) - 1;
+    let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
+        return (0, used);
+    };
+    let (hit, unsure) = verdicts(s, &pack.corner, ray, edge_bound, plane_bound);
+    (hit & used, unsure & used)
+}
+
+/// Each lane's verdict on `corner` (`[corner][axis][lane]`): the masks of
+/// certain hits and of uncertain lanes. Every lane the same operations.
+/// (Functions rather than closures throughout: a closure is compiled
+/// apart, without the caller's target features.)
+#[inline(always)]
+fn verdicts<S: Lanes<PACK>>(
+    s: S,
+    corner: &[[[f32; PACK]; 3]; 3],
+    ray: &LeafRay,
+    edge_bound: f32,
+    plane_bound: f32,
+) -> (u32, u32) {
+    let (va, vb, vc) = (
+        load(s, &corner[0]),
+        load(s, &corner[1]),
+        load(s, &corner[2]),
+    );
+    let (p, x, d) = (splat(s, ray.p), splat(s, ray.x), splat(s, ray.d));
+    let (a, b, c, ax) = (sub(s, va, p), sub(s, vb, p), sub(s, vc, p), sub(s, va, x));
+    let (ab, bc, ca) = (sub(s, vb, va), sub(s, vc, vb), sub(s, va, vc));
+    let e = [
+        dot(s, d, cross(s, a, ab)),
+        dot(s, d, cross(s, b, bc)),
+        dot(s, d, cross(s, c, ca)),
+    ];
+    let n = cross(s, ca, ab);
+    let (sp, sx) = (dot(s, a, n), dot(s, ax, n));
+    let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
+    let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
+    let neg = [s.lt(e[0], down), s.lt(e[1], down), s.lt(e[2], down)];
+    let edge_miss = (pos[0] | pos[1] | pos[2]) & (neg[0] | neg[1] | neg[2]);
+    let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
+    let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
+    let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
+    let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
+    let plane_miss = (p_pos & x_pos) | (p_neg & x_neg);
+    let crosses = (p_pos & x_neg) | (p_neg & x_pos);
+    let hit = inside & crosses;
+    (hit, !hit & !edge_miss & !plane_miss)
+}
+
+/// Three vectors of lanes: the axes of one point per lane.
+type V3s<S> = [<S as Lanes<PACK>>::F; 3];
+
+#[inline(always)]
+fn load<S: Lanes<PACK>>(s: S, c: &[[f32; PACK]; 3]) -> V3s<S> {
+    [s.load(&c[0]), s.load(&c[1]), s.load(&c[2])]
+}
+
+#[inline(always)]
+fn splat<S: Lanes<PACK>>(s: S, v: [f32; 3]) -> V3s<S> {
+    [s.splat(v[0]), s.splat(v[1]), s.splat(v[2])]
+}
+
+#[inline(always)]
+fn sub<S: Lanes<PACK>>(s: S, u: V3s<S>, v: V3s<S>) -> V3s<S> {
+    [s.sub(u[0], v[0]), s.sub(u[1], v[1]), s.sub(u[2], v[2])]
+}
+
+/// `u × v`, each component two products and a difference.
+#[inline(always)]
+fn cross<S: Lanes<PACK>>(s: S, u: V3s<S>, v: V3s<S>) -> V3s<S> {
+    [
+        s.sub(s.mul(u[1], v[2]), s.mul(u[2], v[1])),
+        s.sub(s.mul(u[2], v[0]), s.mul(u[0], v[2])),
+        s.sub(s.mul(u[0], v[1]), s.mul(u[1], v[0])),
+    ]
+}
+
+/// `u · v`, summed left to right.
+#[inline(always)]
+fn dot<S: Lanes<PACK>>(s: S, u: V3s<S>, v: V3s<S>) -> S::F {
+    s.add(s.add(s.mul(u[0], v[0]), s.mul(u[1], v[1])), s.mul(u[2], v[2]))
+}
