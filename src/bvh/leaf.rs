@@ -176,25 +176,52 @@ impl Pack {
     }
 }
 
+#[cfg(test)]
+impl Pack {
+    /// Checks the bounds' terms against the pack's triangles (`ids` into
+    /// `triangles`): `M` bounds every stored corner, `ε_c` every rounding,
+    /// `Ê` and `ε_E` the edges as the module docs define them.
+    pub(super) fn check_terms(&self, ids: &[u32; PACK], triangles: &[[DVec3; 3]]) {
+        for (lane, &id) in ids[..self.count as usize].iter().enumerate() {
+            let t = triangles[id as usize];
+            let stored: [DVec3; 3] = core::array::from_fn(|k| {
+                DVec3::from_array([0, 1, 2].map(|a| f64::from(self.corner[k][a][lane])))
+            });
+            for k in 0..3 {
+                assert!(
+                    stored[k].abs().max_element() <= f64::from(self.magnitude)
+                        || self.magnitude == f32::INFINITY
+                );
+                assert!((t[k] - stored[k]).abs().max_element() <= f64::from(self.corner_error));
+                let l = (stored[(k + 1) % 3] - stored[k]).abs().max_element();
+                assert!(l * (1.0 + U) + 2.0 * f64::from(self.corner_error) <= f64::from(self.edge));
+                assert!(l * U + 2.0 * f64::from(self.corner_error) <= f64::from(self.edge_error));
+            }
+        }
+    }
+}
+
 /// What the leaf test needs of a segment `(p, x)`, computed once a ray
-/// (on its first leaf).
-pub(super) struct LeafRay {
-    p: [f32; 3],
-    x: [f32; 3],
-    d: [f32; 3],
+/// (on its first leaf): the endpoints and direction in `f32`, each axis in
+/// every lane, and the segment's terms of the bounds.
+pub(super) struct LeafRay<F> {
+    p: [F; 3],
+    x: [F; 3],
+    d: [F; 3],
     /// `R = max(|P′|∞, |X′|∞)`; `+∞` beyond [`REACH`].
-    reach: f32,
+    reach: f64,
     /// `ε_r`.
-    end_error: f32,
+    end_error: f64,
     /// `6 (γ₅ D̂ + ε_d)` and `6 D̂`: the edge bound's factors.
     k_edge: f64,
     k_length: f64,
 }
 
-impl LeafRay {
-    /// The constants of the segment `(p, x)` (finite endpoints).
+impl<F: Copy> LeafRay<F> {
+    /// The constants of the segment `(p, x)` (finite endpoints), on the
+    /// lanes `s`.
     #[inline(always)]
-    pub(super) fn new(p: DVec3, x: DVec3) -> LeafRay {
+    pub(super) fn new<S: Lanes<PACK, F = F>>(s: S, p: DVec3, x: DVec3) -> LeafRay<F> {
         let d = x - p;
         let (p32, x32, d32) = (p.as_vec3(), x.as_vec3(), d.as_vec3());
         // Each difference exact in `f64`.
@@ -208,15 +235,11 @@ impl LeafRay {
         let length = f64::from(d32.abs().max_element()) + length_error;
         let reach = f64::from(p32.abs().max(x32.abs()).max_element());
         LeafRay {
-            p: p32.to_array(),
-            x: x32.to_array(),
-            d: d32.to_array(),
-            reach: if reach <= REACH {
-                reach as f32
-            } else {
-                f32::INFINITY
-            },
-            end_error: f32_up(end_error),
+            p: splat(s, p32.to_array()),
+            x: splat(s, x32.to_array()),
+            d: splat(s, d32.to_array()),
+            reach: if reach <= REACH { reach } else { f64::INFINITY },
+            end_error: end_error * WIDEN,
             k_edge: 6.0 * (GAMMA5 * length + length_error),
             k_length: 6.0 * length,
         }
@@ -226,16 +249,19 @@ impl LeafRay {
     /// `None` where the `f32` test does not apply.
     #[inline(always)]
     fn bounds(&self, pack: &Pack) -> Option<(f32, f32)> {
-        let s = f64::from(pack.magnitude) + f64::from(self.reach);
+        let s = f64::from(pack.magnitude) + self.reach;
         if s > 2.0 * REACH {
             return None;
         }
-        let errors = f64::from(pack.corner_error) + f64::from(self.end_error);
+        let errors = f64::from(pack.corner_error) + self.end_error;
         let (a, eps_a) = (s * (1.0 + U) + errors, s * U + errors);
         let (e, eps_e) = (f64::from(pack.edge), f64::from(pack.edge_error));
-        let edge = self.k_edge * a * e + self.k_length * (eps_a * e + a * eps_e) + FLOOR;
-        let plane = 6.0 * e * ((GAMMA5 * a + eps_a) * e + 2.0 * a * eps_e) + FLOOR;
-        Some(((edge * WIDEN) as f32, (plane * WIDEN) as f32))
+        let edge = e * (self.k_edge * a + self.k_length * eps_a) + self.k_length * a * eps_e;
+        let plane = 6.0 * e * ((GAMMA5 * a + eps_a) * e + 2.0 * a * eps_e);
+        Some((
+            (edge * WIDEN + FLOOR) as f32,
+            (plane * WIDEN + FLOOR) as f32,
+        ))
     }
 }
 
@@ -243,58 +269,51 @@ impl LeafRay {
 /// test leaves uncertain, as bit masks (lanes in use only), on the lanes
 /// `s`.
 #[inline(always)]
-pub(super) fn test<S: Lanes<PACK>>(s: S, pack: &Pack, ray: &LeafRay) -> (u32, u32) {
+pub(super) fn test<S: Lanes<PACK>>(s: S, pack: &Pack, ray: &LeafRay<S::F>) -> (u32, u32) {
     let used = (1u32 << pack.count) - 1;
     let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
         return (0, used);
     };
-    let (hit, unsure) = verdicts(s, &pack.corner, ray, edge_bound, plane_bound);
-    (hit & used, unsure & used)
-}
-
-/// Each lane's verdict on `corner` (`[corner][axis][lane]`): the masks of
-/// certain hits and of uncertain lanes. Every lane the same operations.
-/// (Functions rather than closures throughout: a closure is compiled
-/// apart, without the caller's target features.)
-#[inline(always)]
-fn verdicts<S: Lanes<PACK>>(
-    s: S,
-    corner: &[[[f32; PACK]; 3]; 3],
-    ray: &LeafRay,
-    edge_bound: f32,
-    plane_bound: f32,
-) -> (u32, u32) {
+    let corner = &pack.corner;
     let (va, vb, vc) = (
         load(s, &corner[0]),
         load(s, &corner[1]),
         load(s, &corner[2]),
     );
-    let (p, x, d) = (splat(s, ray.p), splat(s, ray.x), splat(s, ray.d));
-    let (a, b, c, ax) = (sub(s, va, p), sub(s, vb, p), sub(s, vc, p), sub(s, va, x));
+    let (p, d) = (ray.p, ray.d);
+    let (a, b, c) = (sub(s, va, p), sub(s, vb, p), sub(s, vc, p));
     let (ab, bc, ca) = (sub(s, vb, va), sub(s, vc, vb), sub(s, va, vc));
     let e = [
         dot(s, d, cross(s, a, ab)),
         dot(s, d, cross(s, b, bc)),
         dot(s, d, cross(s, c, ca)),
     ];
-    let n = cross(s, ca, ab);
-    let (sp, sx) = (dot(s, a, n), dot(s, ax, n));
     let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
     let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
     let neg = [s.lt(e[0], down), s.lt(e[1], down), s.lt(e[2], down)];
     let edge_miss = (pos[0] | pos[1] | pos[2]) & (neg[0] | neg[1] | neg[2]);
+    // Most lanes a segment reaches it passes beside: the planes only
+    // where some lane is left.
+    if edge_miss & used == used {
+        return (0, 0);
+    }
     let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
+    let n = cross(s, ca, ab);
+    let (sp, sx) = (dot(s, a, n), dot(s, sub(s, va, ray.x), n));
     let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
     let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
     let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
     let plane_miss = (p_pos & x_pos) | (p_neg & x_neg);
     let crosses = (p_pos & x_neg) | (p_neg & x_pos);
     let hit = inside & crosses;
-    (hit, !hit & !edge_miss & !plane_miss)
+    (hit & used, !hit & !edge_miss & !plane_miss & used)
 }
 
 /// Three vectors of lanes: the axes of one point per lane.
 type V3s<S> = [<S as Lanes<PACK>>::F; 3];
+
+// Functions rather than closures throughout: a closure is compiled apart,
+// without the caller's target features.
 
 #[inline(always)]
 fn load<S: Lanes<PACK>>(s: S, c: &[[f32; PACK]; 3]) -> V3s<S> {

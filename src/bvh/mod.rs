@@ -293,6 +293,8 @@ impl fmt::Debug for Bvh {
             .field("triangles", &self.occluders.len())
             .field("indexed", &self.triangles.len())
             .field("nodes", &self.nodes.len())
+            .field("occlusion_nodes", &self.wide.len())
+            .field("packs", &self.packs.len())
             .finish()
     }
 }

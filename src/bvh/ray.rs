@@ -203,7 +203,7 @@ impl Bvh {
         let (mut top, mut node) = (0usize, 0u32);
         // The leaves' constants, on the first leaf (most of Monte Carlo's
         // rays miss the root's boxes).
-        let mut leaf_ray: Option<LeafRay> = None;
+        let mut leaf_ray: Option<LeafRay<<S::Leaf as Lanes<PACK>>::F>> = None;
         let slab = WideSlab::new(s.node(), ray);
         let mut touched = 0u32;
         loop {
@@ -235,7 +235,7 @@ impl Bvh {
                 leaves &= leaves - 1;
                 let at = (n.child[lane] & !WIDE_LEAF) as usize;
                 if leaf_ray.is_none() {
-                    leaf_ray = Some(LeafRay::new(p, x));
+                    leaf_ray = Some(LeafRay::new(s.leaf(), p, x));
                 }
                 let Some(leaf_ray) = &leaf_ray else {
                     unreachable!()
@@ -263,7 +263,7 @@ impl Bvh {
         p: DVec3,
         x: DVec3,
         at: usize,
-        leaf_ray: &LeafRay,
+        leaf_ray: &LeafRay<L::F>,
         tally: &mut T,
     ) -> bool {
         let pack = &self.packs[at];

@@ -2,8 +2,11 @@
 //! their triangles, ray origins are padded outward, quantisation is tight.
 
 use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
+use super::lanes::Portable;
+use super::leaf::PACK;
 use super::ray::Ray32;
-use super::{Bvh, Occluders};
+use super::wide::{EMPTY as WIDE_EMPTY, LEAF as WIDE_LEAF, WIDE};
+use super::{Bvh, OcclusionCounts, Occluders};
 use crate::arbitrary::Rng;
 use crate::kernel::segment::segment_blocked;
 use glam::DVec3;
@@ -64,6 +67,74 @@ fn check_subtree(bvh: &Bvh, node: u32, depth: usize) -> (DVec3, DVec3) {
     (lo, hi)
 }
 
+/// The invariants of the occlusion tree: every lane's box contains,
+/// exactly, every triangle below it (clamped to the `f32` range); every
+/// pack holds its triangles' corners rounded to nearest `f32`, lane by
+/// lane, and its bounds' terms bound them; every triangle in the tree is
+/// in one pack lane; empty lanes' boxes are inverted.
+fn check_wide(bvh: &Bvh) {
+    let clamp = |v: DVec3| {
+        v.clamp(
+            DVec3::splat(-f64::from(f32::MAX)),
+            DVec3::splat(f64::from(f32::MAX)),
+        )
+    };
+    let mut seen = Vec::new();
+    let mut stack = vec![0u32];
+    while let Some(node) = stack.pop() {
+        let n = &bvh.wide[node as usize];
+        for lane in 0..WIDE {
+            let (lo, hi) = (
+                DVec3::from_array([0, 1, 2].map(|a| f64::from(n.planes[0][a][lane]))),
+                DVec3::from_array([0, 1, 2].map(|a| f64::from(n.planes[1][a][lane]))),
+            );
+            let child = n.child[lane];
+            if child == WIDE_EMPTY {
+                assert!(lo.cmpgt(hi).all(), "an empty lane's box is inverted");
+                continue;
+            }
+            let mut below = Vec::new();
+            let mut todo = vec![child];
+            while let Some(c) = todo.pop() {
+                if c & WIDE_LEAF == 0 {
+                    let m = &bvh.wide[c as usize];
+                    todo.extend(m.child.iter().filter(|&&k| k != WIDE_EMPTY));
+                } else {
+                    let at = (c & !WIDE_LEAF) as usize;
+                    let count = bvh.packs[at].count as usize;
+                    below.extend_from_slice(&bvh.pack_ids[at][..count]);
+                }
+            }
+            for &id in &below {
+                let t = bvh.occluders.triangles()[id as usize].map(clamp);
+                let (t_lo, t_hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+                assert!(lo.cmple(t_lo).all() && hi.cmpge(t_hi).all(), "lane {lane} of node {node}");
+            }
+            if child & WIDE_LEAF == 0 {
+                stack.push(child);
+                continue;
+            }
+            let at = (child & !WIDE_LEAF) as usize;
+            let pack = &bvh.packs[at];
+            assert!((1..=PACK as u32).contains(&pack.count));
+            for (l, &id) in bvh.pack_ids[at][..pack.count as usize].iter().enumerate() {
+                seen.push(id);
+                let t = bvh.occluders.triangles()[id as usize];
+                for (k, corner) in t.iter().enumerate() {
+                    for axis in 0..3 {
+                        assert_eq!(pack.corner[k][axis][l], corner[axis] as f32);
+                    }
+                }
+            }
+            pack.check_terms(&bvh.pack_ids[at], bvh.occluders.triangles());
+        }
+    }
+    seen.sort_unstable();
+    let mut ids = bvh.ids.clone();
+    ids.sort_unstable();
+    assert_eq!(seen, ids, "each triangle of the tree in one pack lane");
+}
+
 #[test]
 fn decoded_boxes_contain_their_triangles() {
     let mut rng = Rng::new(11);
@@ -88,6 +159,7 @@ fn decoded_boxes_contain_their_triangles() {
         assert_eq!(bvh.triangles.len() + bvh.outliers.len(), count);
         if !bvh.nodes.is_empty() {
             check_subtree(&bvh, 0, 0);
+            check_wide(&bvh);
         }
     }
 }
@@ -218,12 +290,11 @@ fn stacked_layers_make_a_balanced_tree() {
 /// A segment that meets the box of every node and no triangle: 4096
 /// triangles across the `z` axis, each missing it by 0.1 on the far side
 /// of its hypotenuse, turned about the axis by a random multiple of a
-/// right angle (so that its box still holds the axis). The walk visits
-/// every node, which is where its stack grows most: grouped, it stays
-/// within the bound of `grouped_stack_need` (the stack has exactly that
-/// many entries, so one more would panic), and one node at a time within
-/// `stack_need`; the segment is unoccluded either way. The tree is too
-/// small for the grouped walk to be chosen: it is asked for here.
+/// right angle (so that its box still holds the axis). The occlusion walk
+/// visits every node, which is where its stack grows most: it stays
+/// within `wide_stack_need` (the stack has exactly that many entries, so
+/// one more would panic), and the segment is unoccluded, on every lane
+/// form.
 #[test]
 fn a_walk_over_every_node_stays_within_its_stack() {
     let mut rng = Rng::new(31);
@@ -241,25 +312,11 @@ fn a_walk_over_every_node_stays_within_its_stack() {
     let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
     let (p, x) = (DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.0, 0.0, 2.0));
     assert!(tris.iter().all(|t| !segment_blocked(p, x, t)));
-    assert!(bvh.depth >= 5, "a deep tree: depth {}", bvh.depth);
-    assert!(!bvh.grouped);
-    assert!(bvh.unoccluded_here::<true>(p, x));
-    assert!(bvh.unoccluded_here::<false>(p, x));
-}
-
-/// The walk is grouped on a tree of a megabyte or more, and not on a
-/// smaller one: soups of 16,384 and 4096 triangles.
-#[test]
-fn the_walk_is_grouped_on_large_trees() {
-    let mut rng = Rng::new(37);
-    for (n, grouped) in [(16384, true), (4096, false)] {
-        let (lo, hi) = (DVec3::new(-1.0, 0.1, -1.0), DVec3::new(1.0, 0.9, 1.0));
-        let tris: Vec<[DVec3; 3]> = (0..n)
-            .map(|_| scattered_triangle(&mut rng, lo, hi, 0.02))
-            .collect();
-        let bvh = Bvh::new(Occluders::from_triangles(tris));
-        assert_eq!(bvh.grouped, grouped, "{n} triangles");
-    }
+    assert!(bvh.wide_depth >= 3, "a deep tree: depth {}", bvh.wide_depth);
+    let mut counts = OcclusionCounts::default();
+    assert!(bvh.segment_unoccluded_counting(p, x, &mut counts));
+    assert_eq!(counts.nodes, bvh.wide.len() as u64, "every node visited");
+    assert!(bvh.unoccluded_here(Portable, p, x, &mut ()));
 }
 
 /// Random soups mixing runs of nested triangles (about shared centres, in
@@ -318,6 +375,7 @@ fn holds_each_once_and_agrees(
     ids.sort_unstable();
     assert_eq!(ids, (0..tris.len() as u32).collect::<Vec<_>>());
     check_subtree(bvh, 0, 0);
+    check_wide(bvh);
     for _ in 0..100 {
         let p = DVec3::new(rng.uniform(-floor, floor), 0.0, rng.uniform(-floor, floor));
         let x = DVec3::new(rng.uniform(-light, light), 3.0, rng.uniform(-light, light));
@@ -325,13 +383,9 @@ fn holds_each_once_and_agrees(
             .iter()
             .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
         assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
-        // The walk not chosen for this tree, the same answer.
-        let other = if bvh.grouped {
-            bvh.unoccluded_here::<false>(p, x)
-        } else {
-            bvh.unoccluded_here::<true>(p, x)
-        };
-        assert_eq!(other, !brute, "{p:?} → {x:?}");
+        // The portable lanes, the same answer.
+        let portable = bvh.unoccluded_here(Portable, p, x, &mut ());
+        assert_eq!(portable, !brute, "{p:?} → {x:?}");
     }
 }
 
