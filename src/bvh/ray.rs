@@ -321,7 +321,7 @@ impl WalkLanes for pulp::x86::V3 {
 }
 
 /// The slab test's per-ray vectors (see [`Ray32`]).
-struct WideSlab<F> {
+pub(super) struct WideSlab<F> {
     near: [F; 3],
     far: [F; 3],
     inv: [F; 3],
@@ -332,7 +332,7 @@ struct WideSlab<F> {
 
 impl<F: Copy> WideSlab<F> {
     #[inline(always)]
-    fn new<S: Lanes<WIDE, F = F>>(s: S, ray: &Ray32) -> WideSlab<F> {
+    pub(super) fn new<S: Lanes<WIDE, F = F>>(s: S, ray: &Ray32) -> WideSlab<F> {
         WideSlab {
             near: [s.splat(ray.near[0]), s.splat(ray.near[1]), s.splat(ray.near[2])],
             far: [s.splat(ray.far[0]), s.splat(ray.far[1]), s.splat(ray.far[2])],
@@ -347,7 +347,7 @@ impl<F: Copy> WideSlab<F> {
     /// may meet, as a bit mask (the argument of
     /// [`Bvh::segment_unoccluded`]).
     #[inline(always)]
-    fn hits<S: Lanes<WIDE, F = F>>(&self, s: S, n: &WideNode) -> u32 {
+    pub(super) fn hits<S: Lanes<WIDE, F = F>>(&self, s: S, n: &WideNode) -> u32 {
         let mut t_near = s.splat(0.0);
         let mut t_far = self.one;
         for axis in 0..3 {

@@ -4,8 +4,8 @@
 use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
 use super::lanes::Portable;
 use super::leaf::PACK;
-use super::ray::Ray32;
-use super::wide::{EMPTY as WIDE_EMPTY, LEAF as WIDE_LEAF, WIDE};
+use super::ray::{Ray32, WideSlab};
+use super::wide::{WideNode, EMPTY as WIDE_EMPTY, LEAF as WIDE_LEAF, WIDE};
 use super::{Bvh, OcclusionCounts, Occluders};
 use crate::arbitrary::Rng;
 use crate::kernel::segment::segment_blocked;
@@ -482,5 +482,107 @@ fn capped_hull_query_is_the_query_or_refuses() {
     for cap in [all.len(), all.len() + 1, usize::MAX] {
         assert!(bvh.triangles_meeting_hull_at_most(&hull, &mut capped, cap));
         assert_eq!(capped, all);
+    }
+}
+
+/// The lanes of `node` whose box the segment `(p, x)` may meet, on the
+/// portable lanes and, where the processor has them, AVX2's (the two
+/// agree bit for bit).
+fn wide_hits(node: &WideNode, p: DVec3, x: DVec3) -> u32 {
+    let ray = Ray32::new(p, x).expect("within the f32 range");
+    let portable = WideSlab::new(Portable, &ray).hits(Portable, node);
+    #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        let s = super::lanes::Avx8(v3);
+        let wide = v3.vectorize(
+            #[inline(always)]
+            || WideSlab::new(s, &ray).hits(s, node),
+        );
+        assert_eq!(wide, portable, "AVX2 and portable lanes differ");
+    }
+    portable
+}
+
+/// The slab test never drops a box the segment meets, at the edges:
+/// segments ending or starting exactly on a face, at a corner, lying in a
+/// face's plane across it, running along an edge; boxes of every size at
+/// offsets up to `10⁹` (the tree's boxes lie within `±2⁶⁰`), endpoints
+/// `f32` values or not; the box in any lane among others and empty lanes.
+#[test]
+fn slab_test_keeps_boxes_the_segment_touches() {
+    let mut rng = Rng::new(61);
+    let coordinate = |rng: &mut Rng, centre: f64, scale: f64| {
+        if rng.chance(0.1) {
+            centre
+        } else {
+            centre + rng.uniform(-1.0, 1.0) * scale
+        }
+    };
+    for case in 0..50_000 {
+        let scale = rng.log_uniform(-6.0, 6.0);
+        let centre = if rng.chance(0.5) { 0.0 } else { rng.log_uniform(0.0, 9.0) * rng.sign() };
+        let mut node = WideNode::EMPTY_NODE;
+        let lanes = 1 + rng.below(WIDE as u64) as usize;
+        let mut boxes = Vec::new();
+        for lane in 0..lanes {
+            let (a, b) = (
+                DVec3::new(coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale)),
+                DVec3::new(coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale)),
+            );
+            let (lo, hi) = (a.min(b).as_vec3(), a.max(b).as_vec3());
+            for axis in 0..3 {
+                node.planes[0][axis][lane] = lo[axis];
+                node.planes[1][axis][lane] = hi[axis];
+            }
+            node.child[lane] = lane as u32;
+            boxes.push((lo.as_dvec3(), hi.as_dvec3()));
+        }
+        let lane = rng.below(lanes as u64) as usize;
+        let (lo, hi) = boxes[lane];
+        // A point of the box's surface: on one face (or an edge, or a
+        // corner), inside it on the other axes.
+        let mut on = DVec3::new(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y), rng.uniform(lo.z, hi.z));
+        let face = rng.below(3) as usize;
+        let pick = |rng: &mut Rng, k: usize| if rng.chance(0.5) { lo[k] } else { hi[k] };
+        on[face] = pick(&mut rng, face);
+        if rng.chance(0.3) {
+            let other = (face + 1 + rng.below(2) as usize) % 3;
+            on[other] = pick(&mut rng, other);
+            if rng.chance(0.3) {
+                let third = 3 - face - other;
+                on[third] = pick(&mut rng, third);
+            }
+        }
+        let away = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * scale * 4.0;
+        let (p, x) = match rng.below(4) {
+            0 => (on + away, on),
+            1 => (on, on + away),
+            // In the face's plane, across the face through `on`.
+            2 => {
+                let mut along = away;
+                along[face] = 0.0;
+                let (mut p, mut x) = (on - along, on + along);
+                p[face] = on[face];
+                x[face] = on[face];
+                // Clamped ends may leave the line through `on`: end at it.
+                if rng.chance(0.5) {
+                    (p, on)
+                } else {
+                    (on, x)
+                }
+            }
+            // Along an edge or a face, ending inside it.
+            _ => {
+                let mut q = on;
+                let free = (face + 1) % 3;
+                q[free] = rng.uniform(lo[free], hi[free]);
+                (q, on)
+            }
+        };
+        assert!(
+            wide_hits(&node, p, x) >> lane & 1 == 1,
+            "case {case}: lane {lane} {lo:?}..{hi:?} dropped for {p:?} → {x:?}"
+        );
+        assert_eq!(wide_hits(&node, p, x) >> lanes, 0, "empty lanes kept");
     }
 }

@@ -48,7 +48,7 @@ pub(super) struct WideNode {
 
 impl WideNode {
     /// No children: every box inverted.
-    const EMPTY_NODE: WideNode = WideNode {
+    pub(super) const EMPTY_NODE: WideNode = WideNode {
         planes: [[[f32::MAX; WIDE]; 3], [[-f32::MAX; WIDE]; 3]],
         child: [EMPTY; WIDE],
     };
