@@ -113,53 +113,54 @@ const REACH: f64 = (1u64 << 40) as f64;
 /// The widening of a bound computed in `f64` before rounding it to `f32`.
 const WIDEN: f64 = 1.0 + 1.0 / (1u32 << 22) as f64;
 
-/// Up to [`PACK`] triangles, corner by corner, axis by axis, lane by lane,
-/// with what their error bound needs. 320 bytes (their occluder indices,
-/// needed only where a lane goes to the exact test, are kept apart).
-#[derive(Clone, Copy, Debug)]
-#[repr(C, align(64))]
-pub(super) struct Pack {
-    /// Lanes in use, `1..=PACK`.
-    pub(super) count: u32,
-    /// `M`: at least every stored corner's `|·|∞`; `+∞` beyond [`REACH`].
-    magnitude: f32,
-    /// `ε_c`: at least every corner's rounding `|A − A′|∞`.
-    corner_error: f32,
-    /// `Ê = L (1 + u) + 2 ε_c`.
-    edge: f32,
-    /// `ε_E = u L + 2 ε_c`.
-    edge_error: f32,
-    /// (The corners' rows start 32 bytes in.)
-    _pad: [u32; 3],
-    /// `corner[k][axis][lane]`: corner `k` of the lane's triangle, rounded
-    /// to nearest `f32`. Lanes from `count` on repeat lane 0.
-    pub(super) corner: [[[f32; PACK]; 3]; 3],
+/// Floats of a pack's header: the lane count (bits), `M`, `ε_c`, `Ê`,
+/// `ε_E`, the index of its first occluder index in [`Packs::ids`] (bits),
+/// and two unused.
+const HEADER: usize = 8;
+/// The floats read from a pack's start, at most: the header, nine rows of
+/// [`PACK`] lanes each read [`PACK`] floats on.
+const SPAN: usize = HEADER + 9 * PACK;
+
+/// The leaves' packs, one after another in one array of `f32`, each on a
+/// multiple of eight floats (32 bytes): a header of [`HEADER`] floats,
+/// then its triangles' corners rounded to nearest `f32`, row by row
+/// (corner `k`, axis `a`: row `3k + a`), each row `count` floats long (a
+/// lane a triangle). A row is read as [`PACK`] floats, the lanes beyond
+/// `count` being whatever follows (masked off: their verdicts are not
+/// used); the array ends with [`SPAN`] floats of padding, so every read
+/// stays within it. A pack of `n` triangles takes `32 + 36 n` bytes,
+/// rounded up to 32.
+#[derive(Debug, Default)]
+pub(super) struct Packs {
+    data: Vec<f32>,
+    /// The packs' occluder indices, pack after pack.
+    ids: Vec<u32>,
 }
 
-impl Pack {
-    /// The pack of `triangles` (1 to [`PACK`] of them, finite), and each
-    /// lane's occluder index (`ids[lane]`, lanes beyond the triangles
-    /// repeating the first).
-    pub(super) fn new(triangles: &[([DVec3; 3], u32)]) -> (Pack, [u32; PACK]) {
-        assert!((1..=PACK).contains(&triangles.len()));
-        let mut pack = Pack {
-            corner: [[[0.0; PACK]; 3]; 3],
-            count: triangles.len() as u32,
-            magnitude: 0.0,
-            corner_error: 0.0,
-            edge: 0.0,
-            edge_error: 0.0,
-            _pad: [0; 3],
-        };
-        let mut ids = [triangles[0].1; PACK];
+/// One pack of [`Packs`].
+#[derive(Clone, Copy)]
+pub(super) struct Pack<'a> {
+    data: &'a [f32; SPAN],
+    count: usize,
+}
+
+impl Packs {
+    /// Appends the pack of `triangles` (1 to [`PACK`] of them, finite,
+    /// each with its occluder index); returns its index (its start in
+    /// units of eight floats). Call [`Packs::finish`] after the last.
+    pub(super) fn push(&mut self, triangles: &[([DVec3; 3], u32)]) -> u32 {
+        let count = triangles.len();
+        assert!((1..=PACK).contains(&count));
+        let start = self.data.len();
+        assert_eq!(start % 8, 0);
         let (mut m, mut c, mut l) = (0.0f64, 0.0f64, 0.0f64);
-        for lane in 0..PACK {
-            let (t, id) = triangles[if lane < triangles.len() { lane } else { 0 }];
-            ids[lane] = id;
+        let mut rows = [[0.0f32; PACK]; 9];
+        for (lane, &(t, id)) in triangles.iter().enumerate() {
+            self.ids.push(id);
             let stored = t.map(|v| v.as_vec3().as_dvec3());
             for k in 0..3 {
                 for axis in 0..3 {
-                    pack.corner[k][axis][lane] = stored[k][axis] as f32;
+                    rows[3 * k + axis][lane] = stored[k][axis] as f32;
                 }
                 // Exact in `f64`: a value less its nearest `f32`, and a
                 // difference of two `f32` values.
@@ -168,34 +169,98 @@ impl Pack {
                 l = l.max((stored[(k + 1) % 3] - stored[k]).abs().max_element());
             }
         }
-        pack.magnitude = if m <= REACH { f32_up(m) } else { f32::INFINITY };
-        pack.corner_error = f32_up(c);
-        pack.edge = f32_up((l * (1.0 + U) + 2.0 * c) * WIDEN);
-        pack.edge_error = f32_up((l * U + 2.0 * c) * WIDEN);
-        (pack, ids)
+        let first_id = (self.ids.len() - count) as u32;
+        self.data.extend_from_slice(&[
+            f32::from_bits(count as u32),
+            if m <= REACH { f32_up(m) } else { f32::INFINITY },
+            f32_up(c),
+            f32_up((l * (1.0 + U) + 2.0 * c) * WIDEN),
+            f32_up((l * U + 2.0 * c) * WIDEN),
+            f32::from_bits(first_id),
+            0.0,
+            0.0,
+        ]);
+        for row in &rows {
+            self.data.extend_from_slice(&row[..count]);
+        }
+        self.data.resize(self.data.len().next_multiple_of(8), 0.0);
+        (start / 8) as u32
+    }
+
+    /// Ends the array with its padding.
+    pub(super) fn finish(&mut self) {
+        self.data.resize(self.data.len() + SPAN, 0.0);
+    }
+
+    /// Pack `at` (an index [`Packs::push`] returned).
+    #[inline(always)]
+    pub(super) fn get(&self, at: u32) -> Pack<'_> {
+        let start = at as usize * 8;
+        let data: &[f32; SPAN] = self.data[start..start + SPAN]
+            .try_into()
+            .expect("within the padding");
+        Pack {
+            data,
+            count: (data[0].to_bits() as usize).clamp(1, PACK),
+        }
+    }
+
+    /// The bytes the packs take (their indices included).
+    pub(super) fn bytes(&self) -> usize {
+        self.data.len() * 4 + self.ids.len() * 4
+    }
+}
+
+impl<'a> Pack<'a> {
+    /// Its lanes in use, `1..=PACK`.
+    #[inline(always)]
+    pub(super) fn count(&self) -> u32 {
+        self.count as u32
+    }
+
+    /// Its occluder indices, lane by lane.
+    #[inline(always)]
+    pub(super) fn ids<'b>(&self, packs: &'b Packs) -> &'b [u32] {
+        let first = self.data[5].to_bits() as usize;
+        &packs.ids[first..first + self.count]
+    }
+
+    /// Corner `k`'s axis `axis`, lane by lane (lanes from `count` on are
+    /// whatever follows).
+    #[inline(always)]
+    fn row(&self, k: usize, axis: usize) -> &'a [f32; PACK] {
+        let at = HEADER + (3 * k + axis) * self.count;
+        self.data[at..at + PACK].try_into().expect("within the span")
+    }
+
+    /// `M`, `ε_c`, `Ê`, `ε_E`.
+    #[inline(always)]
+    fn terms(&self) -> [f32; 4] {
+        [self.data[1], self.data[2], self.data[3], self.data[4]]
     }
 }
 
 #[cfg(test)]
-impl Pack {
+impl Pack<'_> {
+    /// Corner `k` of lane `lane`'s triangle as stored.
+    pub(super) fn corner(&self, k: usize, lane: usize) -> DVec3 {
+        DVec3::from_array([0, 1, 2].map(|a| f64::from(self.row(k, a)[lane])))
+    }
+
     /// Checks the bounds' terms against the pack's triangles (`ids` into
     /// `triangles`): `M` bounds every stored corner, `ε_c` every rounding,
     /// `Ê` and `ε_E` the edges as the module docs define them.
-    pub(super) fn check_terms(&self, ids: &[u32; PACK], triangles: &[[DVec3; 3]]) {
-        for (lane, &id) in ids[..self.count as usize].iter().enumerate() {
+    pub(super) fn check_terms(&self, ids: &[u32], triangles: &[[DVec3; 3]]) {
+        let [magnitude, corner_error, edge, edge_error] = self.terms().map(f64::from);
+        for (lane, &id) in ids.iter().enumerate() {
             let t = triangles[id as usize];
-            let stored: [DVec3; 3] = core::array::from_fn(|k| {
-                DVec3::from_array([0, 1, 2].map(|a| f64::from(self.corner[k][a][lane])))
-            });
+            let stored: [DVec3; 3] = core::array::from_fn(|k| self.corner(k, lane));
             for k in 0..3 {
-                assert!(
-                    stored[k].abs().max_element() <= f64::from(self.magnitude)
-                        || self.magnitude == f32::INFINITY
-                );
-                assert!((t[k] - stored[k]).abs().max_element() <= f64::from(self.corner_error));
+                assert!(stored[k].abs().max_element() <= magnitude || magnitude == f64::INFINITY);
+                assert!((t[k] - stored[k]).abs().max_element() <= corner_error);
                 let l = (stored[(k + 1) % 3] - stored[k]).abs().max_element();
-                assert!(l * (1.0 + U) + 2.0 * f64::from(self.corner_error) <= f64::from(self.edge));
-                assert!(l * U + 2.0 * f64::from(self.corner_error) <= f64::from(self.edge_error));
+                assert!(l * (1.0 + U) + 2.0 * corner_error <= edge);
+                assert!(l * U + 2.0 * corner_error <= edge_error);
             }
         }
     }
@@ -248,14 +313,14 @@ impl<F: Copy> LeafRay<F> {
     /// The bounds `(B_e, B_s)` of `pack`'s volumes (see the module docs);
     /// `None` where the `f32` test does not apply.
     #[inline(always)]
-    fn bounds(&self, pack: &Pack) -> Option<(f32, f32)> {
-        let s = f64::from(pack.magnitude) + self.reach;
+    fn bounds(&self, pack: Pack<'_>) -> Option<(f32, f32)> {
+        let [magnitude, corner_error, e, eps_e] = pack.terms().map(f64::from);
+        let s = magnitude + self.reach;
         if s > 2.0 * REACH {
             return None;
         }
-        let errors = f64::from(pack.corner_error) + self.end_error;
+        let errors = corner_error + self.end_error;
         let (a, eps_a) = (s * (1.0 + U) + errors, s * U + errors);
-        let (e, eps_e) = (f64::from(pack.edge), f64::from(pack.edge_error));
         let edge = e * (self.k_edge * a + self.k_length * eps_a) + self.k_length * a * eps_e;
         let plane = 6.0 * e * ((GAMMA5 * a + eps_a) * e + 2.0 * a * eps_e);
         Some((
@@ -269,12 +334,12 @@ impl<F: Copy> LeafRay<F> {
 /// test leaves uncertain, as bit masks (lanes in use only), on the lanes
 /// `s`.
 #[inline(always)]
-pub(super) fn test<S: Lanes<PACK>>(s: S, pack: &Pack, ray: &LeafRay<S::F>) -> (u32, u32) {
+pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> (u32, u32) {
     let used = (1u32 << pack.count) - 1;
     let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
         return (0, used);
     };
-    let (e, a, ab, ca) = edge_volumes(s, &pack.corner, ray);
+    let (e, a, ab, ca) = edge_volumes(s, pack, ray);
     let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
     let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
     let neg = [s.lt(e[0], down), s.lt(e[1], down), s.lt(e[2], down)];
@@ -285,7 +350,7 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: &Pack, ray: &LeafRay<S::F>) -> (u
         return (0, 0);
     }
     let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
-    let (sp, sx) = plane_volumes(s, &pack.corner, ray, a, ab, ca);
+    let (sp, sx) = plane_volumes(s, pack, ray, a, ab, ca);
     let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
     let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
     let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
@@ -301,14 +366,10 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: &Pack, ray: &LeafRay<S::F>) -> (u
 #[allow(clippy::type_complexity)]
 fn edge_volumes<S: Lanes<PACK>>(
     s: S,
-    corner: &[[[f32; PACK]; 3]; 3],
+    pack: Pack<'_>,
     ray: &LeafRay<S::F>,
 ) -> ([S::F; 3], V3s<S>, V3s<S>, V3s<S>) {
-    let (va, vb, vc) = (
-        load(s, &corner[0]),
-        load(s, &corner[1]),
-        load(s, &corner[2]),
-    );
+    let (va, vb, vc) = (load(s, pack, 0), load(s, pack, 1), load(s, pack, 2));
     let (p, d) = (ray.p, ray.d);
     let (a, b, c) = (sub(s, va, p), sub(s, vb, p), sub(s, vc, p));
     let (ab, bc, ca) = (sub(s, vb, va), sub(s, vc, vb), sub(s, va, vc));
@@ -325,14 +386,14 @@ fn edge_volumes<S: Lanes<PACK>>(
 #[inline(always)]
 fn plane_volumes<S: Lanes<PACK>>(
     s: S,
-    corner: &[[[f32; PACK]; 3]; 3],
+    pack: Pack<'_>,
     ray: &LeafRay<S::F>,
     a: V3s<S>,
     ab: V3s<S>,
     ca: V3s<S>,
 ) -> (S::F, S::F) {
     let n = cross(s, ca, ab);
-    let ax = sub(s, load(s, &corner[0]), ray.x);
+    let ax = sub(s, load(s, pack, 0), ray.x);
     (dot(s, a, n), dot(s, ax, n))
 }
 
@@ -342,9 +403,14 @@ type V3s<S> = [<S as Lanes<PACK>>::F; 3];
 // Functions rather than closures throughout: a closure is compiled apart,
 // without the caller's target features.
 
+/// Corner `k` of every lane.
 #[inline(always)]
-fn load<S: Lanes<PACK>>(s: S, c: &[[f32; PACK]; 3]) -> V3s<S> {
-    [s.load(&c[0]), s.load(&c[1]), s.load(&c[2])]
+fn load<S: Lanes<PACK>>(s: S, pack: Pack<'_>, k: usize) -> V3s<S> {
+    [
+        s.load(pack.row(k, 0)),
+        s.load(pack.row(k, 1)),
+        s.load(pack.row(k, 2)),
+    ]
 }
 
 #[inline(always)]
@@ -380,21 +446,30 @@ mod tests {
     use crate::bvh::lanes::Portable;
     use crate::kernel::segment::segment_blocked;
 
+    /// The packs holding `triangles` (one pack), occluder indices in order.
+    fn packs_of(triangles: &[[DVec3; 3]]) -> Packs {
+        let with_ids: Vec<([DVec3; 3], u32)> =
+            triangles.iter().enumerate().map(|(i, &t)| (t, i as u32)).collect();
+        let mut packs = Packs::default();
+        packs.push(&with_ids);
+        packs.finish();
+        packs
+    }
+
     /// What [`test`] says of each lane of `triangles` (one pack) for the
     /// segment `(p, x)`, on the portable lanes and, where the processor
     /// has them, on AVX2's: `(hit, unsure)`. The two forms agree bit for
     /// bit.
     fn verdicts_of(triangles: &[[DVec3; 3]], p: DVec3, x: DVec3) -> (u32, u32) {
-        let with_ids: Vec<([DVec3; 3], u32)> =
-            triangles.iter().enumerate().map(|(i, &t)| (t, i as u32)).collect();
-        let (pack, _) = Pack::new(&with_ids);
-        let portable = test(Portable, &pack, &LeafRay::new(Portable, p, x));
+        let packs = packs_of(triangles);
+        let pack = packs.get(0);
+        let portable = test(Portable, pack, &LeafRay::new(Portable, p, x));
         #[cfg(all(feature = "simd", target_arch = "x86_64"))]
         if let Some(v3) = pulp::x86::V3::try_new() {
             let s = crate::bvh::lanes::Avx8(v3);
             let wide = v3.vectorize(
                 #[inline(always)]
-                || test(s, &pack, &LeafRay::new(s, p, x)),
+                || test(s, pack, &LeafRay::new(s, p, x)),
             );
             assert_eq!(wide, portable, "AVX2 and portable lanes differ");
         }
@@ -537,15 +612,14 @@ mod tests {
             let target = triangles[rng.below(PACK as u64) as usize];
             let (p, x) = segment(&mut rng, &target, scale);
             let (p, x) = if rng.chance(0.5) { (round(p), round(x)) } else { (p, x) };
-            let with_ids: Vec<([DVec3; 3], u32)> =
-                triangles.iter().enumerate().map(|(i, &t)| (t, i as u32)).collect();
-            let (pack, _) = Pack::new(&with_ids);
+            let packs = packs_of(&triangles);
+            let pack = packs.get(0);
             let ray = LeafRay::new(Portable, p, x);
-            let Some((edge_bound, plane_bound)) = ray.bounds(&pack) else {
+            let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
                 continue;
             };
-            let (e, a, ab, ca) = edge_volumes(Portable, &pack.corner, &ray);
-            let (sp, sx) = plane_volumes(Portable, &pack.corner, &ray, a, ab, ca);
+            let (e, a, ab, ca) = edge_volumes(Portable, pack, &ray);
+            let (sp, sx) = plane_volumes(Portable, pack, &ray, a, ab, ca);
             for (lane, t) in triangles.iter().enumerate() {
                 let [ta, tb, tc] = *t;
                 let exact = [

@@ -263,9 +263,7 @@ pub struct Bvh {
     /// The occlusion tree (`wide.rs`): its nodes, the root first (none
     /// when there is no tree), its leaf packs and its depth.
     wide: Vec<wide::WideNode>,
-    packs: Vec<leaf::Pack>,
-    /// Each pack's occluder indices, lane by lane.
-    pack_ids: Vec<[u32; leaf::PACK]>,
+    packs: leaf::Packs,
     wide_depth: usize,
     /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
     /// tree and tested by every query, and their indices in `occluders`.
@@ -294,7 +292,7 @@ impl fmt::Debug for Bvh {
             .field("indexed", &self.triangles.len())
             .field("nodes", &self.nodes.len())
             .field("occlusion_nodes", &self.wide.len())
-            .field("packs", &self.packs.len())
+            .field("occlusion_bytes", &(self.wide.len() * 256 + self.packs.bytes()))
             .finish()
     }
 }
@@ -407,8 +405,7 @@ impl Bvh {
             ids: Vec::with_capacity(kept.len()),
             depth: 1,
             wide: Vec::new(),
-            packs: Vec::new(),
-            pack_ids: Vec::new(),
+            packs: leaf::Packs::default(),
             wide_depth: 1,
             outliers,
             outlier_ids,

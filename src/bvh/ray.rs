@@ -227,13 +227,13 @@ impl Bvh {
                     touched = touched.wrapping_add(self.wide[child as usize].child[0]);
                 } else {
                     leaves |= 1 << lane;
-                    touched = touched.wrapping_add(self.packs[(child & !WIDE_LEAF) as usize].count);
+                    touched = touched.wrapping_add(self.packs.get(child & !WIDE_LEAF).count());
                 }
             }
             while leaves != 0 {
                 let lane = leaves.trailing_zeros() as usize;
                 leaves &= leaves - 1;
-                let at = (n.child[lane] & !WIDE_LEAF) as usize;
+                let at = n.child[lane] & !WIDE_LEAF;
                 if leaf_ray.is_none() {
                     leaf_ray = Some(LeafRay::new(s.leaf(), p, x));
                 }
@@ -262,20 +262,20 @@ impl Bvh {
         s: L,
         p: DVec3,
         x: DVec3,
-        at: usize,
+        at: u32,
         leaf_ray: &LeafRay<L::F>,
         tally: &mut T,
     ) -> bool {
-        let pack = &self.packs[at];
+        let pack = self.packs.get(at);
         let (hit, mut unsure) = leaf::test(s, pack, leaf_ray);
-        tally.pack(pack.count, unsure.count_ones());
+        tally.pack(pack.count(), unsure.count_ones());
         if hit != 0 {
             return true;
         }
         while unsure != 0 {
             let lane = unsure.trailing_zeros() as usize;
             unsure &= unsure - 1;
-            let t = &self.occluders.triangles()[self.pack_ids[at][lane] as usize];
+            let t = &self.occluders.triangles()[pack.ids(&self.packs)[lane] as usize];
             if segment_blocked(p, x, t) {
                 return true;
             }

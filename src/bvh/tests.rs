@@ -100,9 +100,7 @@ fn check_wide(bvh: &Bvh) {
                     let m = &bvh.wide[c as usize];
                     todo.extend(m.child.iter().filter(|&&k| k != WIDE_EMPTY));
                 } else {
-                    let at = (c & !WIDE_LEAF) as usize;
-                    let count = bvh.packs[at].count as usize;
-                    below.extend_from_slice(&bvh.pack_ids[at][..count]);
+                    below.extend_from_slice(bvh.packs.get(c & !WIDE_LEAF).ids(&bvh.packs));
                 }
             }
             for &id in &below {
@@ -114,19 +112,18 @@ fn check_wide(bvh: &Bvh) {
                 stack.push(child);
                 continue;
             }
-            let at = (child & !WIDE_LEAF) as usize;
-            let pack = &bvh.packs[at];
-            assert!((1..=PACK as u32).contains(&pack.count));
-            for (l, &id) in bvh.pack_ids[at][..pack.count as usize].iter().enumerate() {
+            let pack = bvh.packs.get(child & !WIDE_LEAF);
+            assert!((1..=PACK as u32).contains(&pack.count()));
+            let ids = pack.ids(&bvh.packs);
+            assert_eq!(ids.len(), pack.count() as usize);
+            for (l, &id) in ids.iter().enumerate() {
                 seen.push(id);
                 let t = bvh.occluders.triangles()[id as usize];
                 for (k, corner) in t.iter().enumerate() {
-                    for axis in 0..3 {
-                        assert_eq!(pack.corner[k][axis][l], corner[axis] as f32);
-                    }
+                    assert_eq!(pack.corner(k, l), corner.as_vec3().as_dvec3());
                 }
             }
-            pack.check_terms(&bvh.pack_ids[at], bvh.occluders.triangles());
+            pack.check_terms(ids, bvh.occluders.triangles());
         }
     }
     seen.sort_unstable();

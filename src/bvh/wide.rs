@@ -11,8 +11,8 @@
 //! every triangle below it exactly), and eight child references — an
 //! inner node's index, [`LEAF`] `|` a pack's index, or [`EMPTY`], whose box
 //! is inverted (`lo = f32::MAX`, `hi = −f32::MAX`) so that no segment's slab
-//! test keeps it. A [`Pack`] is 192 bytes, three cache lines, for up to
-//! four triangles.
+//! test keeps it. A pack of `n` triangles takes `32 + 36 n` bytes
+//! (`leaf.rs`).
 //!
 //! # Build
 //!
@@ -23,7 +23,7 @@
 //! the one of largest area; a descendant of at most [`PACK`] triangles
 //! becomes a pack, a larger one a node.
 
-use super::leaf::{Pack, PACK};
+use super::leaf::PACK;
 use super::{Bvh, Item, Source};
 use obvhs::aabb::Aabb;
 
@@ -192,10 +192,7 @@ impl Bvh {
                         let id = kept[m as usize];
                         (self.occluders.triangles()[id as usize], id)
                     }));
-                    let (pack, ids) = Pack::new(&triangles);
-                    self.packs.push(pack);
-                    self.pack_ids.push(ids);
-                    LEAF | (self.packs.len() - 1) as u32
+                    LEAF | self.packs.push(&triangles)
                 } else {
                     work.push((n, self.wide.len(), level + 1));
                     self.wide.push(WideNode::EMPTY_NODE);
@@ -204,6 +201,7 @@ impl Bvh {
             }
             self.wide[dst] = node;
         }
+        self.packs.finish();
         self.wide_depth = depth;
     }
 
