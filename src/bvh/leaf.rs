@@ -282,31 +282,59 @@ pub(super) struct LeafRay<F> {
     k_length: f64,
 }
 
+/// The scalars of a [`LeafRay`].
+struct Terms {
+    p: [f32; 3],
+    x: [f32; 3],
+    d: [f32; 3],
+    reach: f64,
+    end_error: f64,
+    k_edge: f64,
+    k_length: f64,
+}
+
+/// The scalars of the segment `(p, x)` for [`LeafRay::new`]: out of line,
+/// so that they are computed only for segments that reach a leaf (inline,
+/// the compiler computed them ahead of the walk for every segment).
+#[inline(never)]
+fn terms(p: DVec3, x: DVec3) -> Terms {
+    let d = x - p;
+    let (p32, x32, d32) = (p.as_vec3(), x.as_vec3(), d.as_vec3());
+    // Each difference exact in `f64`.
+    let end_error = (p - p32.as_dvec3())
+        .abs()
+        .max((x - x32.as_dvec3()).abs())
+        .max_element();
+    let length_error = ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON))
+        .max_element()
+        * WIDEN;
+    let length = f64::from(d32.abs().max_element()) + length_error;
+    let reach = f64::from(p32.abs().max(x32.abs()).max_element());
+    Terms {
+        p: p32.to_array(),
+        x: x32.to_array(),
+        d: d32.to_array(),
+        reach: if reach <= REACH { reach } else { f64::INFINITY },
+        end_error: end_error * WIDEN,
+        k_edge: 6.0 * (GAMMA5 * length + length_error),
+        k_length: 6.0 * length,
+    }
+}
+
 impl<F: Copy> LeafRay<F> {
     /// The constants of the segment `(p, x)` (finite endpoints), on the
     /// lanes `s`.
     #[inline(always)]
     pub(super) fn new<S: Lanes<PACK, F = F>>(s: S, p: DVec3, x: DVec3) -> LeafRay<F> {
-        let d = x - p;
-        let (p32, x32, d32) = (p.as_vec3(), x.as_vec3(), d.as_vec3());
-        // Each difference exact in `f64`.
-        let end_error = (p - p32.as_dvec3())
-            .abs()
-            .max((x - x32.as_dvec3()).abs())
-            .max_element();
-        let length_error = ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON))
-            .max_element()
-            * WIDEN;
-        let length = f64::from(d32.abs().max_element()) + length_error;
-        let reach = f64::from(p32.abs().max(x32.abs()).max_element());
+        let t = terms(p, x);
         LeafRay {
-            p: splat(s, p32.to_array()),
-            x: splat(s, x32.to_array()),
-            d: splat(s, d32.to_array()),
-            reach: if reach <= REACH { reach } else { f64::INFINITY },
-            end_error: end_error * WIDEN,
-            k_edge: 6.0 * (GAMMA5 * length + length_error),
-            k_length: 6.0 * length,
+            p: splat(s, t.p),
+            x: splat(s, t.x),
+            d: splat(s, t.d),
+            reach: t.reach,
+            end_error: t.end_error,
+            k_edge: t.k_edge,
+            k_length: t.k_length,
         }
     }
 

@@ -4,7 +4,7 @@
 
 use super::lanes::{Lanes, Portable};
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
-use super::lanes::{Avx8, Sse4};
+use super::lanes::Avx8;
 use super::leaf::{self, LeafRay, PACK};
 use super::node::{decode, Node, EMPTY, WIDTH};
 use super::wide::{WideNode, LEAF as WIDE_LEAF, WIDE};

@@ -59,7 +59,7 @@ impl WideNode {
 /// about 50 instructions and four cache lines, a pack's test about 170
 /// and five).
 const NODE_COST: f32 = 1.0;
-const PACK_COST: f32 = 2.5;
+const PACK_COST: f32 = 1.0;
 
 /// An entry of the binary tree, made explicit for the collapse.
 struct Binary {
