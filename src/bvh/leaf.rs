@@ -367,7 +367,7 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) ->
     let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
         return (0, used);
     };
-    let (e, a, ab, ca) = edge_volumes(s, pack, ray);
+    let e = edge_volumes(s, pack, ray);
     let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
     let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
     let neg = [s.lt(e[0], down), s.lt(e[1], down), s.lt(e[2], down)];
@@ -378,7 +378,7 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) ->
         return (0, 0);
     }
     let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
-    let (sp, sx) = plane_volumes(s, pack, ray, a, ab, ca);
+    let (sp, sx) = plane_volumes(s, pack, ray);
     let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
     let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
     let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
@@ -389,40 +389,38 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) ->
 }
 
 /// The computed edge volumes `e₀, e₁, e₂` of every lane (see the module
-/// docs), with `a = A′ − P′` and the edges `E_ab`, `E_ca` the planes reuse.
+/// docs). Edge by edge, each reading its corners from the pack again (a
+/// load from the first-level cache is cheaper than the registers the
+/// three corners at once would spill).
 #[inline(always)]
-#[allow(clippy::type_complexity)]
-fn edge_volumes<S: Lanes<PACK>>(
+fn edge_volumes<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> [S::F; 3] {
+    [
+        edge_volume(s, pack, ray, 0, 1),
+        edge_volume(s, pack, ray, 1, 2),
+        edge_volume(s, pack, ray, 2, 0),
+    ]
+}
+
+/// `d · ((U′ − P′) × (V′ − U′))` for the corners `U = k`, `V = l`.
+#[inline(always)]
+fn edge_volume<S: Lanes<PACK>>(
     s: S,
     pack: Pack<'_>,
     ray: &LeafRay<S::F>,
-) -> ([S::F; 3], V3s<S>, V3s<S>, V3s<S>) {
-    let (va, vb, vc) = (load(s, pack, 0), load(s, pack, 1), load(s, pack, 2));
-    let (p, d) = (ray.p, ray.d);
-    let (a, b, c) = (sub(s, va, p), sub(s, vb, p), sub(s, vc, p));
-    let (ab, bc, ca) = (sub(s, vb, va), sub(s, vc, vb), sub(s, va, vc));
-    let e = [
-        dot(s, d, cross(s, a, ab)),
-        dot(s, d, cross(s, b, bc)),
-        dot(s, d, cross(s, c, ca)),
-    ];
-    (e, a, ab, ca)
+    k: usize,
+    l: usize,
+) -> S::F {
+    let (u, v) = (load(s, pack, k), load(s, pack, l));
+    dot(s, ray.d, cross(s, sub(s, u, ray.p), sub(s, v, u)))
 }
 
 /// The computed plane volumes `(s_P, s_X)` of every lane (see the module
-/// docs), from [`edge_volumes`]' `a`, `E_ab` and `E_ca`.
+/// docs).
 #[inline(always)]
-fn plane_volumes<S: Lanes<PACK>>(
-    s: S,
-    pack: Pack<'_>,
-    ray: &LeafRay<S::F>,
-    a: V3s<S>,
-    ab: V3s<S>,
-    ca: V3s<S>,
-) -> (S::F, S::F) {
-    let n = cross(s, ca, ab);
-    let ax = sub(s, load(s, pack, 0), ray.x);
-    (dot(s, a, n), dot(s, ax, n))
+fn plane_volumes<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> (S::F, S::F) {
+    let (a, b, c) = (load(s, pack, 0), load(s, pack, 1), load(s, pack, 2));
+    let n = cross(s, sub(s, a, c), sub(s, b, a));
+    (dot(s, sub(s, a, ray.p), n), dot(s, sub(s, a, ray.x), n))
 }
 
 /// Three vectors of lanes: the axes of one point per lane.
@@ -646,8 +644,8 @@ mod tests {
             let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
                 continue;
             };
-            let (e, a, ab, ca) = edge_volumes(Portable, pack, &ray);
-            let (sp, sx) = plane_volumes(Portable, pack, &ray, a, ab, ca);
+            let e = edge_volumes(Portable, pack, &ray);
+            let (sp, sx) = plane_volumes(Portable, pack, &ray);
             for (lane, t) in triangles.iter().enumerate() {
                 let [ta, tb, tc] = *t;
                 let exact = [

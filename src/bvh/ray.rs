@@ -215,20 +215,20 @@ impl Bvh {
             // intrinsic): the loads of the hit packs and of the node
             // visited next start together, rather than each when its
             // test needs it.
-            let mut leaves = 0u32;
-            let mut rest = hits;
+            let mut inner = hits & !n.leaf_lanes;
+            let mut leaves = hits & n.leaf_lanes;
+            while inner != 0 {
+                let child = n.child[inner.trailing_zeros() as usize];
+                inner &= inner - 1;
+                stack[top] = child;
+                top += 1;
+                touched = touched.wrapping_add(self.wide[child as usize].child[0]);
+            }
+            let mut rest = leaves;
             while rest != 0 {
-                let lane = rest.trailing_zeros() as usize;
+                let child = n.child[rest.trailing_zeros() as usize];
                 rest &= rest - 1;
-                let child = n.child[lane];
-                if child & WIDE_LEAF == 0 {
-                    stack[top] = child;
-                    top += 1;
-                    touched = touched.wrapping_add(self.wide[child as usize].child[0]);
-                } else {
-                    leaves |= 1 << lane;
-                    touched = touched.wrapping_add(self.packs.get(child & !WIDE_LEAF).count());
-                }
+                touched = touched.wrapping_add(self.packs.get(child & !WIDE_LEAF).count());
             }
             while leaves != 0 {
                 let lane = leaves.trailing_zeros() as usize;

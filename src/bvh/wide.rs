@@ -44,6 +44,8 @@ pub(super) struct WideNode {
     /// Inner child: its node index; leaf: [`LEAF`] `|` its pack's index;
     /// empty lane: [`EMPTY`].
     pub(super) child: [u32; WIDE],
+    /// The lanes holding a pack, as bits.
+    pub(super) leaf_lanes: u32,
 }
 
 impl WideNode {
@@ -51,6 +53,7 @@ impl WideNode {
     pub(super) const EMPTY_NODE: WideNode = WideNode {
         planes: [[[f32::MAX; WIDE]; 3], [[-f32::MAX; WIDE]; 3]],
         child: [EMPTY; WIDE],
+        leaf_lanes: 0,
     };
 }
 
@@ -192,6 +195,7 @@ impl Bvh {
                         let id = kept[m as usize];
                         (self.occluders.triangles()[id as usize], id)
                     }));
+                    node.leaf_lanes |= 1 << lane;
                     LEAF | self.packs.push(&triangles)
                 } else {
                     work.push((n, self.wide.len(), level + 1));
