@@ -190,3 +190,64 @@ mod avx {
 
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
 pub(super) use avx::{Avx8, Sse4};
+
+/// [`Ray32::axes`](super::ray::Ray32::axes) of four lanes in AVX
+/// registers: the same operations in the same order on each lane (so the
+/// same bits), four `f64` at a time.
+#[cfg(all(feature = "simd", target_arch = "x86_64"))]
+#[inline(always)]
+pub(super) fn axes4(v3: pulp::x86::V3, p: [f64; 4], d: [f64; 4]) -> super::ray::Axes32<4> {
+    use core::arch::x86_64::{__m128, __m256d, _CMP_LT_OQ};
+    const TINY: f32 = 1.0 / (1u128 << 100) as f32;
+    let (avx, sse, sse41) = (v3.avx, v3.sse, v3.sse4_1);
+    let pv: __m256d = pulp::cast(p);
+    let dv: __m256d = pulp::cast(d);
+    let abs_pd = avx._mm256_castsi256_pd(avx._mm256_set1_epi64x(i64::MAX));
+    let abs_ps = v3.sse2._mm_castsi128_ps(v3.sse2._mm_set1_epi32(i32::MAX));
+    // o = f64(p as f32); di = d as f32, ±TINY (the sign of `d < 0`) where
+    // |di| < TINY.
+    let o = avx._mm256_cvtps_pd(avx._mm256_cvtpd_ps(pv));
+    let di = avx._mm256_cvtpd_ps(dv);
+    let negative: __m128 = avx._mm256_cvtpd_ps(avx._mm256_and_pd(
+        avx._mm256_cmp_pd::<_CMP_LT_OQ>(dv, avx._mm256_setzero_pd()),
+        avx._mm256_set1_pd(-1.0),
+    ));
+    let backward_d = avx._mm_cmp_ps::<_CMP_LT_OQ>(negative, sse._mm_setzero_ps());
+    let tiny = sse41._mm_blendv_ps(sse._mm_set1_ps(TINY), sse._mm_set1_ps(-TINY), backward_d);
+    let small = avx._mm_cmp_ps::<_CMP_LT_OQ>(sse._mm_and_ps(di, abs_ps), sse._mm_set1_ps(TINY));
+    let di = sse41._mm_blendv_ps(di, tiny, small);
+    // delta = (|p| + |d|) 2⁻²¹ + 4 TINY; wide = delta (1 + 2⁻²²) + |o| / 2²³.
+    let sum = avx._mm256_add_pd(avx._mm256_and_pd(pv, abs_pd), avx._mm256_and_pd(dv, abs_pd));
+    let delta = avx._mm256_add_pd(
+        avx._mm256_mul_pd(sum, avx._mm256_set1_pd(1.0 / f64::from(1u32 << 21))),
+        avx._mm256_set1_pd(4.0 * f64::from(TINY)),
+    );
+    let wide = avx._mm256_add_pd(
+        avx._mm256_mul_pd(delta, avx._mm256_set1_pd(1.0 + 1.0 / f64::from(1u32 << 22))),
+        avx._mm256_mul_pd(
+            avx._mm256_and_pd(o, abs_pd),
+            avx._mm256_set1_pd(1.0 / f64::from(1u32 << 23)),
+        ),
+    );
+    let up = clamp4(v3, avx._mm256_cvtpd_ps(avx._mm256_add_pd(o, wide)));
+    let down = clamp4(v3, avx._mm256_cvtpd_ps(avx._mm256_sub_pd(o, wide)));
+    let backward = avx._mm_cmp_ps::<_CMP_LT_OQ>(di, sse._mm_setzero_ps());
+    let near = sse41._mm_blendv_ps(up, down, backward);
+    let far = sse41._mm_blendv_ps(down, up, backward);
+    let inv = sse._mm_div_ps(sse._mm_set1_ps(1.0), di);
+    let mask = sse._mm_movemask_ps(backward);
+    super::ray::Axes32 {
+        near: pulp::cast(near),
+        far: pulp::cast(far),
+        inv: pulp::cast(inv),
+        backward: [0, 1, 2, 3].map(|l| mask >> l & 1 == 1),
+    }
+}
+
+/// `f32::clamp(v, −f32::MAX, f32::MAX)` lane by lane (no NaN arises).
+#[cfg(all(feature = "simd", target_arch = "x86_64"))]
+#[inline(always)]
+fn clamp4(v3: pulp::x86::V3, v: core::arch::x86_64::__m128) -> core::arch::x86_64::__m128 {
+    let sse = v3.sse;
+    sse._mm_max_ps(sse._mm_min_ps(v, sse._mm_set1_ps(f32::MAX)), sse._mm_set1_ps(-f32::MAX))
+}

@@ -165,26 +165,15 @@ impl Bvh {
                 return answer;
             }
         }
-        let ray = Ray32::in_range(p, x);
+        let d = x - p;
+        let axes = s.axes([p.x, p.y, p.z, p.z], [d.x, d.y, d.z, d.z]);
+        let ray = Ray32 {
+            near: [axes.near[0], axes.near[1], axes.near[2]],
+            far: [axes.far[0], axes.far[1], axes.far[2]],
+            inv: [axes.inv[0], axes.inv[1], axes.inv[2]],
+            entry: [0, 1, 2].map(|k| usize::from(axes.backward[k])),
+        };
         self.walk(s, p, x, &ray, tally)
-    }
-
-    /// [`Bvh::segment_unoccluded`] where its endpoints leave the `f32`
-    /// range, an outlier triangle may block it or there is no tree: the
-    /// answer, or `None` when the walk over the tree decides it.
-    #[cold]
-    #[inline(never)]
-    fn unoccluded_off_tree(&self, p: DVec3, x: DVec3) -> Option<bool> {
-        if !(p.is_finite() && x.is_finite()) {
-            return Some(true);
-        }
-        if self.outliers.iter().any(|t| segment_blocked(p, x, t)) {
-            return Some(false);
-        }
-        if self.wide.is_empty() || !(in_f32_range(p) && in_f32_range(x)) {
-            return Some(!self.triangles.iter().any(|t| segment_blocked(p, x, t)));
-        }
-        None
     }
 
     /// The any-hit walk of [`Bvh::segment_unoccluded`] over the occlusion
@@ -267,16 +256,22 @@ impl Bvh {
         tally: &mut T,
     ) -> bool {
         let pack = self.packs.get(at);
-        let (hit, mut unsure) = leaf::test(s, pack, leaf_ray);
+        let (hit, unsure) = leaf::test(s, pack, leaf_ray);
         tally.pack(pack.count(), unsure.count_ones());
-        if hit != 0 {
-            return true;
-        }
+        hit != 0 || (unsure != 0 && self.exact_lanes(p, x, pack.ids(&self.packs), unsure))
+    }
+
+    /// Whether a triangle of the lanes `unsure` of a pack whose occluder
+    /// indices are `ids` blocks the segment, by [`segment_blocked`]: out
+    /// of line (rare; inline, the compiler computed parts of the exact
+    /// test ahead of every walk).
+    #[cold]
+    #[inline(never)]
+    fn exact_lanes(&self, p: DVec3, x: DVec3, ids: &[u32], mut unsure: u32) -> bool {
         while unsure != 0 {
             let lane = unsure.trailing_zeros() as usize;
             unsure &= unsure - 1;
-            let t = &self.occluders.triangles()[pack.ids(&self.packs)[lane] as usize];
-            if segment_blocked(p, x, t) {
+            if segment_blocked(p, x, &self.occluders.triangles()[ids[lane] as usize]) {
                 return true;
             }
         }
@@ -291,11 +286,17 @@ pub(super) trait WalkLanes: Copy {
     type Leaf: Lanes<PACK>;
     fn node(self) -> Self::Node;
     fn leaf(self) -> Self::Leaf;
+    /// [`Ray32::axes`] of four lanes (the same bits).
+    fn axes(self, p: [f64; 4], d: [f64; 4]) -> Axes32<4>;
 }
 
 impl WalkLanes for Portable {
     type Node = Portable;
     type Leaf = Portable;
+    #[inline(always)]
+    fn axes(self, p: [f64; 4], d: [f64; 4]) -> Axes32<4> {
+        Ray32::axes(p, d)
+    }
     #[inline(always)]
     fn node(self) -> Portable {
         self
@@ -310,6 +311,10 @@ impl WalkLanes for Portable {
 impl WalkLanes for pulp::x86::V3 {
     type Node = Avx8;
     type Leaf = Avx8;
+    #[inline(always)]
+    fn axes(self, p: [f64; 4], d: [f64; 4]) -> Axes32<4> {
+        super::lanes::axes4(self, p, d)
+    }
     #[inline(always)]
     fn node(self) -> Avx8 {
         Avx8(self)
