@@ -176,6 +176,24 @@ impl Bvh {
         self.walk(s, p, x, &ray, tally)
     }
 
+    /// [`Bvh::segment_unoccluded`] where its endpoints leave the `f32`
+    /// range, an outlier triangle may block it or there is no tree: the
+    /// answer, or `None` when the walk over the tree decides it.
+    #[cold]
+    #[inline(never)]
+    fn unoccluded_off_tree(&self, p: DVec3, x: DVec3) -> Option<bool> {
+        if !(p.is_finite() && x.is_finite()) {
+            return Some(true);
+        }
+        if self.outliers.iter().any(|t| segment_blocked(p, x, t)) {
+            return Some(false);
+        }
+        if self.wide.is_empty() || !(in_f32_range(p) && in_f32_range(x)) {
+            return Some(!self.triangles.iter().any(|t| segment_blocked(p, x, t)));
+        }
+        None
+    }
+
     /// The any-hit walk of [`Bvh::segment_unoccluded`] over the occlusion
     /// tree, depth first.
     #[inline(always)]
