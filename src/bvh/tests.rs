@@ -583,3 +583,35 @@ fn slab_test_keeps_boxes_the_segment_touches() {
         assert_eq!(wide_hits(&node, p, x) >> lanes, 0, "empty lanes kept");
     }
 }
+
+/// The occlusion walk's per-segment slab constants in AVX `f64` lanes are
+/// `Ray32::axes`' bit for bit: over many decades, signs, zero and tiny
+/// directions, and the edge of the `f32` range.
+#[test]
+fn slab_constants_agree_on_every_lane_form() {
+    #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        let mut rng = Rng::new(67);
+        let mut value = |rng: &mut Rng| match rng.below(6) {
+            0 => 0.0,
+            1 => -0.0,
+            2 => rng.log_uniform(-45.0, -25.0) * rng.sign(),
+            3 => f64::from(f32::MAX) * rng.sign(),
+            _ => rng.log_uniform(-40.0, 38.0) * rng.sign(),
+        };
+        for _ in 0..100_000 {
+            let p: [f64; 4] = core::array::from_fn(|_| value(&mut rng));
+            let d: [f64; 4] = core::array::from_fn(|_| value(&mut rng));
+            let wide = v3.vectorize(
+                #[inline(always)]
+                || super::lanes::axes4(v3, p, d),
+            );
+            let portable = Ray32::axes(p, d);
+            let bits = |v: [f32; 4]| v.map(f32::to_bits);
+            assert_eq!(bits(wide.near), bits(portable.near), "{p:?} {d:?}");
+            assert_eq!(bits(wide.far), bits(portable.far), "{p:?} {d:?}");
+            assert_eq!(bits(wide.inv), bits(portable.inv), "{p:?} {d:?}");
+            assert_eq!(wide.backward, portable.backward, "{p:?} {d:?}");
+        }
+    }
+}
