@@ -1,7 +1,8 @@
 //! `N` lanes of `f32`, the operations the occlusion walk needs: one
 //! instruction each where the processor has AVX2 (eight lanes in a `ymm`
-//! register, four in an `xmm`, through `pulp`'s safe intrinsics: no
-//! `unsafe` of ours), a loop over an array elsewhere ([`Portable`]).
+//! register, through `pulp`'s safe intrinsics: no `unsafe` of ours), a
+//! loop over an array elsewhere ([`Portable`]); and the per-segment slab
+//! constants in four `f64` lanes ([`axes4`]).
 //!
 //! Each operation is the same IEEE operation on every lane in every form
 //! (no fused multiply-add; `max` and `min` as `maxps` and `minps` define
@@ -29,8 +30,6 @@ pub(super) trait Lanes<const N: usize>: Copy {
     fn gt(self, a: Self::F, b: Self::F) -> u32 {
         self.lt(b, a)
     }
-    /// The lanes as an array.
-    fn store(self, a: Self::F) -> [f32; N];
 }
 
 /// Lanes as arrays, one operation a lane.
@@ -75,25 +74,17 @@ impl<const N: usize> Lanes<N> for Portable {
     fn lt(self, a: [f32; N], b: [f32; N]) -> u32 {
         (0..N).fold(0, |m, l| m | u32::from(a[l] < b[l]) << l)
     }
-    #[inline(always)]
-    fn store(self, a: [f32; N]) -> [f32; N] {
-        a
-    }
 }
 
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
 mod avx {
     use super::Lanes;
-    use core::arch::x86_64::{__m128, __m256, _CMP_LE_OQ, _CMP_LT_OQ};
+    use core::arch::x86_64::{__m256, _CMP_LE_OQ, _CMP_LT_OQ};
     use pulp::x86::V3;
 
     /// Eight lanes in a `ymm` register.
     #[derive(Clone, Copy, Debug)]
     pub(in super::super) struct Avx8(pub(in super::super) V3);
-
-    /// Four lanes in an `xmm` register.
-    #[derive(Clone, Copy, Debug)]
-    pub(in super::super) struct Sse4(pub(in super::super) V3);
 
     impl Lanes<8> for Avx8 {
         type F = __m256;
@@ -135,61 +126,11 @@ mod avx {
             let m = self.0.avx._mm256_cmp_ps::<_CMP_LT_OQ>(a, b);
             self.0.avx._mm256_movemask_ps(m) as u32
         }
-        #[inline(always)]
-        fn store(self, a: __m256) -> [f32; 8] {
-            pulp::cast(a)
-        }
-    }
-
-    impl Lanes<4> for Sse4 {
-        type F = __m128;
-        #[inline(always)]
-        fn load(self, a: &[f32; 4]) -> __m128 {
-            pulp::cast(*a)
-        }
-        #[inline(always)]
-        fn splat(self, x: f32) -> __m128 {
-            self.0.sse._mm_set1_ps(x)
-        }
-        #[inline(always)]
-        fn add(self, a: __m128, b: __m128) -> __m128 {
-            self.0.sse._mm_add_ps(a, b)
-        }
-        #[inline(always)]
-        fn sub(self, a: __m128, b: __m128) -> __m128 {
-            self.0.sse._mm_sub_ps(a, b)
-        }
-        #[inline(always)]
-        fn mul(self, a: __m128, b: __m128) -> __m128 {
-            self.0.sse._mm_mul_ps(a, b)
-        }
-        #[inline(always)]
-        fn max(self, a: __m128, b: __m128) -> __m128 {
-            self.0.sse._mm_max_ps(a, b)
-        }
-        #[inline(always)]
-        fn min(self, a: __m128, b: __m128) -> __m128 {
-            self.0.sse._mm_min_ps(a, b)
-        }
-        #[inline(always)]
-        fn le(self, a: __m128, b: __m128) -> u32 {
-            let m = self.0.avx._mm_cmp_ps::<_CMP_LE_OQ>(a, b);
-            self.0.sse._mm_movemask_ps(m) as u32
-        }
-        #[inline(always)]
-        fn lt(self, a: __m128, b: __m128) -> u32 {
-            let m = self.0.avx._mm_cmp_ps::<_CMP_LT_OQ>(a, b);
-            self.0.sse._mm_movemask_ps(m) as u32
-        }
-        #[inline(always)]
-        fn store(self, a: __m128) -> [f32; 4] {
-            pulp::cast(a)
-        }
     }
 }
 
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
-pub(super) use avx::{Avx8, Sse4};
+pub(super) use avx::Avx8;
 
 /// [`Ray32::axes`](super::ray::Ray32::axes) of four lanes in AVX
 /// registers: the same operations in the same order on each lane (so the
@@ -249,5 +190,8 @@ pub(super) fn axes4(v3: pulp::x86::V3, p: [f64; 4], d: [f64; 4]) -> super::ray::
 #[inline(always)]
 fn clamp4(v3: pulp::x86::V3, v: core::arch::x86_64::__m128) -> core::arch::x86_64::__m128 {
     let sse = v3.sse;
-    sse._mm_max_ps(sse._mm_min_ps(v, sse._mm_set1_ps(f32::MAX)), sse._mm_set1_ps(-f32::MAX))
+    sse._mm_max_ps(
+        sse._mm_min_ps(v, sse._mm_set1_ps(f32::MAX)),
+        sse._mm_set1_ps(-f32::MAX),
+    )
 }

@@ -230,7 +230,9 @@ impl<'a> Pack<'a> {
     #[inline(always)]
     fn row(&self, k: usize, axis: usize) -> &'a [f32; PACK] {
         let at = HEADER + (3 * k + axis) * self.count;
-        self.data[at..at + PACK].try_into().expect("within the span")
+        self.data[at..at + PACK]
+            .try_into()
+            .expect("within the span")
     }
 
     /// `M`, `ε_c`, `Ê`, `ε_E`.
@@ -305,9 +307,8 @@ fn terms(p: DVec3, x: DVec3) -> Terms {
         .abs()
         .max((x - x32.as_dvec3()).abs())
         .max_element();
-    let length_error = ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON))
-        .max_element()
-        * WIDEN;
+    let length_error =
+        ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON)).max_element() * WIDEN;
     let length = f64::from(d32.abs().max_element()) + length_error;
     let reach = f64::from(p32.abs().max(x32.abs()).max_element());
     Terms {
@@ -462,7 +463,10 @@ fn cross<S: Lanes<PACK>>(s: S, u: V3s<S>, v: V3s<S>) -> V3s<S> {
 /// `u · v`, summed left to right.
 #[inline(always)]
 fn dot<S: Lanes<PACK>>(s: S, u: V3s<S>, v: V3s<S>) -> S::F {
-    s.add(s.add(s.mul(u[0], v[0]), s.mul(u[1], v[1])), s.mul(u[2], v[2]))
+    s.add(
+        s.add(s.mul(u[0], v[0]), s.mul(u[1], v[1])),
+        s.mul(u[2], v[2]),
+    )
 }
 
 #[cfg(test)]
@@ -474,8 +478,11 @@ mod tests {
 
     /// The packs holding `triangles` (one pack), occluder indices in order.
     fn packs_of(triangles: &[[DVec3; 3]]) -> Packs {
-        let with_ids: Vec<([DVec3; 3], u32)> =
-            triangles.iter().enumerate().map(|(i, &t)| (t, i as u32)).collect();
+        let with_ids: Vec<([DVec3; 3], u32)> = triangles
+            .iter()
+            .enumerate()
+            .map(|(i, &t)| (t, i as u32))
+            .collect();
         let mut packs = Packs::default();
         packs.push(&with_ids);
         packs.finish();
@@ -530,8 +537,11 @@ mod tests {
             2 => (t[0] + t[1] + t[2]) / 3.0,
             _ => point(rng),
         };
-        let away = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0))
-            * scale
+        let away = DVec3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        ) * scale
             * 3.0;
         let ulps = |v: f64, n: i64| f64::from_bits((v.to_bits() as i64 + n) as u64);
         let nudge = |rng: &mut Rng, q: DVec3| {
@@ -570,7 +580,11 @@ mod tests {
         let mut tally = [0usize; 3];
         for case in 0..20_000 {
             let scale = rng.log_uniform(-6.0, 6.0);
-            let centre = if rng.chance(0.5) { 0.0 } else { rng.log_uniform(0.0, 9.0) * rng.sign() };
+            let centre = if rng.chance(0.5) {
+                0.0
+            } else {
+                rng.log_uniform(0.0, 9.0) * rng.sign()
+            };
             let f32_exact = case % 3 == 0;
             let round = |v: DVec3| if f32_exact { v.as_vec3().as_dvec3() } else { v };
             let mut corner = |rng: &mut Rng| {
@@ -595,14 +609,22 @@ mod tests {
             }
             let target = triangles[rng.below(count as u64) as usize];
             let (p, x) = segment(&mut rng, &target, scale);
-            let (p, x) = if f32_exact || rng.chance(0.5) { (round(p), round(x)) } else { (p, x) };
+            let (p, x) = if f32_exact || rng.chance(0.5) {
+                (round(p), round(x))
+            } else {
+                (p, x)
+            };
             let (hit, unsure) = verdicts_of(&triangles, p, x);
             for (lane, t) in triangles.iter().enumerate() {
                 let exact = segment_blocked(p, x, t);
                 if unsure >> lane & 1 == 1 {
                     tally[2] += 1;
                 } else {
-                    assert_eq!(hit >> lane & 1 == 1, exact, "case {case} lane {lane}: {t:?} {p:?} {x:?}");
+                    assert_eq!(
+                        hit >> lane & 1 == 1,
+                        exact,
+                        "case {case} lane {lane}: {t:?} {p:?} {x:?}"
+                    );
                     tally[usize::from(exact)] += 1;
                 }
             }
@@ -623,7 +645,11 @@ mod tests {
         let mut closest = 0.0f64;
         for _ in 0..20_000 {
             let scale = rng.log_uniform(-6.0, 6.0);
-            let centre = if rng.chance(0.5) { 0.0 } else { rng.log_uniform(0.0, 9.0) * rng.sign() };
+            let centre = if rng.chance(0.5) {
+                0.0
+            } else {
+                rng.log_uniform(0.0, 9.0) * rng.sign()
+            };
             let f32_exact = rng.chance(0.3);
             let round = |v: DVec3| if f32_exact { v.as_vec3().as_dvec3() } else { v };
             let mut corner = |rng: &mut Rng| {
@@ -633,11 +659,16 @@ mod tests {
                     coordinate(rng, centre, scale),
                 ))
             };
-            let triangles: Vec<[DVec3; 3]> =
-                (0..PACK).map(|_| [corner(&mut rng), corner(&mut rng), corner(&mut rng)]).collect();
+            let triangles: Vec<[DVec3; 3]> = (0..PACK)
+                .map(|_| [corner(&mut rng), corner(&mut rng), corner(&mut rng)])
+                .collect();
             let target = triangles[rng.below(PACK as u64) as usize];
             let (p, x) = segment(&mut rng, &target, scale);
-            let (p, x) = if rng.chance(0.5) { (round(p), round(x)) } else { (p, x) };
+            let (p, x) = if rng.chance(0.5) {
+                (round(p), round(x))
+            } else {
+                (p, x)
+            };
             let packs = packs_of(&triangles);
             let pack = packs.get(0);
             let ray = LeafRay::new(Portable, p, x);
@@ -666,7 +697,10 @@ mod tests {
             }
         }
         eprintln!("largest error / bound: {closest:.3e}");
-        assert!(closest > 1e-2, "the cases come near their bounds: {closest:e}");
+        assert!(
+            closest > 1e-2,
+            "the cases come near their bounds: {closest:e}"
+        );
     }
 
     /// On ordinary segments — triangles of a soup, segments from a floor to
@@ -677,11 +711,26 @@ mod tests {
         let mut rng = Rng::new(53);
         let (mut lanes, mut unsure_lanes) = (0u32, 0u32);
         for _ in 0..20_000 {
-            let centre = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(0.1, 0.9));
+            let centre = DVec3::new(
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(-1.0, 1.0),
+                rng.uniform(0.1, 0.9),
+            );
             let triangles: Vec<[DVec3; 3]> = (0..PACK)
                 .map(|_| {
-                    let c = centre + DVec3::new(rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05), rng.uniform(-0.05, 0.05));
-                    [0, 1, 2].map(|_| c + DVec3::new(rng.uniform(-0.01, 0.01), rng.uniform(-0.01, 0.01), rng.uniform(-0.01, 0.01)))
+                    let c = centre
+                        + DVec3::new(
+                            rng.uniform(-0.05, 0.05),
+                            rng.uniform(-0.05, 0.05),
+                            rng.uniform(-0.05, 0.05),
+                        );
+                    [0, 1, 2].map(|_| {
+                        c + DVec3::new(
+                            rng.uniform(-0.01, 0.01),
+                            rng.uniform(-0.01, 0.01),
+                            rng.uniform(-0.01, 0.01),
+                        )
+                    })
                 })
                 .collect();
             let p = DVec3::new(rng.uniform(-1.5, 1.5), rng.uniform(-1.5, 1.5), -0.5);
@@ -690,6 +739,9 @@ mod tests {
             lanes += PACK as u32;
             unsure_lanes += unsure.count_ones();
         }
-        assert!(unsure_lanes * 10_000 < lanes, "{unsure_lanes} of {lanes} uncertain");
+        assert!(
+            unsure_lanes * 10_000 < lanes,
+            "{unsure_lanes} of {lanes} uncertain"
+        );
     }
 }

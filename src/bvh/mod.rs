@@ -115,7 +115,9 @@ impl Source<'_> {
             Item::Node(n) => *self.tree.nodes[n].aabb(),
             Item::Leaf(first, count) => prims[first..first + count]
                 .iter()
-                .fold(Aabb::empty(), |b, &i| b.union(&self.groups.boxes[i as usize])),
+                .fold(Aabb::empty(), |b, &i| {
+                    b.union(&self.groups.boxes[i as usize])
+                }),
             Item::Members(first, count) => order[first..first + count]
                 .iter()
                 .fold(Aabb::empty(), |b, &i| b.union(&self.boxes[i as usize])),
@@ -156,7 +158,10 @@ impl Source<'_> {
             }
             Item::Leaf(first, count) if count > 1 => {
                 let (a, na, b, nb) = halves(first, count);
-                Some([self.normal(Item::Leaf(a, na)), self.normal(Item::Leaf(b, nb))])
+                Some([
+                    self.normal(Item::Leaf(a, na)),
+                    self.normal(Item::Leaf(b, nb)),
+                ])
             }
             Item::Members(first, count) if count > 1 => {
                 let (a, na, b, nb) = halves(first, count);
@@ -177,7 +182,9 @@ impl Source<'_> {
                 .enumerate()
                 .filter(|(_, &item)| openable(item) && self.children(item).is_some())
                 .max_by(|(_, &a), (_, &b)| {
-                    self.aabb(a).half_area().total_cmp(&self.aabb(b).half_area())
+                    self.aabb(a)
+                        .half_area()
+                        .total_cmp(&self.aabb(b).half_area())
                 })
                 .map(|(k, _)| k);
             let Some(k) = widest else { break };
@@ -191,36 +198,6 @@ impl Source<'_> {
         lanes
     }
 
-    /// The number of triangles under each of obvhs's nodes.
-    fn counts(&self) -> Vec<u32> {
-        let nodes = &self.tree.nodes;
-        let mut counts = vec![0u32; nodes.len()];
-        // Parents before children, then children summed into parents.
-        let mut order = vec![0usize];
-        let mut k = 0;
-        while k < order.len() {
-            let node = &nodes[order[k]];
-            if !node.is_leaf() {
-                order.push(node.first_index as usize);
-                order.push(node.first_index as usize + 1);
-            }
-            k += 1;
-        }
-        for &n in order.iter().rev() {
-            let node = &nodes[n];
-            let first = node.first_index as usize;
-            counts[n] = if node.is_leaf() {
-                self.tree.primitive_indices[first..first + node.prim_count as usize]
-                    .iter()
-                    .map(|&prim| self.groups.ranges[prim as usize].1)
-                    .sum()
-            } else {
-                counts[first] + counts[first + 1]
-            };
-        }
-        counts
-    }
-
     /// The indices (in the kept boxes) of the triangles under `item`, in
     /// order.
     fn members(&self, item: Item, out: &mut Vec<u32>) {
@@ -228,7 +205,10 @@ impl Source<'_> {
             Item::Node(n) => {
                 let first = self.tree.nodes[n].first_index as usize;
                 if self.tree.nodes[n].is_leaf() {
-                    self.members(Item::Leaf(first, self.tree.nodes[n].prim_count as usize), out);
+                    self.members(
+                        Item::Leaf(first, self.tree.nodes[n].prim_count as usize),
+                        out,
+                    );
                 } else {
                     self.members(Item::Node(first), out);
                     self.members(Item::Node(first + 1), out);
@@ -237,9 +217,7 @@ impl Source<'_> {
             Item::Leaf(first, count) => {
                 for &prim in &self.tree.primitive_indices[first..first + count] {
                     let (at, count) = self.groups.ranges[prim as usize];
-                    out.extend_from_slice(
-                        &self.groups.order[at as usize..(at + count) as usize],
-                    );
+                    out.extend_from_slice(&self.groups.order[at as usize..(at + count) as usize]);
                 }
             }
             Item::Members(first, count) => {
@@ -292,7 +270,10 @@ impl fmt::Debug for Bvh {
             .field("indexed", &self.triangles.len())
             .field("nodes", &self.nodes.len())
             .field("occlusion_nodes", &self.wide.len())
-            .field("occlusion_bytes", &(self.wide.len() * 256 + self.packs.bytes()))
+            .field(
+                "occlusion_bytes",
+                &(self.wide.len() * 256 + self.packs.bytes()),
+            )
             .finish()
     }
 }

@@ -2,9 +2,9 @@
 //! boxes, and the any-hit traversal over the occlusion tree
 //! ([`Bvh::segment_unoccluded`]).
 
-use super::lanes::{Lanes, Portable};
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
 use super::lanes::Avx8;
+use super::lanes::{Lanes, Portable};
 use super::leaf::{self, LeafRay, PACK};
 use super::node::{decode, Node, EMPTY, WIDTH};
 use super::wide::{WideNode, LEAF as WIDE_LEAF, WIDE};
@@ -156,10 +156,8 @@ impl Bvh {
         // The common case in one test (a NaN or an infinity fails it too),
         // the others out of line: for a segment that misses the root's
         // boxes the set-up is most of the query.
-        let common = in_f32_range(p)
-            && in_f32_range(x)
-            && self.outliers.is_empty()
-            && !self.wide.is_empty();
+        let common =
+            in_f32_range(p) && in_f32_range(x) && self.outliers.is_empty() && !self.wide.is_empty();
         if !common {
             if let Some(answer) = self.unoccluded_off_tree(p, x) {
                 return answer;
@@ -357,9 +355,21 @@ impl<F: Copy> WideSlab<F> {
     #[inline(always)]
     pub(super) fn new<S: Lanes<WIDE, F = F>>(s: S, ray: &Ray32) -> WideSlab<F> {
         WideSlab {
-            near: [s.splat(ray.near[0]), s.splat(ray.near[1]), s.splat(ray.near[2])],
-            far: [s.splat(ray.far[0]), s.splat(ray.far[1]), s.splat(ray.far[2])],
-            inv: [s.splat(ray.inv[0]), s.splat(ray.inv[1]), s.splat(ray.inv[2])],
+            near: [
+                s.splat(ray.near[0]),
+                s.splat(ray.near[1]),
+                s.splat(ray.near[2]),
+            ],
+            far: [
+                s.splat(ray.far[0]),
+                s.splat(ray.far[1]),
+                s.splat(ray.far[2]),
+            ],
+            inv: [
+                s.splat(ray.inv[0]),
+                s.splat(ray.inv[1]),
+                s.splat(ray.inv[2]),
+            ],
             entry: ray.entry,
             one: s.splat(1.0),
             slack: s.splat(T_SLACK),

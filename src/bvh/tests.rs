@@ -1,12 +1,12 @@
 //! The invariants the conservative traversal rests on: decoded boxes contain
 //! their triangles, ray origins are padded outward, quantisation is tight.
 
-use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
 use super::lanes::Portable;
 use super::leaf::PACK;
+use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
 use super::ray::{Ray32, WideSlab};
 use super::wide::{WideNode, EMPTY as WIDE_EMPTY, LEAF as WIDE_LEAF, WIDE};
-use super::{Bvh, OcclusionCounts, Occluders};
+use super::{Bvh, Occluders, OcclusionCounts};
 use crate::arbitrary::Rng;
 use crate::kernel::segment::segment_blocked;
 use glam::DVec3;
@@ -106,7 +106,10 @@ fn check_wide(bvh: &Bvh) {
             for &id in &below {
                 let t = bvh.occluders.triangles()[id as usize].map(clamp);
                 let (t_lo, t_hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
-                assert!(lo.cmple(t_lo).all() && hi.cmpge(t_hi).all(), "lane {lane} of node {node}");
+                assert!(
+                    lo.cmple(t_lo).all() && hi.cmpge(t_hi).all(),
+                    "lane {lane} of node {node}"
+                );
             }
             if child & WIDE_LEAF == 0 {
                 stack.push(child);
@@ -517,14 +520,26 @@ fn slab_test_keeps_boxes_the_segment_touches() {
     };
     for case in 0..50_000 {
         let scale = rng.log_uniform(-6.0, 6.0);
-        let centre = if rng.chance(0.5) { 0.0 } else { rng.log_uniform(0.0, 9.0) * rng.sign() };
+        let centre = if rng.chance(0.5) {
+            0.0
+        } else {
+            rng.log_uniform(0.0, 9.0) * rng.sign()
+        };
         let mut node = WideNode::EMPTY_NODE;
         let lanes = 1 + rng.below(WIDE as u64) as usize;
         let mut boxes = Vec::new();
         for lane in 0..lanes {
             let (a, b) = (
-                DVec3::new(coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale)),
-                DVec3::new(coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale), coordinate(&mut rng, centre, scale)),
+                DVec3::new(
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                ),
+                DVec3::new(
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                ),
             );
             let (lo, hi) = (a.min(b).as_vec3(), a.max(b).as_vec3());
             for axis in 0..3 {
@@ -538,7 +553,11 @@ fn slab_test_keeps_boxes_the_segment_touches() {
         let (lo, hi) = boxes[lane];
         // A point of the box's surface: on one face (or an edge, or a
         // corner), inside it on the other axes.
-        let mut on = DVec3::new(rng.uniform(lo.x, hi.x), rng.uniform(lo.y, hi.y), rng.uniform(lo.z, hi.z));
+        let mut on = DVec3::new(
+            rng.uniform(lo.x, hi.x),
+            rng.uniform(lo.y, hi.y),
+            rng.uniform(lo.z, hi.z),
+        );
         let face = rng.below(3) as usize;
         let pick = |rng: &mut Rng, k: usize| if rng.chance(0.5) { lo[k] } else { hi[k] };
         on[face] = pick(&mut rng, face);
@@ -550,7 +569,12 @@ fn slab_test_keeps_boxes_the_segment_touches() {
                 on[third] = pick(&mut rng, third);
             }
         }
-        let away = DVec3::new(rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0), rng.uniform(-1.0, 1.0)) * scale * 4.0;
+        let away = DVec3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        ) * scale
+            * 4.0;
         let (p, x) = match rng.below(4) {
             0 => (on + away, on),
             1 => (on, on + away),

@@ -118,8 +118,6 @@ impl Bvh {
                 pending.push((left, at, 0));
             }
         }
-        let env = |k: &str, d: f32| std::env::var(k).ok().and_then(|v| v.parse().ok()).unwrap_or(d);
-        let (node_cost, pack_cost) = (env("NODE_COST", NODE_COST), env("PACK_COST", PACK_COST));
         // Costs, children before parents (Ylitie, Karras and Laine 2017,
         // §4: the least cost of each entry on 1 to WIDE lanes).
         let mut best = vec![
@@ -135,7 +133,7 @@ impl Bvh {
         for n in (0..binary.len()).rev() {
             let area = binary[n].aabb.half_area().max(0.0);
             let Some([l, r]) = binary[n].children else {
-                best[n].cost = [area * pack_cost; WIDE];
+                best[n].cost = [area * PACK_COST; WIDE];
                 best[n].pack = true;
                 continue;
             };
@@ -155,8 +153,8 @@ impl Bvh {
                 b.split[k - 1] = split;
             }
             // As one lane: a node over its children's lanes, or a pack.
-            let node = area * node_cost + b.shared[WIDE - 1];
-            let pack = area * pack_cost;
+            let node = area * NODE_COST + b.shared[WIDE - 1];
+            let pack = area * PACK_COST;
             b.pack = binary[n].count as usize <= PACK && pack <= node;
             b.cost[0] = if b.pack { pack } else { node };
             for k in 2..=WIDE {
