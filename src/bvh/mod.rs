@@ -8,20 +8,29 @@
 //!
 //! # How it decides
 //!
-//! The tree is built by `obvhs` (PLOC, `Bvh2`; then our reinsertion,
-//! `reinsert.rs`) over boxes
-//! computed in `f64` and rounded *outward* to `f32` (a run of nested boxes,
-//! on which PLOC is quadratic, given to it as one box and split in halves
-//! by us: `nested.rs`), then collapsed into a
-//! 4-wide tree of our own — one 64-byte node per four children, boxes
-//! quantised outward to 8 bits per plane — whose traversal is conservative
-//! (see [`Bvh::segment_unoccluded`]): the `f32` tree only ever prunes boxes
-//! the true `f64` segment cannot meet. Every triangle the traversal reaches is decided
-//! exactly by [`segment_blocked`], in `f64` with the exact
-//! [`orient3d`]. The answer is therefore
-//! exactly [visibility](crate::definitions#visibility)'s: the light point `x` is visible from `p` iff the open
-//! segment `(p, x)` meets no triangle, with an edge shared by two triangles
-//! never leaking light.
+//! A binary tree is built by `obvhs` (PLOC, `Bvh2`; then our reinsertion,
+//! `reinsert.rs`) over boxes computed in `f64` and rounded *outward* to
+//! `f32` (a run of nested boxes, on which PLOC is quadratic, given to it as
+//! one box and split in halves by us: `nested.rs`), then collapsed into
+//! two trees of our own:
+//!
+//! - the *occlusion tree* (`wide.rs`), for [`Bvh::segment_unoccluded`]:
+//!   eight child boxes a node in structure-of-arrays `f32`, tested in one
+//!   pass, and leaves of up to eight triangles in `f32` (`leaf.rs`),
+//!   tested together with a proven error bound, each triangle whose signs
+//!   the bound leaves uncertain going to the exact test;
+//! - the *4-wide tree* (`node.rs`), for closest hits and culling: one
+//!   64-byte node per four children, boxes quantised outward to 8 bits per
+//!   plane, one triangle a leaf.
+//!
+//! Both traversals are conservative (see [`Bvh::segment_unoccluded`]): the
+//! `f32` trees only ever prune boxes the true `f64` segment cannot meet.
+//! Every triangle a traversal reaches is decided exactly as
+//! [`segment_blocked`] decides it, in `f64` with the exact [`orient3d`]
+//! wherever an `f32` or `f64` evaluation cannot be certain. The answer is
+//! therefore exactly [visibility](crate::definitions#visibility)'s: the
+//! light point `x` is visible from `p` iff the open segment `(p, x)` meets
+//! no triangle, with an edge shared by two triangles never leaking light.
 //!
 //! obvhs's own traversals are not used for rays: its `Triangle::intersect` is
 //! not watertight, its CWBVH node test clamps `t` below at `1e-4` (a box near
@@ -39,19 +48,29 @@
 //!
 //! # Layout
 //!
-//! This file holds the tree and its build; `nested.rs` the runs of nested
-//! boxes the build groups; `reinsert.rs` the improvement of the binary
-//! tree by moving subtrees, its work bounded; `node.rs` the quantised 4-wide
-//! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
-//! traversal ([`Bvh::segment_unoccluded`]; on a tree the caches do not
-//! hold, several nodes at a time, so that their loads overlap);
-//! `closest.rs` the closest hit
-//! ([`Bvh::closest_hit`], [`Hit`]); `packet.rs` the closest hits of eight
-//! coherent rays through one walk (for [`Bvh::closest_hits`]); `hull.rs`
-//! the culling query of the exact
+//! This file holds the trees' build; `nested.rs` the runs of nested boxes
+//! the build groups; `reinsert.rs` the improvement of the binary tree by
+//! moving subtrees, its work bounded; `wide.rs` the occlusion tree's node
+//! and its collapse; `leaf.rs` its leaves' packs and their `f32` test;
+//! `lanes.rs` the eight `f32` lanes both run on (AVX2 through `pulp`, or
+//! portable); `ray.rs` the conservative `f32` slab tests and the any-hit
+//! walk ([`Bvh::segment_unoccluded`]); `node.rs` the quantised 4-wide
+//! node; `closest.rs` the closest hit ([`Bvh::closest_hit`], [`Hit`]);
+//! `packet.rs` the closest hits of eight coherent rays through one walk
+//! (for [`Bvh::closest_hits`]); `hull.rs` the culling query of the exact
 //! reference ([`Bvh::triangles_meeting_hull`]); `occluders.rs` the
 //! triangle list. The exact segment–triangle test itself is a kernel,
 //! [`crate::kernel::segment`].
+//!
+//! # Memory
+//!
+//! Per triangle: the occluders (76 bytes: three `f64` corners and the
+//! object id), the 4-wide tree's copy of each triangle and its index (76)
+//! and nodes (about 21), and the occlusion tree's packs (`32 + 36 n` bytes
+//! for `n` triangles, with each triangle's index: about 40–60 a triangle)
+//! and nodes (about 10–50): about 250 bytes a triangle in all (the
+//! 100,000-triangle soup of `examples/ray_corpus.rs`: 6.9 MB for the
+//! occlusion tree, the sphere 5.8 MB; see [`Bvh::memory`]).
 //!
 //! [`segment_blocked`]: crate::kernel::segment::segment_blocked
 //! [`orient3d`]: crate::kernel::predicate::orient3d
@@ -469,5 +488,45 @@ impl Bvh {
     #[must_use]
     pub fn occluders(&self) -> &Occluders {
         &self.occluders
+    }
+
+    /// The bytes it holds, part by part (the lengths of its arrays; the
+    /// normals only once a closest-hit query has computed them).
+    #[must_use]
+    pub fn memory(&self) -> Memory {
+        use std::mem::size_of;
+        let corners = size_of::<[DVec3; 3]>();
+        Memory {
+            occluders: self.occluders.len() * (corners + size_of::<u32>()),
+            tree: self.nodes.len() * size_of::<Node>()
+                + (self.triangles.len() + self.outliers.len()) * (corners + size_of::<u32>()),
+            occlusion_tree: self.wide.len() * size_of::<wide::WideNode>() + self.packs.bytes(),
+            normals: self
+                .normals
+                .get()
+                .map_or(0, |n| n.len() * size_of::<DVec3>()),
+        }
+    }
+}
+
+/// The bytes a [`Bvh`] holds ([`Bvh::memory`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Memory {
+    /// The triangles it owns and their object ids.
+    pub occluders: usize,
+    /// The 4-wide tree of closest hits and culling: its nodes, and its
+    /// copy of the triangles in leaf order with their indices.
+    pub tree: usize,
+    /// The occlusion tree: its nodes and its leaves' packs.
+    pub occlusion_tree: usize,
+    /// Each triangle's unit normal, once computed.
+    pub normals: usize,
+}
+
+impl Memory {
+    /// All of it.
+    #[must_use]
+    pub fn total(&self) -> usize {
+        self.occluders + self.tree + self.occlusion_tree + self.normals
     }
 }

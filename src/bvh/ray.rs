@@ -62,7 +62,9 @@ impl Bvh {
     /// # How it decides
     ///
     /// The walk goes over the occlusion tree (eight child boxes a node,
-    /// leaves of up to four triangles; `wide.rs`) depth first.
+    /// leaves of up to eight triangles; `wide.rs`) depth first, the loads
+    /// of a node's hit children and packs started together (a value read
+    /// from each) before any is used.
     ///
     /// *The boxes are conservative.* With `o = fl32(p)` and
     /// `d = fl32(fl64(x − p))` (a component below `2⁻¹⁰⁰` in magnitude
@@ -403,7 +405,7 @@ pub struct OcclusionCounts {
     pub segments: u64,
     /// Nodes whose child boxes were tested.
     pub nodes: u64,
-    /// Leaves (packs of up to four triangles) tested in `f32`.
+    /// Leaves (packs of up to eight triangles) tested in `f32`.
     pub leaves: u64,
     /// Triangles tested in `f32`.
     pub triangles: u64,

@@ -1,27 +1,36 @@
 //! The occlusion tree: [`WIDE`] children a node, their boxes in
-//! structure-of-arrays `f32` (one slab test over all of them at once),
-//! leaves of up to [`PACK`] triangles (`leaf.rs`), and its build from the
-//! binary tree.
+//! structure-of-arrays `f32` (one slab test over all eight at once), leaves
+//! of up to [`PACK`] triangles (`leaf.rs`), and its build from the binary
+//! tree.
 //!
 //! # Layout
 //!
 //! A [`WideNode`] is 256 bytes, four cache lines: the six planes of its
-//! eight child boxes (`[side][axis][lane]`, the `f32` boxes of the build,
+//! eight child boxes (`[side][axis][lane]`: the `f32` boxes of the build,
 //! themselves rounded outward from the `f64` triangles, so each contains
-//! every triangle below it exactly), and eight child references — an
-//! inner node's index, [`LEAF`] `|` a pack's index, or [`EMPTY`], whose box
-//! is inverted (`lo = f32::MAX`, `hi = −f32::MAX`) so that no segment's slab
-//! test keeps it. A pack of `n` triangles takes `32 + 36 n` bytes
-//! (`leaf.rs`).
+//! every triangle below it exactly), eight child references — an inner
+//! node's index, [`LEAF`] `|` a pack's index, or [`EMPTY`], whose box is
+//! inverted (`lo = f32::MAX`, `hi = −f32::MAX`) so that no segment's slab
+//! test keeps it — and the mask of the lanes holding packs. A pack of `n`
+//! triangles takes `32 + 36 n` bytes (`leaf.rs`). The child boxes are not
+//! quantised as the 4-wide tree's are: the walk's time goes to its loads
+//! and to the leaves, and decoding eight lanes' planes would add about a
+//! third to a node visit's instructions.
 //!
 //! # Build
 //!
 //! Collapsed from the same binary tree as the 4-wide tree (PLOC and
 //! reinsertion over the triangles' boxes, the runs of nested boxes split
-//! in halves: `Source`): a node takes up to [`WIDE`] descendants,
-//! repeatedly opening, among those holding more than [`PACK`] triangles,
-//! the one of largest area; a descendant of at most [`PACK`] triangles
-//! becomes a pack, a larger one a node.
+//! in halves: `Source`), by the surface area heuristic: for every entry of
+//! the binary tree, children before parents, the least expected cost of
+//! representing it on `k = 1..=WIDE` lanes of its parent — as one lane (a
+//! pack, if it holds at most [`PACK`] triangles, or a node over its
+//! children's best sharing of `WIDE` lanes) or its children sharing the
+//! `k` lanes — where a node costs [`NODE_COST`] and a pack [`PACK_COST`]
+//! times its area (the chance a random ray meets its box). This is the
+//! optimal collapse of Ylitie, Karras and Laine ("Efficient Incoherent Ray
+//! Traversal on GPUs Through Compressed Wide BVHs", 2017, §4); the nodes
+//! are then laid out from the root down as the choices say.
 
 use super::leaf::PACK;
 use super::{Bvh, Item, Source};
@@ -57,11 +66,15 @@ impl WideNode {
     };
 }
 
-/// The cost of visiting a node, relative to testing a pack, in the
-/// surface area heuristic the collapse minimises (measured: a node visit
-/// about 50 instructions and four cache lines, a pack's test about 170
-/// and five).
+/// The cost of visiting a node, in the surface area heuristic the collapse
+/// minimises, per unit of its area.
 const NODE_COST: f32 = 1.0;
+/// The cost of testing a pack, per unit of its area. A node visit costs
+/// about 50 instructions and four cache lines, a pack's test about 190
+/// and three to five lines; equal costs were measured best (higher pack
+/// costs make smaller packs — fewer instructions on the soup of
+/// `examples/ray_corpus.rs`, 1.3: 3,730 against 4,126 a ray — but more
+/// nodes and memory, 9.0 against 6.9 MB, and more time).
 const PACK_COST: f32 = 1.0;
 
 /// An entry of the binary tree, made explicit for the collapse.
