@@ -173,7 +173,28 @@ impl Bvh {
             inv: [axes.inv[0], axes.inv[1], axes.inv[2]],
             entry: [0, 1, 2].map(|k| usize::from(axes.backward[k])),
         };
-        self.walk(s, p, x, &ray, tally)
+        let need = self.wide_stack_need();
+        if need <= STACK {
+            self.walk(s, p, x, &ray, tally, &mut ArrayStack::new(need))
+        } else {
+            self.deep_walk(s, p, x, &ray, tally)
+        }
+    }
+
+    /// [`Bvh::walk`] on a tree too deep for an [`ArrayStack`]: its stack
+    /// on the heap.
+    #[cold]
+    #[inline(never)]
+    fn deep_walk<S: WalkLanes, T: Tally>(
+        &self,
+        s: S,
+        p: DVec3,
+        x: DVec3,
+        ray: &Ray32,
+        tally: &mut T,
+    ) -> bool {
+        let mut entries = vec![0; self.wide_stack_need()];
+        self.walk(s, p, x, ray, tally, &mut SliceStack(&mut entries))
     }
 
     /// [`Bvh::segment_unoccluded`] where its endpoints leave the `f32`
@@ -197,16 +218,15 @@ impl Bvh {
     /// The any-hit walk of [`Bvh::segment_unoccluded`] over the occlusion
     /// tree, depth first.
     #[inline(always)]
-    fn walk<S: WalkLanes, T: Tally>(
+    fn walk<S: WalkLanes, T: Tally, K: WalkStack>(
         &self,
         s: S,
         p: DVec3,
         x: DVec3,
         ray: &Ray32,
         tally: &mut T,
+        stack: &mut K,
     ) -> bool {
-        let mut stack = NodeStack::<STACK>::new();
-        let stack = stack.entries(self.wide_stack_need());
         let (mut top, mut node) = (0usize, 0u32);
         // The leaves' constants, on the first leaf (most of Monte Carlo's
         // rays miss the root's boxes).
@@ -227,7 +247,7 @@ impl Bvh {
             while inner != 0 {
                 let child = n.child[inner.trailing_zeros() as usize];
                 inner &= inner - 1;
-                stack[top] = child;
+                stack.set(top, child);
                 top += 1;
                 touched = touched.wrapping_add(self.wide[child as usize].child[0]);
             }
@@ -257,7 +277,7 @@ impl Bvh {
                 return true;
             }
             top -= 1;
-            node = stack[top];
+            node = stack.get(top);
         }
     }
 
@@ -395,6 +415,63 @@ impl<F: Copy> WideSlab<F> {
             t_far = s.min(b, t_far);
         }
         s.le(t_near, s.mul(t_far, self.slack))
+    }
+}
+
+/// The occlusion walk's stack of node indices (its bound proven by
+/// `Bvh::wide_stack_need`).
+pub(super) trait WalkStack {
+    fn set(&mut self, at: usize, node: u32);
+    fn get(&self, at: usize) -> u32;
+}
+
+/// [`STACK`] entries on the machine stack, indexed modulo [`STACK`] (no
+/// bounds test: a tree whose walk needs at most [`STACK`] entries never
+/// indexes beyond them; the tests' builds check the proven bound).
+pub(super) struct ArrayStack {
+    entries: [u32; STACK],
+    #[cfg(debug_assertions)]
+    need: usize,
+}
+
+impl ArrayStack {
+    #[inline(always)]
+    pub(super) fn new(need: usize) -> ArrayStack {
+        debug_assert!(need <= STACK);
+        let _ = need;
+        ArrayStack {
+            entries: [0; STACK],
+            #[cfg(debug_assertions)]
+            need,
+        }
+    }
+}
+
+impl WalkStack for ArrayStack {
+    #[inline(always)]
+    fn set(&mut self, at: usize, node: u32) {
+        #[cfg(debug_assertions)]
+        assert!(at < self.need, "the walk outgrew its proven stack");
+        self.entries[at % STACK] = node;
+    }
+    #[inline(always)]
+    fn get(&self, at: usize) -> u32 {
+        self.entries[at % STACK]
+    }
+}
+
+/// Entries on the heap, exactly as many as the bound (a walk outgrowing
+/// it panics).
+pub(super) struct SliceStack<'a>(&'a mut [u32]);
+
+impl WalkStack for SliceStack<'_> {
+    #[inline(always)]
+    fn set(&mut self, at: usize, node: u32) {
+        self.0[at] = node;
+    }
+    #[inline(always)]
+    fn get(&self, at: usize) -> u32 {
+        self.0[at]
     }
 }
 
