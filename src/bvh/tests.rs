@@ -639,3 +639,43 @@ fn slab_constants_agree_on_every_lane_form() {
         }
     }
 }
+
+/// A tree deeper than the machine-stack walk takes (triangles spaced ever
+/// farther apart along a line: PLOC chains them): the walk on the heap
+/// answers as brute force does.
+#[test]
+fn a_deep_tree_is_walked_on_the_heap() {
+    let tris: Vec<[DVec3; 3]> = (0..400)
+        .map(|k| {
+            let x = 1.07f64.powi(k) - 1.0;
+            [
+                DVec3::new(x, -1.0, -1.0),
+                DVec3::new(x, 1.0, -1.0),
+                DVec3::new(x, 0.0, 1.0),
+            ]
+        })
+        .collect();
+    let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
+    assert!(
+        bvh.wide_stack_need() > super::ray::STACK,
+        "depth {}",
+        bvh.wide_depth
+    );
+    check_wide(&bvh);
+    let mut rng = Rng::new(71);
+    for _ in 0..200 {
+        let p = DVec3::new(
+            rng.uniform(-1.0, 1e12),
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-2.0, 2.0),
+        );
+        let x = DVec3::new(
+            rng.uniform(-1.0, 1e12),
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-2.0, 2.0),
+        );
+        let brute = !tris.iter().any(|t| segment_blocked(p, x, t));
+        assert_eq!(bvh.segment_unoccluded(p, x), brute, "{p:?} → {x:?}");
+        assert_eq!(bvh.unoccluded_here(Portable, p, x, &mut ()), brute);
+    }
+}
