@@ -550,16 +550,12 @@ impl Ray32 {
     #[inline(always)]
     pub(super) fn in_range(p: DVec3, x: DVec3) -> Ray32 {
         let d = x - p;
-        // Four lanes (the fourth a copy of the third), which the compiler
-        // puts in one vector; the lanes are independent, so the bits are
-        // the three axes'.
-        let axes = Ray32::axes([p.x, p.y, p.z, p.z], [d.x, d.y, d.z, d.z]);
-        let three = |v: [f32; 4]| [v[0], v[1], v[2]];
+        let axes = Ray32::axes(p.to_array(), d.to_array());
         Ray32 {
-            near: three(axes.near),
-            far: three(axes.far),
-            inv: three(axes.inv),
-            entry: [0, 1, 2].map(|k| usize::from(axes.backward[k])),
+            near: axes.near,
+            far: axes.far,
+            inv: axes.inv,
+            entry: axes.backward.map(usize::from),
         }
     }
 
