@@ -68,9 +68,31 @@
 //! at most `2⁴⁰` (elsewhere every lane goes to the exact test), so every
 //! row is below `2⁴²` in magnitude, no value overflows, and the absolute
 //! error of the products that underflow (at most `2⁻¹⁵⁰` each, carried
-//! through by factors below `2⁴²`) stays below `2⁻¹⁰⁴`. The bounds are
-//! computed in `f64` from the `f32` inputs (a dozen roundings of `2⁻⁵³`)
-//! and widened by `2⁻²²` before they are rounded to `f32`.
+//! through by factors below `2⁴²`) stays below `2⁻¹⁰⁴`.
+//!
+//! # Evaluating the bounds
+//!
+//! `Â` and `ε_a` are sums of a pack's part and a segment's: `Â = m + r`,
+//! `ε_a = m′ + r′` with `m = M (1 + u) + ε_c`, `m′ = u M + ε_c`, `r = R (1 +
+//! u) + ε_r`, `r′ = u R + ε_r`. Multiplied out, with `k_e = 6 (γ₅ D̂ +
+//! ε_d)` and `k_l = 6 D̂`,
+//!
+//! `B_e − F = k_e (Ê m) + k_l (Ê m′ + ε_E m) + (k_e r + k_l r′) Ê + (k_l r) ε_E`,
+//!
+//! `B_s − F = (m Q₁ + m′ Q₂) + r Q₁ + r′ Q₂`, `Q₁ = 6 γ₅ Ê² + 12 Ê ε_E`, `Q₂ = 6 Ê²`:
+//!
+//! each a short sum of products of a pack's terms (computed once, at the
+//! build: `Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E`, and `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`)
+//! and a segment's (computed once a segment). Every term is nonnegative;
+//! each is computed in `f64` from exact inputs (a few roundings of
+//! `2⁻⁵³`), widened by `2⁻²²` and rounded up to `f32` (a pack's) or kept
+//! in `f64` (a segment's), and the sums, computed in `f64` (three
+//! roundings), are widened by `2⁻²²` again before they are rounded to
+//! `f32`: the bounds used are at least `B_e` and `B_s`. A pack whose `M`
+//! exceeds `2⁴⁰` stores `+∞` for the terms with `m` in them, a segment
+//! whose `R` does for `r` and `r′`: its bounds are then `+∞` or NaN (a
+//! product `0 · ∞`), and no computed volume compares certain against
+//! either (the comparisons are ordered), so every lane is uncertain.
 //!
 //! # Certain lanes
 //!
@@ -113,28 +135,27 @@ const REACH: f64 = (1u64 << 40) as f64;
 /// The widening of a bound computed in `f64` before rounding it to `f32`.
 const WIDEN: f64 = 1.0 + 1.0 / (1u32 << 22) as f64;
 
-/// Floats of a pack's header: the lane count (bits), `M`, `ε_c`, `Ê`,
-/// `ε_E`, the index of its first occluder index in [`Packs::ids`] (bits),
-/// and two unused.
+/// Floats of a pack's header: the lane count less one (bits), the
+/// edge bound's terms `Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E` and the plane
+/// bound's `m Q₁ + m′ Q₂`, `Q₁`, `Q₂` (see the module docs).
 const HEADER: usize = 8;
 /// The floats read from a pack's start, at most: the header, nine rows of
-/// [`PACK`] lanes each read [`PACK`] floats on.
-const SPAN: usize = HEADER + 9 * PACK;
+/// [`PACK`] lanes each read [`PACK`] floats on, and the occluder indices
+/// after them.
+const SPAN: usize = HEADER + 9 * PACK + PACK;
 
 /// The leaves' packs, one after another in one array of `f32`, each on a
 /// multiple of eight floats (32 bytes): a header of [`HEADER`] floats,
 /// then its triangles' corners rounded to nearest `f32`, row by row
 /// (corner `k`, axis `a`: row `3k + a`), each row `count` floats long (a
-/// lane a triangle). A row is read as [`PACK`] floats, the lanes beyond
-/// `count` being whatever follows (masked off: their verdicts are not
-/// used); the array ends with [`SPAN`] floats of padding, so every read
-/// stays within it. A pack of `n` triangles takes `32 + 36 n` bytes,
-/// rounded up to 32.
+/// lane a triangle), then the triangles' occluder indices (their bits).
+/// A row is read as [`PACK`] floats, the lanes beyond `count` being
+/// whatever follows (masked off: their verdicts are not used); the array
+/// ends with [`SPAN`] floats of padding, so every read stays within it. A
+/// pack of `n` triangles takes `32 + 40 n` bytes, rounded up to 32.
 #[derive(Debug, Default)]
 pub(super) struct Packs {
     data: Vec<f32>,
-    /// The packs' occluder indices, pack after pack.
-    ids: Vec<u32>,
 }
 
 /// One pack of [`Packs`].
@@ -155,8 +176,7 @@ impl Packs {
         assert_eq!(start % 8, 0);
         let (mut m, mut c, mut l) = (0.0f64, 0.0f64, 0.0f64);
         let mut rows = [[0.0f32; PACK]; 9];
-        for (lane, &(t, id)) in triangles.iter().enumerate() {
-            self.ids.push(id);
+        for (lane, &(t, _)) in triangles.iter().enumerate() {
             let stored = t.map(|v| v.as_vec3().as_dvec3());
             for k in 0..3 {
                 for axis in 0..3 {
@@ -169,20 +189,13 @@ impl Packs {
                 l = l.max((stored[(k + 1) % 3] - stored[k]).abs().max_element());
             }
         }
-        let first_id = (self.ids.len() - count) as u32;
-        self.data.extend_from_slice(&[
-            f32::from_bits(count as u32),
-            if m <= REACH { f32_up(m) } else { f32::INFINITY },
-            f32_up(c),
-            f32_up((l * (1.0 + U) + 2.0 * c) * WIDEN),
-            f32_up((l * U + 2.0 * c) * WIDEN),
-            f32::from_bits(first_id),
-            0.0,
-            0.0,
-        ]);
+        self.data.push(f32::from_bits(count as u32 - 1));
+        self.data.extend(pack_terms(m, c, l));
         for row in &rows {
             self.data.extend_from_slice(&row[..count]);
         }
+        self.data
+            .extend(triangles.iter().map(|&(_, id)| f32::from_bits(id)));
         self.data.resize(self.data.len().next_multiple_of(8), 0.0);
         (start / 8) as u32
     }
@@ -201,14 +214,43 @@ impl Packs {
             .expect("within the padding");
         Pack {
             data,
-            count: (data[0].to_bits() as usize).clamp(1, PACK),
+            count: (data[0].to_bits() as usize & (PACK - 1)) + 1,
         }
     }
 
     /// The bytes the packs take (their indices included).
     pub(super) fn bytes(&self) -> usize {
-        self.data.len() * 4 + self.ids.len() * 4
+        self.data.len() * 4
     }
+}
+
+/// A pack's terms of the bounds as stored (see the module docs): `Ê m`,
+/// `Ê m′ + ε_E m`, `Ê`, `ε_E`, then `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`, each
+/// computed in `f64` from `M` (the largest stored corner magnitude), `ε_c`
+/// (the largest rounding of a corner) and `L` (the largest stored edge),
+/// all three exact, then widened and rounded up to `f32`; the first of
+/// each list `+∞` when `M` is beyond [`REACH`].
+fn pack_terms(magnitude: f64, corner_error: f64, edge: f64) -> [f32; 7] {
+    let (c, l) = (corner_error, edge);
+    let m = magnitude * (1.0 + U) + c;
+    let m_error = magnitude * U + c;
+    let e = l * (1.0 + U) + 2.0 * c;
+    let e_error = l * U + 2.0 * c;
+    let q1 = 6.0 * GAMMA5 * e * e + 12.0 * e * e_error;
+    let q2 = 6.0 * e * e;
+    // All of them far below `f32::MAX` within reach (`M, L ≤ 2⁴¹`), where
+    // `f32_up` rounds up.
+    let up = |t: f64| f32_up(t * WIDEN);
+    let reach = |t: f32| if magnitude <= REACH { t } else { f32::INFINITY };
+    [
+        reach(up(e * m)),
+        up(e * m_error + e_error * m),
+        up(e),
+        up(e_error),
+        reach(up(m * q1 + m_error * q2)),
+        up(q1),
+        up(q2),
+    ]
 }
 
 impl<'a> Pack<'a> {
@@ -218,11 +260,10 @@ impl<'a> Pack<'a> {
         self.count as u32
     }
 
-    /// Its occluder indices, lane by lane.
+    /// The occluder index of lane `lane` (below the count).
     #[inline(always)]
-    pub(super) fn ids<'b>(&self, packs: &'b Packs) -> &'b [u32] {
-        let first = self.data[5].to_bits() as usize;
-        &packs.ids[first..first + self.count]
+    pub(super) fn id(&self, lane: usize) -> u32 {
+        self.data[HEADER + 9 * self.count + lane].to_bits()
     }
 
     /// Corner `k`'s axis `axis`, lane by lane (lanes from `count` on are
@@ -235,10 +276,16 @@ impl<'a> Pack<'a> {
             .expect("within the span")
     }
 
-    /// `M`, `ε_c`, `Ê`, `ε_E`.
+    /// The edge bound's terms (`Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E`).
     #[inline(always)]
-    fn terms(&self) -> [f32; 4] {
+    fn edge_terms(&self) -> [f32; 4] {
         [self.data[1], self.data[2], self.data[3], self.data[4]]
+    }
+
+    /// The plane bound's terms (`m Q₁ + m′ Q₂`, `Q₁`, `Q₂`).
+    #[inline(always)]
+    fn plane_terms(&self) -> [f32; 3] {
+        [self.data[5], self.data[6], self.data[7]]
     }
 }
 
@@ -249,20 +296,51 @@ impl Pack<'_> {
         DVec3::from_array([0, 1, 2].map(|a| f64::from(self.row(k, a)[lane])))
     }
 
-    /// Checks the bounds' terms against the pack's triangles (`ids` into
-    /// `triangles`): `M` bounds every stored corner, `ε_c` every rounding,
-    /// `Ê` and `ε_E` the edges as the module docs define them.
-    pub(super) fn check_terms(&self, ids: &[u32], triangles: &[[DVec3; 3]]) {
-        let [magnitude, corner_error, edge, edge_error] = self.terms().map(f64::from);
-        for (lane, &id) in ids.iter().enumerate() {
-            let t = triangles[id as usize];
+    /// Its occluder indices, lane by lane.
+    pub(super) fn ids(&self) -> Vec<u32> {
+        (0..self.count).map(|lane| self.id(lane)).collect()
+    }
+
+    /// Checks the bounds' terms against the pack's triangles (its indices
+    /// into `triangles`): with `M`, `ε_c` and `L` found here from the
+    /// triangles and their stored corners, each stored term is at least
+    /// the module docs' definition and at most `2⁻²⁰` above it (`+∞`, the
+    /// terms with `m`, where `M` is beyond reach).
+    pub(super) fn check_terms(&self, triangles: &[[DVec3; 3]]) {
+        let (mut magnitude, mut c, mut l) = (0.0f64, 0.0f64, 0.0f64);
+        for lane in 0..self.count {
+            let t = triangles[self.id(lane) as usize];
             let stored: [DVec3; 3] = core::array::from_fn(|k| self.corner(k, lane));
             for k in 0..3 {
-                assert!(stored[k].abs().max_element() <= magnitude || magnitude == f64::INFINITY);
-                assert!((t[k] - stored[k]).abs().max_element() <= corner_error);
-                let l = (stored[(k + 1) % 3] - stored[k]).abs().max_element();
-                assert!(l * (1.0 + U) + 2.0 * corner_error <= edge);
-                assert!(l * U + 2.0 * corner_error <= edge_error);
+                magnitude = magnitude.max(stored[k].abs().max_element());
+                c = c.max((t[k] - stored[k]).abs().max_element());
+                l = l.max((stored[(k + 1) % 3] - stored[k]).abs().max_element());
+            }
+        }
+        let (m, m_error) = (magnitude * (1.0 + U) + c, magnitude * U + c);
+        let (e, e_error) = (l * (1.0 + U) + 2.0 * c, l * U + 2.0 * c);
+        let (q1, q2) = (6.0 * GAMMA5 * e * e + 12.0 * e * e_error, 6.0 * e * e);
+        let defined = [
+            e * m,
+            e * m_error + e_error * m,
+            e,
+            e_error,
+            m * q1 + m_error * q2,
+            q1,
+            q2,
+        ];
+        let stored = [self.edge_terms().as_slice(), self.plane_terms().as_slice()].concat();
+        for (k, (&stored, defined)) in stored.iter().zip(defined).enumerate() {
+            let stored = f64::from(stored);
+            if magnitude > REACH && (k == 0 || k == 4) {
+                assert_eq!(stored, f64::INFINITY, "term {k}");
+            } else {
+                assert!(
+                    defined * (1.0 - 1e-12) <= stored
+                        && (stored <= defined * (1.0 + 1.0 / f64::from(1u32 << 20))
+                            || stored <= f64::from(f32::MIN_POSITIVE)),
+                    "term {k}: {stored} against {defined}"
+                );
             }
         }
     }
@@ -275,13 +353,9 @@ pub(super) struct LeafRay<F> {
     p: [F; 3],
     x: [F; 3],
     d: [F; 3],
-    /// `R = max(|P′|∞, |X′|∞)`; `+∞` beyond [`REACH`].
-    reach: f64,
-    /// `ε_r`.
-    end_error: f64,
-    /// `6 (γ₅ D̂ + ε_d)` and `6 D̂`: the edge bound's factors.
-    k_edge: f64,
-    k_length: f64,
+    /// The segment's terms of the bounds (see [`Terms`]).
+    edge: [f64; 4],
+    plane: [f64; 2],
 }
 
 /// The scalars of a [`LeafRay`].
@@ -289,10 +363,12 @@ struct Terms {
     p: [f32; 3],
     x: [f32; 3],
     d: [f32; 3],
-    reach: f64,
-    end_error: f64,
-    k_edge: f64,
-    k_length: f64,
+    /// `k_e`, `k_l`, `k_e r + k_l r′`, `k_l r`: the edge bound's factors of
+    /// a pack's `Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E` (see the module docs).
+    edge: [f64; 4],
+    /// `r`, `r′`: the plane bound's factors of a pack's `Q₁`, `Q₂`; `+∞`
+    /// where `R` is beyond [`REACH`].
+    plane: [f64; 2],
 }
 
 /// The scalars of the segment `(p, x)` for [`LeafRay::new`]: out of line,
@@ -311,14 +387,24 @@ fn terms(p: DVec3, x: DVec3) -> Terms {
         ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON)).max_element() * WIDEN;
     let length = f64::from(d32.abs().max_element()) + length_error;
     let reach = f64::from(p32.abs().max(x32.abs()).max_element());
+    let end_error = end_error * WIDEN;
+    let (r, r_error) = if reach <= REACH {
+        (reach * (1.0 + U) + end_error, reach * U + end_error)
+    } else {
+        (f64::INFINITY, f64::INFINITY)
+    };
+    let (k_edge, k_length) = (6.0 * (GAMMA5 * length + length_error), 6.0 * length);
     Terms {
         p: p32.to_array(),
         x: x32.to_array(),
         d: d32.to_array(),
-        reach: if reach <= REACH { reach } else { f64::INFINITY },
-        end_error: end_error * WIDEN,
-        k_edge: 6.0 * (GAMMA5 * length + length_error),
-        k_length: 6.0 * length,
+        edge: [
+            k_edge,
+            k_length,
+            k_edge * r + k_length * r_error,
+            k_length * r,
+        ],
+        plane: [r, r_error],
     }
 }
 
@@ -332,30 +418,29 @@ impl<F: Copy> LeafRay<F> {
             p: splat(s, t.p),
             x: splat(s, t.x),
             d: splat(s, t.d),
-            reach: t.reach,
-            end_error: t.end_error,
-            k_edge: t.k_edge,
-            k_length: t.k_length,
+            edge: t.edge,
+            plane: t.plane,
         }
     }
 
-    /// The bounds `(B_e, B_s)` of `pack`'s volumes (see the module docs);
-    /// `None` where the `f32` test does not apply.
+    /// The bound `B_e` of `pack`'s edge volumes (see the module docs; `+∞`
+    /// or NaN where the `f32` test does not apply).
     #[inline(always)]
-    fn bounds(&self, pack: Pack<'_>) -> Option<(f32, f32)> {
-        let [magnitude, corner_error, e, eps_e] = pack.terms().map(f64::from);
-        let s = magnitude + self.reach;
-        if s > 2.0 * REACH {
-            return None;
-        }
-        let errors = corner_error + self.end_error;
-        let (a, eps_a) = (s * (1.0 + U) + errors, s * U + errors);
-        let edge = e * (self.k_edge * a + self.k_length * eps_a) + self.k_length * a * eps_e;
-        let plane = 6.0 * e * ((GAMMA5 * a + eps_a) * e + 2.0 * a * eps_e);
-        Some((
-            (edge * WIDEN + FLOOR) as f32,
-            (plane * WIDEN + FLOOR) as f32,
-        ))
+    fn edge_bound(&self, pack: Pack<'_>) -> f32 {
+        let [g0, g1, g2, g3] = pack.edge_terms().map(f64::from);
+        let [h0, h1, h2, h3] = self.edge;
+        let sum = (g0 * h0 + g1 * h1) + (g2 * h2 + g3 * h3);
+        (sum * WIDEN + FLOOR) as f32
+    }
+
+    /// The bound `B_s` of `pack`'s plane volumes (see the module docs;
+    /// `+∞` or NaN where the `f32` test does not apply).
+    #[inline(always)]
+    fn plane_bound(&self, pack: Pack<'_>) -> f32 {
+        let [q0, q1, q2] = pack.plane_terms().map(f64::from);
+        let [r, r_error] = self.plane;
+        let sum = q0 + (q1 * r + q2 * r_error);
+        (sum * WIDEN + FLOOR) as f32
     }
 }
 
@@ -365,9 +450,7 @@ impl<F: Copy> LeafRay<F> {
 #[inline(always)]
 pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> (u32, u32) {
     let used = (1u32 << pack.count) - 1;
-    let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
-        return (0, used);
-    };
+    let edge_bound = ray.edge_bound(pack);
     let e = edge_volumes(s, pack, ray);
     let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
     let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
@@ -380,6 +463,7 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) ->
     }
     let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
     let (sp, sx) = plane_volumes(s, pack, ray);
+    let plane_bound = ray.plane_bound(pack);
     let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
     let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
     let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
@@ -672,9 +756,10 @@ mod tests {
             let packs = packs_of(&triangles);
             let pack = packs.get(0);
             let ray = LeafRay::new(Portable, p, x);
-            let Some((edge_bound, plane_bound)) = ray.bounds(pack) else {
+            let (edge_bound, plane_bound) = (ray.edge_bound(pack), ray.plane_bound(pack));
+            if !(edge_bound.is_finite() && plane_bound.is_finite()) {
                 continue;
-            };
+            }
             let e = edge_volumes(Portable, pack, &ray);
             let (sp, sx) = plane_volumes(Portable, pack, &ray);
             for (lane, t) in triangles.iter().enumerate() {

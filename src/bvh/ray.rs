@@ -296,20 +296,19 @@ impl Bvh {
         let pack = self.packs.get(at);
         let (hit, unsure) = leaf::test(s, pack, leaf_ray);
         tally.pack(pack.count(), unsure.count_ones());
-        hit != 0 || (unsure != 0 && self.exact_lanes(p, x, pack.ids(&self.packs), unsure))
+        hit != 0 || (unsure != 0 && self.exact_lanes(p, x, pack, unsure))
     }
 
-    /// Whether a triangle of the lanes `unsure` of a pack whose occluder
-    /// indices are `ids` blocks the segment, by [`segment_blocked`]: out
-    /// of line (rare; inline, the compiler computed parts of the exact
-    /// test ahead of every walk).
+    /// Whether a triangle of the lanes `unsure` of `pack` blocks the
+    /// segment, by [`segment_blocked`]: out of line (rare; inline, the
+    /// compiler computed parts of the exact test ahead of every walk).
     #[cold]
     #[inline(never)]
-    fn exact_lanes(&self, p: DVec3, x: DVec3, ids: &[u32], mut unsure: u32) -> bool {
+    fn exact_lanes(&self, p: DVec3, x: DVec3, pack: leaf::Pack<'_>, mut unsure: u32) -> bool {
         while unsure != 0 {
             let lane = unsure.trailing_zeros() as usize;
             unsure &= unsure - 1;
-            if segment_blocked(p, x, &self.occluders.triangles()[ids[lane] as usize]) {
+            if segment_blocked(p, x, &self.occluders.triangles()[pack.id(lane) as usize]) {
                 return true;
             }
         }

@@ -100,7 +100,7 @@ fn check_wide(bvh: &Bvh) {
                     let m = &bvh.wide[c as usize];
                     todo.extend(m.child.iter().filter(|&&k| k != WIDE_EMPTY));
                 } else {
-                    below.extend_from_slice(bvh.packs.get(c & !WIDE_LEAF).ids(&bvh.packs));
+                    below.extend(bvh.packs.get(c & !WIDE_LEAF).ids());
                 }
             }
             for &id in &below {
@@ -117,7 +117,7 @@ fn check_wide(bvh: &Bvh) {
             }
             let pack = bvh.packs.get(child & !WIDE_LEAF);
             assert!((1..=PACK as u32).contains(&pack.count()));
-            let ids = pack.ids(&bvh.packs);
+            let ids = pack.ids();
             assert_eq!(ids.len(), pack.count() as usize);
             for (l, &id) in ids.iter().enumerate() {
                 seen.push(id);
@@ -126,7 +126,7 @@ fn check_wide(bvh: &Bvh) {
                     assert_eq!(pack.corner(k, l), corner.as_vec3().as_dvec3());
                 }
             }
-            pack.check_terms(ids, bvh.occluders.triangles());
+            pack.check_terms(bvh.occluders.triangles());
         }
     }
     seen.sort_unstable();
