@@ -66,7 +66,7 @@
 //!
 //! Per triangle: the occluders (76 bytes: three `f64` corners and the
 //! object id), the 4-wide tree's copy of each triangle and its index (76)
-//! and nodes (about 21), and the occlusion tree's packs (`32 + 36 n` bytes
+//! and nodes (about 21), and the occlusion tree's packs (`32 + 40 n` bytes
 //! for `n` triangles, with each triangle's index: about 40–60 a triangle)
 //! and nodes (about 10–50): about 250 bytes a triangle in all (the
 //! 100,000-triangle soup of `examples/ray_corpus.rs`: 6.9 MB for the

@@ -12,7 +12,7 @@
 //! node's index, [`LEAF`] `|` a pack's index, or [`EMPTY`], whose box is
 //! inverted (`lo = f32::MAX`, `hi = −f32::MAX`) so that no segment's slab
 //! test keeps it — and the mask of the lanes holding packs. A pack of `n`
-//! triangles takes `32 + 36 n` bytes (`leaf.rs`). The child boxes are not
+//! triangles takes `32 + 40 n` bytes, its indices included (`leaf.rs`). The child boxes are not
 //! quantised as the 4-wide tree's are: the walk's time goes to its loads
 //! and to the leaves, and decoding eight lanes' planes would add about a
 //! third to a node visit's instructions.
