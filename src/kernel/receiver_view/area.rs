@@ -76,7 +76,8 @@ impl AreaView {
         if !(p.is_finite() && center.is_finite() && radius.is_finite() && radius > 0.0) {
             return None;
         }
-        let n = normal.try_normalize()?;
+        // Any finite non-zero normal, however long or short.
+        let n = crate::kernel::eft::unit(normal)?;
         let d = n.dot(center - p);
         if !(d.is_finite() && d != 0.0) {
             return None;
@@ -112,10 +113,9 @@ impl AreaView {
         if !(p.is_finite() && center.is_finite() && u.is_finite() && v.is_finite()) {
             return None;
         }
-        let n = u.cross(v);
-        if n == DVec3::ZERO || !n.is_finite() {
-            return None;
-        }
+        // `u × v` scaled by a power of two: an area beyond `f64`'s range
+        // (half-axes of 1e200 or 1e-200) still has a plane.
+        let (n, _) = crate::kernel::eft::scaled_cross(u, v)?;
         let d = n.dot(center - p);
         if !(d.is_finite() && d != 0.0) {
             return None;
