@@ -671,7 +671,7 @@ mod tests {
             };
             let f32_exact = case % 3 == 0;
             let round = |v: DVec3| if f32_exact { v.as_vec3().as_dvec3() } else { v };
-            let mut corner = |rng: &mut Rng| {
+            let corner = |rng: &mut Rng| {
                 round(DVec3::new(
                     coordinate(rng, centre, scale),
                     coordinate(rng, centre, scale),
@@ -736,7 +736,7 @@ mod tests {
             };
             let f32_exact = rng.chance(0.3);
             let round = |v: DVec3| if f32_exact { v.as_vec3().as_dvec3() } else { v };
-            let mut corner = |rng: &mut Rng| {
+            let corner = |rng: &mut Rng| {
                 round(DVec3::new(
                     coordinate(rng, centre, scale),
                     coordinate(rng, centre, scale),
