@@ -593,13 +593,52 @@ mod tests {
         portable
     }
 
-    /// A coordinate of the stiff cases: `centre` plus a non-dyadic offset
-    /// of size `scale`, now and then exactly `centre`.
-    fn coordinate(rng: &mut Rng, centre: f64, scale: f64) -> f64 {
-        if rng.chance(0.05) {
-            centre
-        } else {
-            centre + rng.uniform(-1.0, 1.0) * scale
+    /// Where a stiff case's corners lie: a size (`10⁻⁶` to `10⁶`), a centre
+    /// (the origin, or up to `10⁹` off on every axis), and whether every
+    /// coordinate is rounded to `f32`.
+    struct Frame {
+        scale: f64,
+        centre: f64,
+        f32_exact: bool,
+    }
+
+    impl Frame {
+        /// Draws the size and centre, then `f32_exact` (which may draw).
+        fn new(rng: &mut Rng, f32_exact: impl FnOnce(&mut Rng) -> bool) -> Frame {
+            let scale = rng.log_uniform(-6.0, 6.0);
+            let centre = if rng.chance(0.5) {
+                0.0
+            } else {
+                rng.log_uniform(0.0, 9.0) * rng.sign()
+            };
+            let f32_exact = f32_exact(rng);
+            Frame {
+                scale,
+                centre,
+                f32_exact,
+            }
+        }
+
+        /// `v`, rounded to `f32` where the frame is.
+        fn round(&self, v: DVec3) -> DVec3 {
+            if self.f32_exact {
+                v.as_vec3().as_dvec3()
+            } else {
+                v
+            }
+        }
+
+        /// A corner: each coordinate the centre plus a non-dyadic offset
+        /// of the frame's size, now and then exactly the centre.
+        fn corner(&self, rng: &mut Rng) -> DVec3 {
+            let mut coordinate = || {
+                if rng.chance(0.05) {
+                    self.centre
+                } else {
+                    self.centre + rng.uniform(-1.0, 1.0) * self.scale
+                }
+            };
+            self.round(DVec3::new(coordinate(), coordinate(), coordinate()))
         }
     }
 
@@ -663,21 +702,10 @@ mod tests {
         let mut rng = Rng::new(47);
         let mut tally = [0usize; 3];
         for case in 0..20_000 {
-            let scale = rng.log_uniform(-6.0, 6.0);
-            let centre = if rng.chance(0.5) {
-                0.0
-            } else {
-                rng.log_uniform(0.0, 9.0) * rng.sign()
-            };
-            let f32_exact = case % 3 == 0;
-            let round = |v: DVec3| if f32_exact { v.as_vec3().as_dvec3() } else { v };
-            let corner = |rng: &mut Rng| {
-                round(DVec3::new(
-                    coordinate(rng, centre, scale),
-                    coordinate(rng, centre, scale),
-                    coordinate(rng, centre, scale),
-                ))
-            };
+            let frame = Frame::new(&mut rng, |_| case % 3 == 0);
+            let (scale, f32_exact) = (frame.scale, frame.f32_exact);
+            let round = |v: DVec3| frame.round(v);
+            let corner = |rng: &mut Rng| frame.corner(rng);
             let first = [corner(&mut rng), corner(&mut rng), corner(&mut rng)];
             let count = 1 + rng.below(PACK as u64) as usize;
             let mut triangles = vec![first];
@@ -728,21 +756,10 @@ mod tests {
         let mut rng = Rng::new(59);
         let mut closest = 0.0f64;
         for _ in 0..20_000 {
-            let scale = rng.log_uniform(-6.0, 6.0);
-            let centre = if rng.chance(0.5) {
-                0.0
-            } else {
-                rng.log_uniform(0.0, 9.0) * rng.sign()
-            };
-            let f32_exact = rng.chance(0.3);
-            let round = |v: DVec3| if f32_exact { v.as_vec3().as_dvec3() } else { v };
-            let corner = |rng: &mut Rng| {
-                round(DVec3::new(
-                    coordinate(rng, centre, scale),
-                    coordinate(rng, centre, scale),
-                    coordinate(rng, centre, scale),
-                ))
-            };
+            let frame = Frame::new(&mut rng, |rng| rng.chance(0.3));
+            let scale = frame.scale;
+            let round = |v: DVec3| frame.round(v);
+            let corner = |rng: &mut Rng| frame.corner(rng);
             let triangles: Vec<[DVec3; 3]> = (0..PACK)
                 .map(|_| [corner(&mut rng), corner(&mut rng), corner(&mut rng)])
                 .collect();
