@@ -1,6 +1,8 @@
 #!/usr/bin/env bash
-# Opt-in (not in CI): occlusion-ray throughput of our exact f64
-# `bvh::Bvh::segment_unoccluded` against Intel Embree 4
+# Opt-in (not in CI): occlusion-ray throughput of our exact
+# `bvh::Bvh::segment_unoccluded` (the 8-wide occlusion tree, packs of
+# triangles tested in f32 under a proven bound, the exact f64 test for
+# every uncertain one) against Intel Embree 4
 # (`rtcOccluded1` through PyPI embreex), same rays, same machine, same run:
 #
 #     bash benches/compare_embree.sh [outdir]

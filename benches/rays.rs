@@ -5,8 +5,10 @@
 //! Scenes: a soup of 100k random small triangles, and a closed UV sphere of
 //! 100k triangles. Each is traced by
 //!
-//! - `softshadow`: [`Bvh::segment_unoccluded`], our conservative 4-wide
-//!   traversal over obvhs's PLOC tree, exact `f64` triangle test;
+//! - `softshadow`: [`Bvh::segment_unoccluded`], our conservative walk of
+//!   the 8-wide occlusion tree collapsed from obvhs's PLOC tree, packs of
+//!   up to eight triangles tested in `f32` under a proven error bound, the
+//!   exact `f64` test for every uncertain one;
 //! - `obvhs_bvh2`, `obvhs_cwbvh`: obvhs 0.4's own `ray_traverse_miss` over its
 //!   `Bvh2` / `CwBvh` with the same exact triangle test (for comparison only:
 //!   their `f32` node tests are not conservative).

@@ -27,8 +27,11 @@
 //! (scene name `mc-default`, seed field = the Monte Carlo seed) and
 //! `outdir/mc-default.ours.occluded` (one byte per ray, 1 where occluded).
 //!
-//! Timing, on a rayon pool of exactly 2 threads, one warm-up and 7 timed
-//! runs, medians (wall and CPU time, as `ray_corpus`):
+//! One untimed pass over the corpus on one thread prints what the
+//! occlusion walk does a ray (the fallback rate to the exact test among
+//! them) and the BVH's bytes a triangle. Timing, on a rayon pool of
+//! exactly 2 threads, one warm-up and 7 timed runs, medians (wall and CPU
+//! time, as `ray_corpus`):
 //!
 //! - `mc-default`: `Bvh::segment_unoccluded` over the corpus rays, chunks
 //!   of 4096 — the figure the script sets beside Embree's on the same rays;
@@ -47,7 +50,9 @@ use std::path::PathBuf;
 
 #[path = "support/corpus.rs"]
 mod corpus;
-use corpus::{time_occlusion, time_runs, to_f32, write_rays, REPETITIONS, THREADS, WARMUPS};
+use corpus::{
+    report_walk, time_occlusion, time_runs, to_f32, write_rays, REPETITIONS, THREADS, WARMUPS,
+};
 
 const NAME: &str = "mc-default";
 const GRID: usize = 64;
@@ -109,6 +114,7 @@ fn main() {
         path.display()
     );
 
+    report_walk(&bvh, &origins, &ends, origins.len(), NAME);
     time_occlusion(&pool, &bvh, &origins, &ends, &outdir, NAME);
 
     let mut estimates = Vec::new();

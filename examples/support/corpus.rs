@@ -194,3 +194,40 @@ pub fn time_occlusion(
     let triangles = bvh.occluders().len();
     timing.report(name, "occluded", segments.len(), hits, THREADS, triangles);
 }
+
+/// Prints, for the first `count` segments (one thread, not timed), what
+/// the occlusion walk does a segment — nodes visited, leaves and triangles
+/// tested in `f32`, triangles left to the exact test — and the BVH's
+/// memory per triangle.
+#[allow(dead_code)] // primary_corpus.rs times closest hits
+pub fn report_walk(
+    bvh: &softshadow::bvh::Bvh,
+    origins: &[DVec3],
+    ends: &[DVec3],
+    count: usize,
+    name: &str,
+) {
+    let mut counts = softshadow::bvh::OcclusionCounts::default();
+    for (&p, &x) in origins.iter().zip(ends).take(count) {
+        let _ = bvh.segment_unoccluded_counting(p, x, &mut counts);
+    }
+    let per = |v: u64| v as f64 / counts.segments.max(1) as f64;
+    let memory = bvh.memory();
+    let triangles = bvh.occluders().len().max(1) as f64;
+    println!(
+        "{name}: a segment visits {:.2} nodes, tests {:.2} leaves and {:.2} triangles in f32, \
+         {:.4} exactly (fallback rate {:.2e} of the triangles tested, {} of {} over {} segments); \
+         bytes a triangle: occlusion tree {:.1}, 4-wide tree {:.1}, occluders {:.1}",
+        per(counts.nodes),
+        per(counts.leaves),
+        per(counts.triangles),
+        per(counts.exact),
+        counts.exact as f64 / counts.triangles.max(1) as f64,
+        counts.exact,
+        counts.triangles,
+        counts.segments,
+        memory.occlusion_tree as f64 / triangles,
+        memory.tree as f64 / triangles,
+        memory.occluders as f64 / triangles,
+    );
+}

@@ -8,19 +8,29 @@
 //!
 //! # How it decides
 //!
-//! The tree is built by `obvhs` (PLOC with reinsertion, `Bvh2`) over boxes
-//! computed in `f64` and rounded *outward* to `f32` (a run of nested boxes,
-//! on which PLOC is quadratic, given to it as one box and split in halves
-//! by us: `nested.rs`), then collapsed into a
-//! 4-wide tree of our own — one 64-byte node per four children, boxes
-//! quantised outward to 8 bits per plane — whose traversal is conservative
-//! (see [`Bvh::segment_unoccluded`]): the `f32` tree only ever prunes boxes
-//! the true `f64` segment cannot meet. Every triangle the traversal reaches is decided
-//! exactly by [`segment_blocked`], in `f64` with the exact
-//! [`orient3d`]. The answer is therefore
-//! exactly [visibility](crate::definitions#visibility)'s: the light point `x` is visible from `p` iff the open
-//! segment `(p, x)` meets no triangle, with an edge shared by two triangles
-//! never leaking light.
+//! A binary tree is built by `obvhs` (PLOC, `Bvh2`; then our reinsertion,
+//! `reinsert.rs`) over boxes computed in `f64` and rounded *outward* to
+//! `f32` (a run of nested boxes, on which PLOC is quadratic, given to it as
+//! one box and split in halves by us: `nested.rs`), then collapsed into
+//! two trees of our own:
+//!
+//! - the *occlusion tree* (`wide.rs`), for [`Bvh::segment_unoccluded`]:
+//!   eight child boxes a node in structure-of-arrays `f32`, tested in one
+//!   pass, and leaves of up to eight triangles in `f32` (`leaf.rs`),
+//!   tested together with a proven error bound, each triangle whose signs
+//!   the bound leaves uncertain going to the exact test;
+//! - the *4-wide tree* (`node.rs`), for closest hits and culling: one
+//!   64-byte node per four children, boxes quantised outward to 8 bits per
+//!   plane, one triangle a leaf.
+//!
+//! Both traversals are conservative (see [`Bvh::segment_unoccluded`]): the
+//! `f32` trees only ever prune boxes the true `f64` segment cannot meet.
+//! Every triangle a traversal reaches is decided exactly as
+//! [`segment_blocked`] decides it, in `f64` with the exact [`orient3d`]
+//! wherever an `f32` or `f64` evaluation cannot be certain. The answer is
+//! therefore exactly [visibility](crate::definitions#visibility)'s: the
+//! light point `x` is visible from `p` iff the open segment `(p, x)` meets
+//! no triangle, with an edge shared by two triangles never leaking light.
 //!
 //! obvhs's own traversals are not used for rays: its `Triangle::intersect` is
 //! not watertight, its CWBVH node test clamps `t` below at `1e-4` (a box near
@@ -38,43 +48,57 @@
 //!
 //! # Layout
 //!
-//! This file holds the tree and its build; `nested.rs` the runs of nested
-//! boxes the build groups; `node.rs` the quantised 4-wide
-//! node; `ray.rs` the conservative `f32` slab test and the any-hit segment
-//! traversal ([`Bvh::segment_unoccluded`]; on a tree the caches do not
-//! hold, several nodes at a time, so that their loads overlap);
-//! `closest.rs` the closest hit
-//! ([`Bvh::closest_hit`], [`Hit`]); `packet.rs` the closest hits of eight
-//! coherent rays through one walk (for [`Bvh::closest_hits`]); `hull.rs`
-//! the culling query of the exact
+//! This file holds the trees' build; `nested.rs` the runs of nested boxes
+//! the build groups; `reinsert.rs` the improvement of the binary tree by
+//! moving subtrees, its work bounded; `wide.rs` the occlusion tree's node
+//! and its collapse; `leaf.rs` its leaves' packs and their `f32` test;
+//! `lanes.rs` the eight `f32` lanes both run on (AVX2 through `pulp`, or
+//! portable); `ray.rs` the conservative `f32` slab tests and the any-hit
+//! walk ([`Bvh::segment_unoccluded`]); `node.rs` the quantised 4-wide
+//! node; `closest.rs` the closest hit ([`Bvh::closest_hit`], [`Hit`]);
+//! `packet.rs` the closest hits of eight coherent rays through one walk
+//! (for [`Bvh::closest_hits`]); `hull.rs` the culling query of the exact
 //! reference ([`Bvh::triangles_meeting_hull`]); `occluders.rs` the
 //! triangle list. The exact segment–triangle test itself is a kernel,
 //! [`crate::kernel::segment`].
+//!
+//! # Memory
+//!
+//! Per triangle: the occluders (76 bytes: three `f64` corners and the
+//! object id), the 4-wide tree's copy of each triangle and its index (76)
+//! and nodes (about 21), and the occlusion tree's packs (`32 + 40 n` bytes
+//! for `n` triangles, with each triangle's index: about 40–60 a triangle)
+//! and nodes (about 10–50): about 250 bytes a triangle in all (the
+//! 100,000-triangle soup of `examples/ray_corpus.rs`: 6.9 MB for the
+//! occlusion tree, the sphere 5.8 MB; see [`Bvh::memory`]).
 //!
 //! [`segment_blocked`]: crate::kernel::segment::segment_blocked
 //! [`orient3d`]: crate::kernel::predicate::orient3d
 
 mod closest;
 mod hull;
+mod lanes;
+mod leaf;
 mod nested;
 mod node;
 mod occluders;
 mod packet;
 mod ray;
+mod reinsert;
 #[cfg(test)]
 mod tests;
+mod wide;
 
 pub use closest::Hit;
 pub use occluders::Occluders;
+pub use ray::OcclusionCounts;
 
 use glam::{DVec3, Vec3A};
 use node::{Node, LEAF, WIDTH};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
-use obvhs::bvh2::reinsertion::ReinsertionOptimizer;
 use obvhs::bvh2::Bvh2;
 use obvhs::BvhBuildParams;
-use ray::{GROUP, GROUPED_FROM, GROUPED_STACK};
 use std::fmt;
 use std::time::Duration;
 
@@ -88,6 +112,140 @@ enum Item {
     Members(usize, usize),
 }
 
+/// obvhs's binary tree and the groups it was built over, read as a tree
+/// of [`Item`]s: what both of our trees are collapsed from.
+pub(super) struct Source<'a> {
+    tree: &'a Bvh2,
+    /// The boxes of the kept triangles.
+    boxes: &'a [Aabb],
+    groups: &'a nested::Groups,
+}
+
+impl Source<'_> {
+    /// The root, as an item.
+    fn root(&self) -> Item {
+        self.normal(Item::Node(0))
+    }
+
+    /// The box of an item.
+    fn aabb(&self, item: Item) -> Aabb {
+        let (prims, order) = (&self.tree.primitive_indices, &self.groups.order);
+        match item {
+            Item::Node(n) => *self.tree.nodes[n].aabb(),
+            Item::Leaf(first, count) => prims[first..first + count]
+                .iter()
+                .fold(Aabb::empty(), |b, &i| {
+                    b.union(&self.groups.boxes[i as usize])
+                }),
+            Item::Members(first, count) => order[first..first + count]
+                .iter()
+                .fold(Aabb::empty(), |b, &i| b.union(&self.boxes[i as usize])),
+        }
+    }
+
+    /// An obvhs leaf as the run of its primitives; one primitive as the run
+    /// of its members.
+    fn normal(&self, item: Item) -> Item {
+        let item = match item {
+            Item::Node(n) if self.tree.nodes[n].is_leaf() => {
+                let node = &self.tree.nodes[n];
+                Item::Leaf(node.first_index as usize, node.prim_count as usize)
+            }
+            other => other,
+        };
+        match item {
+            Item::Leaf(first, 1) => {
+                let (at, count) = self.groups.ranges[self.tree.primitive_indices[first] as usize];
+                Item::Members(at as usize, count as usize)
+            }
+            other => other,
+        }
+    }
+
+    /// The two children of an item (runs split in halves); `None` for one
+    /// triangle.
+    fn children(&self, item: Item) -> Option<[Item; 2]> {
+        let halves =
+            |first: usize, count: usize| (first, count / 2, first + count / 2, count - count / 2);
+        match item {
+            Item::Node(n) => {
+                let first = self.tree.nodes[n].first_index as usize;
+                Some([
+                    self.normal(Item::Node(first)),
+                    self.normal(Item::Node(first + 1)),
+                ])
+            }
+            Item::Leaf(first, count) if count > 1 => {
+                let (a, na, b, nb) = halves(first, count);
+                Some([
+                    self.normal(Item::Leaf(a, na)),
+                    self.normal(Item::Leaf(b, nb)),
+                ])
+            }
+            Item::Members(first, count) if count > 1 => {
+                let (a, na, b, nb) = halves(first, count);
+                Some([Item::Members(a, na), Item::Members(b, nb)])
+            }
+            Item::Leaf(..) | Item::Members(..) => None,
+        }
+    }
+
+    /// The lanes of a node made from `item`: up to `width` descendants,
+    /// found by repeatedly opening, of the entries `openable` accepts, the
+    /// one of largest area.
+    fn open(&self, item: Item, width: usize, openable: impl Fn(Item) -> bool) -> Vec<Item> {
+        let mut lanes = vec![item];
+        while lanes.len() < width {
+            let widest = lanes
+                .iter()
+                .enumerate()
+                .filter(|(_, &item)| openable(item) && self.children(item).is_some())
+                .max_by(|(_, &a), (_, &b)| {
+                    self.aabb(a)
+                        .half_area()
+                        .total_cmp(&self.aabb(b).half_area())
+                })
+                .map(|(k, _)| k);
+            let Some(k) = widest else { break };
+            let [left, right] = self.children(lanes[k]).expect("filtered");
+            lanes[k] = left;
+            lanes.push(right);
+        }
+        // (obvhs leaves and groups are never empty; an empty run would not
+        // end.)
+        lanes.retain(|item| !matches!(item, Item::Leaf(_, 0) | Item::Members(_, 0)));
+        lanes
+    }
+
+    /// The indices (in the kept boxes) of the triangles under `item`, in
+    /// order.
+    fn members(&self, item: Item, out: &mut Vec<u32>) {
+        match item {
+            Item::Node(n) => {
+                let first = self.tree.nodes[n].first_index as usize;
+                if self.tree.nodes[n].is_leaf() {
+                    self.members(
+                        Item::Leaf(first, self.tree.nodes[n].prim_count as usize),
+                        out,
+                    );
+                } else {
+                    self.members(Item::Node(first), out);
+                    self.members(Item::Node(first + 1), out);
+                }
+            }
+            Item::Leaf(first, count) => {
+                for &prim in &self.tree.primitive_indices[first..first + count] {
+                    let (at, count) = self.groups.ranges[prim as usize];
+                    out.extend_from_slice(&self.groups.order[at as usize..(at + count) as usize]);
+                }
+            }
+            Item::Members(first, count) => {
+                out.extend_from_slice(&self.groups.order[first..first + count]);
+            }
+        }
+    }
+}
+
 /// A BVH over a scene's occluders (owns them). Immutable once built, `Sync`:
 /// share one between threads.
 pub struct Bvh {
@@ -99,10 +257,11 @@ pub struct Bvh {
     ids: Vec<u32>,
     /// The depth of the tree (the root alone, or no tree: 1).
     depth: usize,
-    /// Whether [`Bvh::segment_unoccluded`] walks the tree several nodes at
-    /// a time (trees of [`GROUPED_FROM`] bytes or more whose grouped stack
-    /// fits [`GROUPED_STACK`] entries).
-    grouped: bool,
+    /// The occlusion tree (`wide.rs`): its nodes, the root first (none
+    /// when there is no tree), its leaf packs and its depth.
+    wide: Vec<wide::WideNode>,
+    packs: leaf::Packs,
+    wide_depth: usize,
     /// Triangles with a coordinate beyond [`TREE_RANGE`], kept out of the
     /// tree and tested by every query, and their indices in `occluders`.
     outliers: Vec<[DVec3; 3]>,
@@ -129,6 +288,11 @@ impl fmt::Debug for Bvh {
             .field("triangles", &self.occluders.len())
             .field("indexed", &self.triangles.len())
             .field("nodes", &self.nodes.len())
+            .field("occlusion_nodes", &self.wide.len())
+            .field(
+                "occlusion_bytes",
+                &(self.wide.len() * 256 + self.packs.bytes()),
+            )
             .finish()
     }
 }
@@ -145,6 +309,30 @@ fn f32_up(v: f64) -> f32 {
     let r = v as f32;
     let r = if f64::from(r) < v { r.next_up() } else { r };
     r.clamp(-f32::MAX, f32::MAX)
+}
+
+/// The binary tree over `boxes` our tree is collapsed from, one box a
+/// leaf (the 4-wide node test then culls single triangles, cheaper than
+/// their exact test: measured 1.2–2× the rays/s of 4 or 8 per leaf on
+/// benches/rays.rs): [`ploc_tree`], then our reinsertion (`reinsert.rs`:
+/// the improvement of obvhs's reinsertion passes, whose searches are
+/// quadratic on heavily overlapping boxes, within a budget of order
+/// `n log n`). Also returns the reinsertion's work.
+fn binary_tree(boxes: &[Aabb]) -> (Bvh2, reinsert::Work) {
+    let mut tree = ploc_tree(boxes);
+    let work = reinsert::optimise(&mut tree);
+    (tree, work)
+}
+
+/// obvhs's PLOC over `boxes`, one a leaf, with its slowest preset's search
+/// and no reinsertion.
+fn ploc_tree(boxes: &[Aabb]) -> Bvh2 {
+    let params = BvhBuildParams {
+        max_prims_per_leaf: 1,
+        reinsertion_batch_ratio: 0.0,
+        ..BvhBuildParams::very_slow_build()
+    };
+    build_bvh2(boxes, params, &mut Duration::default())
 }
 
 /// Whether every coordinate is finite and at most `f32::MAX` in magnitude:
@@ -216,7 +404,9 @@ impl Bvh {
             triangles: Vec::with_capacity(kept.len()),
             ids: Vec::with_capacity(kept.len()),
             depth: 1,
-            grouped: false,
+            wide: Vec::new(),
+            packs: leaf::Packs::default(),
+            wide_depth: 1,
             outliers,
             outlier_ids,
             bounds,
@@ -234,35 +424,16 @@ impl Bvh {
         if boxes.is_empty() {
             return bvh;
         }
-        // One triangle per leaf: the 4-wide node test then culls single
-        // triangles, cheaper than their exact test (measured: 1.2–2× the
-        // rays/s of 4 or 8 per leaf on benches/rays.rs). obvhs's slowest
-        // preset: its two full reinsertion passes visit 16 % fewer nodes
-        // per ray than `medium_build` on the 100k-triangle soup of
-        // `examples/ray_corpus.rs` (soup rays/s 1.26×), for a build about
-        // 4× as long. The passes run here rather than in `build_bvh2`,
-        // whose debug-build validation rejects their result when many
-        // boxes coincide (a stale `max_depth`, which only obvhs's own
-        // traversal uses).
-        let preset = BvhBuildParams::very_slow_build();
-        let params = BvhBuildParams {
-            max_prims_per_leaf: 1,
-            reinsertion_batch_ratio: 0.0,
-            ..preset
-        };
         let groups = nested::Groups::find(&boxes);
-        let ploc_boxes = groups.as_ref().map_or(&boxes[..], |g| &g.boxes[..]);
-        let mut tree = build_bvh2(ploc_boxes, params, &mut Duration::default());
-        let mut reinsertion = ReinsertionOptimizer::default();
-        let ratio = preset.reinsertion_batch_ratio;
-        reinsertion.run(&mut tree, ratio, None);
-        reinsertion.run(
-            &mut tree,
-            ratio * preset.post_collapse_reinsertion_batch_ratio_multiplier,
-            None,
-        );
+        let (tree, _) = binary_tree(groups.as_ref().map_or(&boxes[..], |g| &g.boxes[..]));
         let groups = groups.unwrap_or_else(|| nested::Groups::identity(&boxes));
-        bvh.collapse(&tree, &boxes, &kept, &groups);
+        let source = Source {
+            tree: &tree,
+            boxes: &boxes,
+            groups: &groups,
+        };
+        bvh.collapse(&source, &kept);
+        bvh.collapse_wide(&source, &kept);
         bvh
     }
 
@@ -270,83 +441,18 @@ impl Bvh {
     /// descendants (repeatedly opening the entry of largest area), every
     /// leaf lane holds one triangle, and the triangles are copied in leaf
     /// order.
-    fn collapse(&mut self, tree: &Bvh2, boxes: &[Aabb], kept: &[u32], groups: &nested::Groups) {
-        let prims = &tree.primitive_indices;
-        let order = &groups.order;
-        let aabb = |item: Item| -> Aabb {
-            match item {
-                Item::Node(n) => *tree.nodes[n].aabb(),
-                Item::Leaf(first, count) => prims[first..first + count]
-                    .iter()
-                    .fold(Aabb::empty(), |b, &i| b.union(&groups.boxes[i as usize])),
-                Item::Members(first, count) => order[first..first + count]
-                    .iter()
-                    .fold(Aabb::empty(), |b, &i| b.union(&boxes[i as usize])),
-            }
-        };
-        // An obvhs leaf is the run of its primitives; one primitive, the
-        // run of its members.
-        let normal = |item: Item| {
-            let item = match item {
-                Item::Node(n) if tree.nodes[n].is_leaf() => {
-                    let node = &tree.nodes[n];
-                    Item::Leaf(node.first_index as usize, node.prim_count as usize)
-                }
-                other => other,
-            };
-            match item {
-                Item::Leaf(first, 1) => {
-                    let (at, count) = groups.ranges[prims[first] as usize];
-                    Item::Members(at as usize, count as usize)
-                }
-                other => other,
-            }
-        };
-        let halves =
-            |first: usize, count: usize| (first, count / 2, first + count / 2, count - count / 2);
-        let children = |item: Item| -> Option<[Item; 2]> {
-            match item {
-                Item::Node(n) => {
-                    let first = tree.nodes[n].first_index as usize;
-                    Some([normal(Item::Node(first)), normal(Item::Node(first + 1))])
-                }
-                Item::Leaf(first, count) if count > 1 => {
-                    let (a, na, b, nb) = halves(first, count);
-                    Some([normal(Item::Leaf(a, na)), normal(Item::Leaf(b, nb))])
-                }
-                Item::Members(first, count) if count > 1 => {
-                    let (a, na, b, nb) = halves(first, count);
-                    Some([Item::Members(a, na), Item::Members(b, nb)])
-                }
-                Item::Leaf(..) | Item::Members(..) => None,
-            }
-        };
+    fn collapse(&mut self, source: &Source<'_>, kept: &[u32]) {
         // (entry, our node, depth of our node)
-        let mut work = vec![(normal(Item::Node(0)), 0usize, 1usize)];
+        let mut work = vec![(source.root(), 0usize, 1usize)];
         self.nodes.push(Node::EMPTY_NODE);
         let mut depth = 1;
         while let Some((src, dst, level)) = work.pop() {
             depth = depth.max(level);
-            let mut lanes = vec![src];
-            while lanes.len() < WIDTH {
-                let widest = lanes
-                    .iter()
-                    .enumerate()
-                    .filter(|(_, &item)| children(item).is_some())
-                    .max_by(|(_, &a), (_, &b)| aabb(a).half_area().total_cmp(&aabb(b).half_area()))
-                    .map(|(k, _)| k);
-                let Some(k) = widest else { break };
-                let [left, right] = children(lanes[k]).expect("filtered");
-                lanes[k] = left;
-                lanes.push(right);
-            }
-            // (obvhs leaves and groups are never empty; an empty run would
-            // not end.)
-            lanes.retain(|item| !matches!(item, Item::Leaf(_, 0) | Item::Members(_, 0)));
+            let lanes = source.open(src, WIDTH, |_| true);
             let lane_boxes: Vec<([f32; 3], [f32; 3])> = lanes
                 .iter()
                 .map(|&item| {
-                    let b = aabb(item);
+                    let b = source.aabb(item);
                     (b.min.to_array(), b.max.to_array())
                 })
                 .collect();
@@ -354,7 +460,7 @@ impl Bvh {
             for (lane, &item) in lanes.iter().enumerate() {
                 node.child[lane] = match item {
                     Item::Members(first, 1) => {
-                        let id = kept[order[first] as usize];
+                        let id = kept[source.groups.order[first] as usize];
                         self.ids.push(id);
                         self.triangles.push(self.occluders.triangles()[id as usize]);
                         LEAF | (self.triangles.len() - 1) as u32
@@ -369,9 +475,6 @@ impl Bvh {
             self.nodes[dst] = node;
         }
         self.depth = depth;
-        let bytes = self.nodes.len() * std::mem::size_of::<Node>()
-            + self.triangles.len() * std::mem::size_of::<[DVec3; 3]>();
-        self.grouped = bytes >= GROUPED_FROM && self.grouped_stack_need(GROUP) <= GROUPED_STACK;
     }
 
     /// Stack entries a depth-first traversal can need: at most `WIDTH − 1`
@@ -381,23 +484,49 @@ impl Bvh {
         self.depth * (WIDTH - 1) + 1
     }
 
-    /// Stack entries the any-hit walk taking `group` nodes at a time can
-    /// need. It pops the top `g ≤ group` entries of its stack and pushes
-    /// their hit inner children, the shallowest member's first: the stack
-    /// stays sorted by depth, bottom to top (the popped entries are the
-    /// deepest, their children deeper still, and pushed in nondecreasing
-    /// depth). So when a step pops a node at depth `d − 1`, every entry at
-    /// depth `≥ d` lies above it and is popped too: the entries at depth `d`
-    /// are then only the children of that step's members, at most
-    /// `group · WIDTH`, and no later step adds any until one pops a node at
-    /// depth `d − 1` again. The inner nodes lie at depths `2..=depth`.
-    fn grouped_stack_need(&self, group: usize) -> usize {
-        (group * WIDTH * (self.depth - 1)).max(1)
-    }
-
     /// The triangles it was built over.
     #[must_use]
     pub fn occluders(&self) -> &Occluders {
         &self.occluders
+    }
+
+    /// The bytes it holds, part by part (the lengths of its arrays; the
+    /// normals only once a closest-hit query has computed them).
+    #[must_use]
+    pub fn memory(&self) -> Memory {
+        use std::mem::size_of;
+        let corners = size_of::<[DVec3; 3]>();
+        Memory {
+            occluders: self.occluders.len() * (corners + size_of::<u32>()),
+            tree: self.nodes.len() * size_of::<Node>()
+                + (self.triangles.len() + self.outliers.len()) * (corners + size_of::<u32>()),
+            occlusion_tree: self.wide.len() * size_of::<wide::WideNode>() + self.packs.bytes(),
+            normals: self
+                .normals
+                .get()
+                .map_or(0, |n| n.len() * size_of::<DVec3>()),
+        }
+    }
+}
+
+/// The bytes a [`Bvh`] holds ([`Bvh::memory`]).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct Memory {
+    /// The triangles it owns and their object ids.
+    pub occluders: usize,
+    /// The 4-wide tree of closest hits and culling: its nodes, and its
+    /// copy of the triangles in leaf order with their indices.
+    pub tree: usize,
+    /// The occlusion tree: its nodes and its leaves' packs.
+    pub occlusion_tree: usize,
+    /// Each triangle's unit normal, once computed.
+    pub normals: usize,
+}
+
+impl Memory {
+    /// All of it.
+    #[must_use]
+    pub fn total(&self) -> usize {
+        self.occluders + self.tree + self.occlusion_tree + self.normals
     }
 }

@@ -5,8 +5,8 @@
 //! Among nested boxes every smaller neighbour ties (the merged box is the
 //! larger one), so almost no pair agrees and each pass merges one pair:
 //! `n` nested triangles took `n` passes (10⁴ about one centre: 3.1 s,
-//! quadratic; the reinsertion passes after it are quadratic too, the tree
-//! being a chain). Feeding PLOC points instead of boxes did not help
+//! quadratic; obvhs's reinsertion passes after it were quadratic too, the
+//! tree being a chain — ours, `reinsert.rs`, are bounded). Feeding PLOC points instead of boxes did not help
 //! (near-coincident centres chain the same way, measured).
 //!
 //! So before PLOC, the boxes are put in Morton order of their centres and

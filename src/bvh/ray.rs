@@ -1,7 +1,13 @@
-//! The conservative `f32` slab test of a segment against a node's four
-//! boxes, and the any-hit traversal ([`Bvh::segment_unoccluded`]).
+//! The conservative `f32` slab test of a segment against a node's child
+//! boxes, and the any-hit traversal over the occlusion tree
+//! ([`Bvh::segment_unoccluded`]).
 
-use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
+#[cfg(all(feature = "simd", target_arch = "x86_64"))]
+use super::lanes::Avx8;
+use super::lanes::{Lanes, Portable};
+use super::leaf::{self, LeafRay, PACK};
+use super::node::{decode, Node, EMPTY, WIDTH};
+use super::wide::{WideNode, LEAF as WIDE_LEAF, WIDE};
 use super::{in_f32_range, Bvh};
 use crate::kernel::lanes;
 use crate::kernel::segment::segment_blocked;
@@ -10,31 +16,6 @@ use glam::DVec3;
 /// Stack entries kept on the machine stack by the depth-first traversals;
 /// deeper trees use a heap stack.
 pub(super) const STACK: usize = 64;
-
-/// Nodes [`Bvh::segment_unoccluded`] takes from its stack at a time, on
-/// a tree of [`GROUPED_FROM`] bytes or more, after
-/// [`DEPTH_FIRST_STEPS`] steps one node at a time.
-pub(super) const GROUP: usize = 3;
-
-/// The size of a tree (nodes and triangles, in bytes) from which
-/// [`Bvh::segment_unoccluded`] walks it [`GROUP`] nodes at a time: a
-/// smaller one stays in the caches, and there the grouped walk only adds
-/// work (on the default scene's 3,674 triangles, Monte Carlo's rays took
-/// about 15 % more time).
-pub(super) const GROUPED_FROM: usize = 1 << 20;
-
-/// The steps a grouped walk first takes one node at a time: a segment
-/// that meets a closed mesh finds its blocker within a few, where a
-/// group's other members would be work wasted (measured: on a sphere of
-/// 81,920 triangles, 0.89× the rays/s of a walk one node at a time
-/// without these steps, 1.09× with eight).
-const DEPTH_FIRST_STEPS: usize = 8;
-
-/// Stack entries of [`Bvh::segment_unoccluded`]'s grouped walk: trees up
-/// to depth 17 (its need is `GROUP · WIDTH · (depth − 1)`, see
-/// `Bvh::grouped_stack_need`; a tree over 10⁵ triangles has depth about
-/// 11); deeper ones are walked one node at a time.
-pub(super) const GROUPED_STACK: usize = 192;
 
 /// A traversal's stack of node indices: on the machine stack up to `N`
 /// entries, on the heap beyond.
@@ -78,90 +59,142 @@ impl Bvh {
     /// meet (any-hit: stops at the first blocker). Endpoints are not part of
     /// the segment: a receiver on a face is not shadowed by that face.
     ///
-    /// Conservative `f32` traversal. With `o = fl32(p)` and
+    /// # How it decides
+    ///
+    /// The walk goes over the occlusion tree (eight child boxes a node,
+    /// leaves of up to eight triangles; `wide.rs`) depth first, the loads
+    /// of a node's hit children and packs started together (a value read
+    /// from each) before any is used.
+    ///
+    /// *The boxes are conservative.* With `o = fl32(p)` and
     /// `d = fl32(fl64(x − p))` (a component below `2⁻¹⁰⁰` in magnitude
     /// replaced by `±2⁻¹⁰⁰`), the `f32` ray `o + t d` stays, for every
     /// `t ∈ [0, 1]`, within `δᵢ/2` of the true point `p + t (x − p)` on each
     /// axis, where `δᵢ = 2⁻²¹ (|pᵢ| + |xᵢ − pᵢ|) + 2⁻⁹⁸`: the two roundings to
     /// `f32` contribute at most `2⁻²⁴` relative each, the `f64` difference
     /// `2⁻⁵³`, the substitution `2⁻¹⁰⁰` — a factor-2 margin above `δᵢ/2`
-    /// absorbs the `f64` arithmetic computing `δ` and `o ± δ`. Let `B` be a
-    /// lane's decoded box: its planes are the `f32` values
-    /// `origin + q · scale` (the node's 8-bit `q` on its power-of-two grid,
-    /// one rounding), computed with the same operations at
-    /// build and at query (so bit-identical), and the build chose each `q`
-    /// so that the decoded plane lies on or outside the `f32` box, itself
-    /// rounded outward from the `f64` triangles: `B` contains every
-    /// triangle below the lane exactly (checked by
-    /// `tests::decoded_boxes_contain_their_triangles`). So if the true
-    /// segment meets `B` at `t*`, the exact `f32` ray lies inside `B` grown
-    /// by `δ` for all `t` within `δᵢ/|dᵢ| ≥ 2⁻²²` of `t*` (clipped to
-    /// `[0, 1]`): the slab intervals overlap by a width of at least `2⁻²²`.
-    /// The slab test grows the box by at least `δ` through the origins it
+    /// absorbs the `f64` arithmetic computing `δ` and `o ± δ`. A child's box
+    /// `B` is the `f32` box of the build, rounded outward from the `f64`
+    /// triangles: it contains every triangle below it exactly (checked by
+    /// `tests::wide_boxes_contain_their_triangles`). So if the true segment
+    /// meets `B` at `t*`, the exact `f32` ray lies inside `B` grown by `δ`
+    /// for all `t` within `δᵢ/|dᵢ| ≥ 2⁻²²` of `t*` (clipped to `[0, 1]`):
+    /// the slab intervals overlap by a width of at least `2⁻²²`. The slab
+    /// test grows the box by at least `δ` through the origins it
     /// subtracts: `o ± δ′` with `δ′ = δ (1 + 2⁻²²) + |o| 2⁻²³`, rounded to
     /// nearest `f32`, lies on or beyond `o ± δ`, since rounding moves it by
     /// at most `2⁻²⁴ (|o| + δ′)`, less than the added `δ 2⁻²² + |o| 2⁻²³`
     /// (with room for the `f64` arithmetic); where that passes `±f32::MAX`
     /// it is clamped there, still beyond every plane. Each rounded
     /// `t = (plane − origin) · (1/d)` carries at most three roundings
-    /// (relative error `γ₃ ≈ 3·2⁻²⁴`, sign exact; the decoded plane is an
-    /// exact input, not a rounding), so comparing
+    /// (relative error `γ₃ ≈ 3·2⁻²⁴`, sign exact), so comparing
     /// `t_near ≤ min(t_far, 1) · (1 + 2⁻²⁰)` (Ize, "Robust BVH Ray
-    /// Traversal", 2013) cannot reject a box the true segment meets.
+    /// Traversal", 2013) cannot reject a box the true segment meets: a box
+    /// test may keep a box the segment misses, never drop one it meets.
+    /// An empty lane's box is inverted (`lo = f32::MAX > hi = −f32::MAX`):
+    /// its entry is `+∞` or positive beyond its exit, and no NaN arises
+    /// (`1/d` is finite and nonzero, the origins finite).
     ///
-    /// The walk is depth-first, one node at a time; on a tree of a
-    /// megabyte or more (one the caches do not hold), after eight such
-    /// steps it takes the top three nodes of its stack at a time: their
-    /// slab tests run together, so the loads of their lines overlap where
-    /// a walk one node at a time waits on each in turn. The answer does
-    /// not depend on the order in which nodes and triangles are visited:
-    /// it is whether some triangle whose box the segment may meet blocks
-    /// it, each decided exactly.
+    /// *The leaves are tested in `f32` where that is certain.* The
+    /// triangles of a leaf whose box the walk keeps are tested together in
+    /// `f32`, each determinant of the exact test with a proven error bound
+    /// (`leaf.rs`); a triangle whose every sign is certain under the bound
+    /// is decided there, any other by [`segment_blocked`], in `f64` with
+    /// the exact [`orient3d`](crate::kernel::predicate::orient3d). So
+    /// every triangle whose box the segment may meet is decided as
+    /// [`segment_blocked`] decides it, and the answer does not depend on
+    /// the order of the walk: it is whether some triangle blocks the
+    /// segment.
     ///
     /// Endpoints with a non-finite coordinate: `true` (no triangle meets
     /// them, by [`segment_blocked`]'s convention). Coordinates beyond
     /// `f32::MAX`: every triangle is tested.
     #[must_use]
     pub fn segment_unoccluded(&self, p: DVec3, x: DVec3) -> bool {
-        // Compiled for AVX2 where present: the same answers, the slab
-        // tests and exact predicates in wider, three-operand instructions.
-        // Each walk in a function of its own: with both in one, the
-        // depth-first walk took 3 % more instructions.
-        if self.grouped {
-            lanes::vectorized(
-                #[inline(always)]
-                |_| self.unoccluded_here::<true>(p, x),
-            )
-        } else {
-            lanes::vectorized(
-                #[inline(always)]
-                |_| self.unoccluded_here::<false>(p, x),
-            )
-        }
+        self.unoccluded_with(p, x, &mut ())
     }
 
-    /// [`Bvh::segment_unoccluded`], compiled where it is called; its walk
-    /// grouped or not as `GROUPED` says (the same answer either way).
+    /// [`Bvh::segment_unoccluded`], counting the work of the walk into
+    /// `counts` (nodes visited, leaves and triangles tested in `f32`, and
+    /// triangles the `f32` test left to the exact one): the same answer.
+    /// For measuring the tree, not for speed.
+    pub fn segment_unoccluded_counting(
+        &self,
+        p: DVec3,
+        x: DVec3,
+        counts: &mut OcclusionCounts,
+    ) -> bool {
+        counts.segments += 1;
+        self.unoccluded_with(p, x, counts)
+    }
+
+    /// [`Bvh::segment_unoccluded`] on the widest lanes the processor has
+    /// (AVX2 where present, through `pulp`'s run-time dispatch: the same
+    /// answers; the whole walk compiled for it).
     #[inline(always)]
-    pub(super) fn unoccluded_here<const GROUPED: bool>(&self, p: DVec3, x: DVec3) -> bool {
+    fn unoccluded_with<T: Tally>(&self, p: DVec3, x: DVec3, tally: &mut T) -> bool {
+        lanes::vectorized(
+            #[inline(always)]
+            |_| {
+                #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+                if let Some(v3) = pulp::x86::V3::try_new() {
+                    return self.unoccluded_here(v3, p, x, tally);
+                }
+                self.unoccluded_here(Portable, p, x, tally)
+            },
+        )
+    }
+
+    /// [`Bvh::segment_unoccluded`] on the lanes `s`, compiled where it is
+    /// called.
+    #[inline(always)]
+    pub(super) fn unoccluded_here<S: WalkLanes, T: Tally>(
+        &self,
+        s: S,
+        p: DVec3,
+        x: DVec3,
+        tally: &mut T,
+    ) -> bool {
         // The common case in one test (a NaN or an infinity fails it too),
         // the others out of line: for a segment that misses the root's
         // boxes the set-up is most of the query.
-        let common = in_f32_range(p)
-            && in_f32_range(x)
-            && self.outliers.is_empty()
-            && !self.nodes.is_empty();
+        let common =
+            in_f32_range(p) && in_f32_range(x) && self.outliers.is_empty() && !self.wide.is_empty();
         if !common {
             if let Some(answer) = self.unoccluded_off_tree(p, x) {
                 return answer;
             }
         }
-        let ray = Ray32::in_range(p, x);
-        if GROUPED {
-            self.walk::<GROUP, GROUPED_STACK>(p, x, &ray)
+        let d = x - p;
+        let axes = s.axes([p.x, p.y, p.z, p.z], [d.x, d.y, d.z, d.z]);
+        let ray = Ray32 {
+            near: [axes.near[0], axes.near[1], axes.near[2]],
+            far: [axes.far[0], axes.far[1], axes.far[2]],
+            inv: [axes.inv[0], axes.inv[1], axes.inv[2]],
+            entry: [0, 1, 2].map(|k| usize::from(axes.backward[k])),
+        };
+        let need = self.wide_stack_need();
+        if need <= STACK {
+            self.walk(s, p, x, &ray, tally, &mut ArrayStack::new(need))
         } else {
-            self.walk::<1, STACK>(p, x, &ray)
+            self.deep_walk(s, p, x, &ray, tally)
         }
+    }
+
+    /// [`Bvh::walk`] on a tree too deep for an [`ArrayStack`]: its stack
+    /// on the heap.
+    #[cold]
+    #[inline(never)]
+    fn deep_walk<S: WalkLanes, T: Tally>(
+        &self,
+        s: S,
+        p: DVec3,
+        x: DVec3,
+        ray: &Ray32,
+        tally: &mut T,
+    ) -> bool {
+        let mut entries = vec![0; self.wide_stack_need()];
+        self.walk(s, p, x, ray, tally, &mut SliceStack(&mut entries))
     }
 
     /// [`Bvh::segment_unoccluded`] where its endpoints leave the `f32`
@@ -176,124 +209,307 @@ impl Bvh {
         if self.outliers.iter().any(|t| segment_blocked(p, x, t)) {
             return Some(false);
         }
-        if self.nodes.is_empty() || !(in_f32_range(p) && in_f32_range(x)) {
+        if self.wide.is_empty() || !(in_f32_range(p) && in_f32_range(x)) {
             return Some(!self.triangles.iter().any(|t| segment_blocked(p, x, t)));
         }
         None
     }
 
-    /// The any-hit walk of [`Bvh::segment_unoccluded`] over the tree,
-    /// taking the top `G` nodes of its stack at a time (`N` entries of it
-    /// on the machine stack).
+    /// The any-hit walk of [`Bvh::segment_unoccluded`] over the occlusion
+    /// tree, depth first.
     #[inline(always)]
-    fn walk<const G: usize, const N: usize>(&self, p: DVec3, x: DVec3, ray: &Ray32) -> bool {
-        // The nodes still to visit: `node`, then the stack from the top
-        // down, by nonincreasing depth (see `Bvh::grouped_stack_need`).
-        let mut stack = NodeStack::<N>::new();
-        let mut walk = Walk {
-            stack: stack.entries(if G == 1 {
-                self.stack_need()
-            } else {
-                self.grouped_stack_need(G)
-            }),
-            top: 0,
-            node: 0,
-            touched: 0,
-        };
-        for _ in 0..if G > 1 { DEPTH_FIRST_STEPS } else { 0 } {
-            if let Some(answer) = self.step::<1>(p, x, ray, &mut walk) {
-                return answer;
-            }
-        }
-        loop {
-            if let Some(answer) = self.step::<G>(p, x, ray, &mut walk) {
-                return answer;
-            }
-        }
-    }
-
-    /// One step of [`Bvh::walk`]: `walk.node` and up to `G − 1` entries
-    /// from the top of the stack taken, their hit inner children pushed,
-    /// their hit leaves tested, the next node popped; `Some(answer)` when
-    /// the walk ends.
-    #[inline(always)]
-    fn step<const G: usize>(
+    fn walk<S: WalkLanes, T: Tally, K: WalkStack>(
         &self,
+        s: S,
         p: DVec3,
         x: DVec3,
         ray: &Ray32,
-        walk: &mut Walk<'_>,
-    ) -> Option<bool> {
-        // The group, deepest first. Their loads and slab tests overlap,
-        // where a walk one node at a time would wait on each node's load
-        // in turn.
-        let more = walk.top.min(G - 1);
-        let mut group = [&self.nodes[walk.node as usize]; G];
-        walk.top -= more;
-        let taken = walk.stack[walk.top..walk.top + more].iter().rev();
-        for (n, &i) in group[1..].iter_mut().zip(taken) {
-            *n = &self.nodes[i as usize];
+        tally: &mut T,
+        stack: &mut K,
+    ) -> bool {
+        let (mut top, mut node) = (0usize, 0u32);
+        // The leaves' constants, on the first leaf (most of Monte Carlo's
+        // rays miss the root's boxes).
+        let mut leaf_ray: Option<LeafRay<<S::Leaf as Lanes<PACK>>::F>> = None;
+        let slab = WideSlab::new(s.node(), ray);
+        let mut touched = 0u32;
+        loop {
+            let n = &self.wide[node as usize];
+            tally.node();
+            let hits = slab.hits(s.node(), n);
+            // Inner children pushed and leaves noted first, a value read
+            // from each (the crate forbids the `unsafe` prefetch
+            // intrinsic): the loads of the hit packs and of the node
+            // visited next start together, rather than each when its
+            // test needs it.
+            let mut inner = hits & !n.leaf_lanes;
+            let mut leaves = hits & n.leaf_lanes;
+            while inner != 0 {
+                let child = n.child[inner.trailing_zeros() as usize];
+                inner &= inner - 1;
+                stack.set(top, child);
+                top += 1;
+                touched = touched.wrapping_add(self.wide[child as usize].child[0]);
+            }
+            let mut rest = leaves;
+            while rest != 0 {
+                let child = n.child[rest.trailing_zeros() as usize];
+                rest &= rest - 1;
+                touched = touched.wrapping_add(self.packs.get(child & !WIDE_LEAF).count());
+            }
+            while leaves != 0 {
+                let lane = leaves.trailing_zeros() as usize;
+                leaves &= leaves - 1;
+                let at = n.child[lane] & !WIDE_LEAF;
+                if leaf_ray.is_none() {
+                    leaf_ray = Some(LeafRay::new(s.leaf(), p, x));
+                }
+                let Some(leaf_ray) = &leaf_ray else {
+                    unreachable!()
+                };
+                if self.pack_blocks(s.leaf(), p, x, at, leaf_ray, tally) {
+                    std::hint::black_box(touched);
+                    return false;
+                }
+            }
+            if top == 0 {
+                std::hint::black_box(touched);
+                return true;
+            }
+            top -= 1;
+            node = stack.get(top);
         }
-        let g = 1 + more;
-        // Member `k`'s hit lanes at bits `4 (G − 1 − k)` on: the deepest
-        // member's highest.
-        const { assert!(G * WIDTH <= 32) };
-        let mut hits = 0u32;
-        for (k, n) in group.iter().enumerate().take(g) {
-            hits |= ray.hits(n) << (WIDTH * (G - 1 - k));
-        }
-        let child_at = |bit: usize| group[G - 1 - bit / WIDTH].child[bit % WIDTH];
-        // Inner children pushed from the shallowest member (the lowest
-        // bits) up, which keeps the stack sorted by depth. A value is
-        // read from each child node and leaf triangle as soon as its box is
-        // hit: the loads start while the group's other lanes and leaves are
-        // handled (the crate forbids the `unsafe` prefetch intrinsic), and
-        // `black_box` keeps them. Measured: soup rays/s 1.07× on
-        // `examples/ray_corpus.rs`.
-        let mut leaves = 0u32;
-        let mut rest = hits;
-        while rest != 0 {
-            let bit = rest.trailing_zeros() as usize;
-            rest &= rest - 1;
-            let child = child_at(bit);
-            if child & LEAF == 0 {
-                walk.stack[walk.top] = child;
-                walk.top += 1;
-                walk.touched = walk
-                    .touched
-                    .wrapping_add(self.nodes[child as usize].child[0]);
-            } else {
-                leaves |= 1 << bit;
-                let t = &self.triangles[(child & !LEAF) as usize];
-                walk.touched = walk.touched.wrapping_add(t[0].x.to_bits() as u32);
+    }
+
+    /// Whether a triangle of pack `at` blocks the segment: the `f32` test,
+    /// then the exact one on the lanes it leaves uncertain.
+    #[inline(always)]
+    fn pack_blocks<L: Lanes<PACK>, T: Tally>(
+        &self,
+        s: L,
+        p: DVec3,
+        x: DVec3,
+        at: u32,
+        leaf_ray: &LeafRay<L::F>,
+        tally: &mut T,
+    ) -> bool {
+        let pack = self.packs.get(at);
+        let (hit, unsure) = leaf::test(s, pack, leaf_ray);
+        tally.pack(pack.count(), unsure.count_ones());
+        hit != 0 || (unsure != 0 && self.exact_lanes(p, x, pack, unsure))
+    }
+
+    /// Whether a triangle of the lanes `unsure` of `pack` blocks the
+    /// segment, by [`segment_blocked`]: out of line (rare; inline, the
+    /// compiler computed parts of the exact test ahead of every walk).
+    #[cold]
+    #[inline(never)]
+    fn exact_lanes(&self, p: DVec3, x: DVec3, pack: leaf::Pack<'_>, mut unsure: u32) -> bool {
+        while unsure != 0 {
+            let lane = unsure.trailing_zeros() as usize;
+            unsure &= unsure - 1;
+            if segment_blocked(p, x, &self.occluders.triangles()[pack.id(lane) as usize]) {
+                return true;
             }
         }
-        while leaves != 0 {
-            let bit = leaves.trailing_zeros() as usize;
-            leaves &= leaves - 1;
-            let t = &self.triangles[(child_at(bit) & !LEAF) as usize];
-            if segment_blocked(p, x, t) {
-                std::hint::black_box(walk.touched);
-                return Some(false);
-            }
-        }
-        if walk.top == 0 {
-            std::hint::black_box(walk.touched);
-            return Some(true);
-        }
-        walk.top -= 1;
-        walk.node = walk.stack[walk.top];
-        None
+        false
     }
 }
 
-/// The state of [`Bvh::walk`]: the node to visit next, the stack of those
-/// after it, and the sum of the values read to start loads early.
-struct Walk<'a> {
-    stack: &'a mut [u32],
-    top: usize,
-    node: u32,
-    touched: u32,
+/// The lanes of the occlusion walk: [`WIDE`] for a node's boxes, [`PACK`]
+/// for a leaf's triangles.
+pub(super) trait WalkLanes: Copy {
+    type Node: Lanes<WIDE>;
+    type Leaf: Lanes<PACK>;
+    fn node(self) -> Self::Node;
+    fn leaf(self) -> Self::Leaf;
+    /// [`Ray32::axes`] of four lanes (the same bits).
+    fn axes(self, p: [f64; 4], d: [f64; 4]) -> Axes32<4>;
+}
+
+impl WalkLanes for Portable {
+    type Node = Portable;
+    type Leaf = Portable;
+    #[inline(always)]
+    fn axes(self, p: [f64; 4], d: [f64; 4]) -> Axes32<4> {
+        Ray32::axes(p, d)
+    }
+    #[inline(always)]
+    fn node(self) -> Portable {
+        self
+    }
+    #[inline(always)]
+    fn leaf(self) -> Portable {
+        self
+    }
+}
+
+#[cfg(all(feature = "simd", target_arch = "x86_64"))]
+impl WalkLanes for pulp::x86::V3 {
+    type Node = Avx8;
+    type Leaf = Avx8;
+    #[inline(always)]
+    fn axes(self, p: [f64; 4], d: [f64; 4]) -> Axes32<4> {
+        super::lanes::axes4(self, p, d)
+    }
+    #[inline(always)]
+    fn node(self) -> Avx8 {
+        Avx8(self)
+    }
+    #[inline(always)]
+    fn leaf(self) -> Avx8 {
+        Avx8(self)
+    }
+}
+
+/// The slab test's per-ray vectors (see [`Ray32`]).
+pub(super) struct WideSlab<F> {
+    near: [F; 3],
+    far: [F; 3],
+    inv: [F; 3],
+    entry: [usize; 3],
+    one: F,
+    slack: F,
+}
+
+impl<F: Copy> WideSlab<F> {
+    #[inline(always)]
+    pub(super) fn new<S: Lanes<WIDE, F = F>>(s: S, ray: &Ray32) -> WideSlab<F> {
+        WideSlab {
+            near: [
+                s.splat(ray.near[0]),
+                s.splat(ray.near[1]),
+                s.splat(ray.near[2]),
+            ],
+            far: [
+                s.splat(ray.far[0]),
+                s.splat(ray.far[1]),
+                s.splat(ray.far[2]),
+            ],
+            inv: [
+                s.splat(ray.inv[0]),
+                s.splat(ray.inv[1]),
+                s.splat(ray.inv[2]),
+            ],
+            entry: ray.entry,
+            one: s.splat(1.0),
+            slack: s.splat(T_SLACK),
+        }
+    }
+
+    /// The lanes of the occlusion tree's node `n` whose box the segment
+    /// may meet, as a bit mask (the argument of
+    /// [`Bvh::segment_unoccluded`]).
+    #[inline(always)]
+    pub(super) fn hits<S: Lanes<WIDE, F = F>>(&self, s: S, n: &WideNode) -> u32 {
+        let mut t_near = s.splat(0.0);
+        let mut t_far = self.one;
+        for axis in 0..3 {
+            let side = self.entry[axis];
+            let entry = s.load(&n.planes[side][axis]);
+            let exit = s.load(&n.planes[1 - side][axis]);
+            let a = s.mul(s.sub(entry, self.near[axis]), self.inv[axis]);
+            let b = s.mul(s.sub(exit, self.far[axis]), self.inv[axis]);
+            t_near = s.max(a, t_near);
+            t_far = s.min(b, t_far);
+        }
+        s.le(t_near, s.mul(t_far, self.slack))
+    }
+}
+
+/// The occlusion walk's stack of node indices (its bound proven by
+/// `Bvh::wide_stack_need`).
+pub(super) trait WalkStack {
+    fn set(&mut self, at: usize, node: u32);
+    fn get(&self, at: usize) -> u32;
+}
+
+/// [`STACK`] entries on the machine stack, indexed modulo [`STACK`] (no
+/// bounds test: a tree whose walk needs at most [`STACK`] entries never
+/// indexes beyond them; the tests' builds check the proven bound).
+pub(super) struct ArrayStack {
+    entries: [u32; STACK],
+    #[cfg(debug_assertions)]
+    need: usize,
+}
+
+impl ArrayStack {
+    #[inline(always)]
+    pub(super) fn new(need: usize) -> ArrayStack {
+        debug_assert!(need <= STACK);
+        let _ = need;
+        ArrayStack {
+            entries: [0; STACK],
+            #[cfg(debug_assertions)]
+            need,
+        }
+    }
+}
+
+impl WalkStack for ArrayStack {
+    #[inline(always)]
+    fn set(&mut self, at: usize, node: u32) {
+        #[cfg(debug_assertions)]
+        assert!(at < self.need, "the walk outgrew its proven stack");
+        self.entries[at % STACK] = node;
+    }
+    #[inline(always)]
+    fn get(&self, at: usize) -> u32 {
+        self.entries[at % STACK]
+    }
+}
+
+/// Entries on the heap, exactly as many as the bound (a walk outgrowing
+/// it panics).
+pub(super) struct SliceStack<'a>(&'a mut [u32]);
+
+impl WalkStack for SliceStack<'_> {
+    #[inline(always)]
+    fn set(&mut self, at: usize, node: u32) {
+        self.0[at] = node;
+    }
+    #[inline(always)]
+    fn get(&self, at: usize) -> u32 {
+        self.0[at]
+    }
+}
+
+/// What [`Bvh::segment_unoccluded_counting`] counts, summed over calls.
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub struct OcclusionCounts {
+    /// Segments asked.
+    pub segments: u64,
+    /// Nodes whose child boxes were tested.
+    pub nodes: u64,
+    /// Leaves (packs of up to eight triangles) tested in `f32`.
+    pub leaves: u64,
+    /// Triangles tested in `f32`.
+    pub triangles: u64,
+    /// Triangles the `f32` test left uncertain, decided by the exact test.
+    pub exact: u64,
+}
+
+/// What the walk counts (nothing, for `()`).
+pub(super) trait Tally {
+    /// A node's boxes tested.
+    fn node(&mut self) {}
+    /// A pack of `lanes` triangles tested, `unsure` of them left uncertain.
+    fn pack(&mut self, lanes: u32, unsure: u32) {
+        let _ = (lanes, unsure);
+    }
+}
+
+impl Tally for () {}
+
+impl Tally for OcclusionCounts {
+    fn node(&mut self) {
+        self.nodes += 1;
+    }
+    fn pack(&mut self, lanes: u32, unsure: u32) {
+        self.leaves += 1;
+        self.triangles += u64::from(lanes);
+        self.exact += u64::from(unsure);
+    }
 }
 
 /// The per-ray constants of the conservative `f32` slab test (see
@@ -379,12 +595,6 @@ impl Ray32 {
             axes.backward[l] = backward;
         }
         axes
-    }
-
-    /// The lanes of `n` whose box the segment may meet, as a bit mask.
-    #[inline(always)]
-    fn hits(&self, n: &Node) -> u32 {
-        self.slab(n, 1.0).0
     }
 
     /// The lanes of `n` whose box the part `[0, limit]` of the segment may

@@ -1,9 +1,12 @@
 //! The invariants the conservative traversal rests on: decoded boxes contain
 //! their triangles, ray origins are padded outward, quantisation is tight.
 
+use super::lanes::Portable;
+use super::leaf::PACK;
 use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
-use super::ray::Ray32;
-use super::{Bvh, Occluders};
+use super::ray::{Ray32, WideSlab};
+use super::wide::{WideNode, EMPTY as WIDE_EMPTY, LEAF as WIDE_LEAF, WIDE};
+use super::{Bvh, Occluders, OcclusionCounts};
 use crate::arbitrary::Rng;
 use crate::kernel::segment::segment_blocked;
 use glam::DVec3;
@@ -64,6 +67,74 @@ fn check_subtree(bvh: &Bvh, node: u32, depth: usize) -> (DVec3, DVec3) {
     (lo, hi)
 }
 
+/// The invariants of the occlusion tree: every lane's box contains,
+/// exactly, every triangle below it (clamped to the `f32` range); every
+/// pack holds its triangles' corners rounded to nearest `f32`, lane by
+/// lane, and its bounds' terms bound them; every triangle in the tree is
+/// in one pack lane; empty lanes' boxes are inverted.
+fn check_wide(bvh: &Bvh) {
+    let clamp = |v: DVec3| {
+        v.clamp(
+            DVec3::splat(-f64::from(f32::MAX)),
+            DVec3::splat(f64::from(f32::MAX)),
+        )
+    };
+    let mut seen = Vec::new();
+    let mut stack = vec![0u32];
+    while let Some(node) = stack.pop() {
+        let n = &bvh.wide[node as usize];
+        for lane in 0..WIDE {
+            let (lo, hi) = (
+                DVec3::from_array([0, 1, 2].map(|a| f64::from(n.planes[0][a][lane]))),
+                DVec3::from_array([0, 1, 2].map(|a| f64::from(n.planes[1][a][lane]))),
+            );
+            let child = n.child[lane];
+            if child == WIDE_EMPTY {
+                assert!(lo.cmpgt(hi).all(), "an empty lane's box is inverted");
+                continue;
+            }
+            let mut below = Vec::new();
+            let mut todo = vec![child];
+            while let Some(c) = todo.pop() {
+                if c & WIDE_LEAF == 0 {
+                    let m = &bvh.wide[c as usize];
+                    todo.extend(m.child.iter().filter(|&&k| k != WIDE_EMPTY));
+                } else {
+                    below.extend(bvh.packs.get(c & !WIDE_LEAF).ids());
+                }
+            }
+            for &id in &below {
+                let t = bvh.occluders.triangles()[id as usize].map(clamp);
+                let (t_lo, t_hi) = (t[0].min(t[1]).min(t[2]), t[0].max(t[1]).max(t[2]));
+                assert!(
+                    lo.cmple(t_lo).all() && hi.cmpge(t_hi).all(),
+                    "lane {lane} of node {node}"
+                );
+            }
+            if child & WIDE_LEAF == 0 {
+                stack.push(child);
+                continue;
+            }
+            let pack = bvh.packs.get(child & !WIDE_LEAF);
+            assert!((1..=PACK as u32).contains(&pack.count()));
+            let ids = pack.ids();
+            assert_eq!(ids.len(), pack.count() as usize);
+            for (l, &id) in ids.iter().enumerate() {
+                seen.push(id);
+                let t = bvh.occluders.triangles()[id as usize];
+                for (k, corner) in t.iter().enumerate() {
+                    assert_eq!(pack.corner(k, l), corner.as_vec3().as_dvec3());
+                }
+            }
+            pack.check_terms(bvh.occluders.triangles());
+        }
+    }
+    seen.sort_unstable();
+    let mut ids = bvh.ids.clone();
+    ids.sort_unstable();
+    assert_eq!(seen, ids, "each triangle of the tree in one pack lane");
+}
+
 #[test]
 fn decoded_boxes_contain_their_triangles() {
     let mut rng = Rng::new(11);
@@ -88,6 +159,7 @@ fn decoded_boxes_contain_their_triangles() {
         assert_eq!(bvh.triangles.len() + bvh.outliers.len(), count);
         if !bvh.nodes.is_empty() {
             check_subtree(&bvh, 0, 0);
+            check_wide(&bvh);
         }
     }
 }
@@ -218,12 +290,11 @@ fn stacked_layers_make_a_balanced_tree() {
 /// A segment that meets the box of every node and no triangle: 4096
 /// triangles across the `z` axis, each missing it by 0.1 on the far side
 /// of its hypotenuse, turned about the axis by a random multiple of a
-/// right angle (so that its box still holds the axis). The walk visits
-/// every node, which is where its stack grows most: grouped, it stays
-/// within the bound of `grouped_stack_need` (the stack has exactly that
-/// many entries, so one more would panic), and one node at a time within
-/// `stack_need`; the segment is unoccluded either way. The tree is too
-/// small for the grouped walk to be chosen: it is asked for here.
+/// right angle (so that its box still holds the axis). The occlusion walk
+/// visits every node, which is where its stack grows most: it stays
+/// within `wide_stack_need` (the stack has exactly that many entries, so
+/// one more would panic), and the segment is unoccluded, on every lane
+/// form.
 #[test]
 fn a_walk_over_every_node_stays_within_its_stack() {
     let mut rng = Rng::new(31);
@@ -241,25 +312,11 @@ fn a_walk_over_every_node_stays_within_its_stack() {
     let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
     let (p, x) = (DVec3::new(0.0, 0.0, -2.0), DVec3::new(0.0, 0.0, 2.0));
     assert!(tris.iter().all(|t| !segment_blocked(p, x, t)));
-    assert!(bvh.depth >= 5, "a deep tree: depth {}", bvh.depth);
-    assert!(!bvh.grouped);
-    assert!(bvh.unoccluded_here::<true>(p, x));
-    assert!(bvh.unoccluded_here::<false>(p, x));
-}
-
-/// The walk is grouped on a tree of a megabyte or more, and not on a
-/// smaller one: soups of 16,384 and 4096 triangles.
-#[test]
-fn the_walk_is_grouped_on_large_trees() {
-    let mut rng = Rng::new(37);
-    for (n, grouped) in [(16384, true), (4096, false)] {
-        let (lo, hi) = (DVec3::new(-1.0, 0.1, -1.0), DVec3::new(1.0, 0.9, 1.0));
-        let tris: Vec<[DVec3; 3]> = (0..n)
-            .map(|_| scattered_triangle(&mut rng, lo, hi, 0.02))
-            .collect();
-        let bvh = Bvh::new(Occluders::from_triangles(tris));
-        assert_eq!(bvh.grouped, grouped, "{n} triangles");
-    }
+    assert!(bvh.wide_depth >= 3, "a deep tree: depth {}", bvh.wide_depth);
+    let mut counts = OcclusionCounts::default();
+    assert!(bvh.segment_unoccluded_counting(p, x, &mut counts));
+    assert_eq!(counts.nodes, bvh.wide.len() as u64, "every node visited");
+    assert!(bvh.unoccluded_here(Portable, p, x, &mut ()));
 }
 
 /// Random soups mixing runs of nested triangles (about shared centres, in
@@ -318,6 +375,7 @@ fn holds_each_once_and_agrees(
     ids.sort_unstable();
     assert_eq!(ids, (0..tris.len() as u32).collect::<Vec<_>>());
     check_subtree(bvh, 0, 0);
+    check_wide(bvh);
     for _ in 0..100 {
         let p = DVec3::new(rng.uniform(-floor, floor), 0.0, rng.uniform(-floor, floor));
         let x = DVec3::new(rng.uniform(-light, light), 3.0, rng.uniform(-light, light));
@@ -325,13 +383,9 @@ fn holds_each_once_and_agrees(
             .iter()
             .any(|t| crate::kernel::segment::segment_blocked(p, x, t));
         assert_eq!(bvh.segment_unoccluded(p, x), !brute, "{p:?} → {x:?}");
-        // The walk not chosen for this tree, the same answer.
-        let other = if bvh.grouped {
-            bvh.unoccluded_here::<false>(p, x)
-        } else {
-            bvh.unoccluded_here::<true>(p, x)
-        };
-        assert_eq!(other, !brute, "{p:?} → {x:?}");
+        // The portable lanes, the same answer.
+        let portable = bvh.unoccluded_here(Portable, p, x, &mut ());
+        assert_eq!(portable, !brute, "{p:?} → {x:?}");
     }
 }
 
@@ -429,4 +483,260 @@ fn capped_hull_query_is_the_query_or_refuses() {
         assert!(bvh.triangles_meeting_hull_at_most(&hull, &mut capped, cap));
         assert_eq!(capped, all);
     }
+}
+
+/// The lanes of `node` whose box the segment `(p, x)` may meet, on the
+/// portable lanes and, where the processor has them, AVX2's (the two
+/// agree bit for bit).
+fn wide_hits(node: &WideNode, p: DVec3, x: DVec3) -> u32 {
+    let ray = Ray32::new(p, x).expect("within the f32 range");
+    let portable = WideSlab::new(Portable, &ray).hits(Portable, node);
+    #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        let s = super::lanes::Avx8(v3);
+        let wide = v3.vectorize(
+            #[inline(always)]
+            || WideSlab::new(s, &ray).hits(s, node),
+        );
+        assert_eq!(wide, portable, "AVX2 and portable lanes differ");
+    }
+    portable
+}
+
+/// The slab test never drops a box the segment meets, at the edges:
+/// segments ending or starting exactly on a face, at a corner, lying in a
+/// face's plane across it, running along an edge; boxes of every size at
+/// offsets up to `10⁹` (the tree's boxes lie within `±2⁶⁰`), endpoints
+/// `f32` values or not; the box in any lane among others and empty lanes.
+#[test]
+fn slab_test_keeps_boxes_the_segment_touches() {
+    let mut rng = Rng::new(61);
+    let coordinate = |rng: &mut Rng, centre: f64, scale: f64| {
+        if rng.chance(0.1) {
+            centre
+        } else {
+            centre + rng.uniform(-1.0, 1.0) * scale
+        }
+    };
+    for case in 0..50_000 {
+        let scale = rng.log_uniform(-6.0, 6.0);
+        let centre = if rng.chance(0.5) {
+            0.0
+        } else {
+            rng.log_uniform(0.0, 9.0) * rng.sign()
+        };
+        let mut node = WideNode::EMPTY_NODE;
+        let lanes = 1 + rng.below(WIDE as u64) as usize;
+        let mut boxes = Vec::new();
+        for lane in 0..lanes {
+            let (a, b) = (
+                DVec3::new(
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                ),
+                DVec3::new(
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                    coordinate(&mut rng, centre, scale),
+                ),
+            );
+            let (lo, hi) = (a.min(b).as_vec3(), a.max(b).as_vec3());
+            for axis in 0..3 {
+                node.planes[0][axis][lane] = lo[axis];
+                node.planes[1][axis][lane] = hi[axis];
+            }
+            node.child[lane] = lane as u32;
+            boxes.push((lo.as_dvec3(), hi.as_dvec3()));
+        }
+        let lane = rng.below(lanes as u64) as usize;
+        let (lo, hi) = boxes[lane];
+        // A point of the box's surface: on one face (or an edge, or a
+        // corner), inside it on the other axes.
+        let mut on = DVec3::new(
+            rng.uniform(lo.x, hi.x),
+            rng.uniform(lo.y, hi.y),
+            rng.uniform(lo.z, hi.z),
+        );
+        let face = rng.below(3) as usize;
+        let pick = |rng: &mut Rng, k: usize| if rng.chance(0.5) { lo[k] } else { hi[k] };
+        on[face] = pick(&mut rng, face);
+        if rng.chance(0.3) {
+            let other = (face + 1 + rng.below(2) as usize) % 3;
+            on[other] = pick(&mut rng, other);
+            if rng.chance(0.3) {
+                let third = 3 - face - other;
+                on[third] = pick(&mut rng, third);
+            }
+        }
+        let away = DVec3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        ) * scale
+            * 4.0;
+        let (p, x) = match rng.below(4) {
+            0 => (on + away, on),
+            1 => (on, on + away),
+            // In the face's plane, across the face through `on`.
+            2 => {
+                let mut along = away;
+                along[face] = 0.0;
+                let (mut p, mut x) = (on - along, on + along);
+                p[face] = on[face];
+                x[face] = on[face];
+                // Clamped ends may leave the line through `on`: end at it.
+                if rng.chance(0.5) {
+                    (p, on)
+                } else {
+                    (on, x)
+                }
+            }
+            // Along an edge or a face, ending inside it.
+            _ => {
+                let mut q = on;
+                let free = (face + 1) % 3;
+                q[free] = rng.uniform(lo[free], hi[free]);
+                (q, on)
+            }
+        };
+        assert!(
+            wide_hits(&node, p, x) >> lane & 1 == 1,
+            "case {case}: lane {lane} {lo:?}..{hi:?} dropped for {p:?} → {x:?}"
+        );
+        assert_eq!(wide_hits(&node, p, x) >> lanes, 0, "empty lanes kept");
+    }
+}
+
+/// The occlusion walk's per-segment slab constants in AVX `f64` lanes are
+/// `Ray32::axes`' bit for bit: over many decades, signs, zero and tiny
+/// directions, and the edge of the `f32` range.
+#[test]
+fn slab_constants_agree_on_every_lane_form() {
+    #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+    if let Some(v3) = pulp::x86::V3::try_new() {
+        let mut rng = Rng::new(67);
+        let value = |rng: &mut Rng| match rng.below(6) {
+            0 => 0.0,
+            1 => -0.0,
+            2 => rng.log_uniform(-45.0, -25.0) * rng.sign(),
+            3 => f64::from(f32::MAX) * rng.sign(),
+            _ => rng.log_uniform(-40.0, 38.0) * rng.sign(),
+        };
+        for _ in 0..100_000 {
+            let p: [f64; 4] = core::array::from_fn(|_| value(&mut rng));
+            let d: [f64; 4] = core::array::from_fn(|_| value(&mut rng));
+            let wide = v3.vectorize(
+                #[inline(always)]
+                || super::lanes::axes4(v3, p, d),
+            );
+            let portable = Ray32::axes(p, d);
+            let bits = |v: [f32; 4]| v.map(f32::to_bits);
+            assert_eq!(bits(wide.near), bits(portable.near), "{p:?} {d:?}");
+            assert_eq!(bits(wide.far), bits(portable.far), "{p:?} {d:?}");
+            assert_eq!(bits(wide.inv), bits(portable.inv), "{p:?} {d:?}");
+            assert_eq!(wide.backward, portable.backward, "{p:?} {d:?}");
+        }
+    }
+}
+
+/// A tree deeper than the machine-stack walk takes (triangles spaced ever
+/// farther apart along a line: PLOC chains them): the walk on the heap
+/// answers as brute force does.
+#[test]
+fn a_deep_tree_is_walked_on_the_heap() {
+    let tris: Vec<[DVec3; 3]> = (0..400)
+        .map(|k| {
+            let x = 1.07f64.powi(k) - 1.0;
+            [
+                DVec3::new(x, -1.0, -1.0),
+                DVec3::new(x, 1.0, -1.0),
+                DVec3::new(x, 0.0, 1.0),
+            ]
+        })
+        .collect();
+    let bvh = Bvh::new(Occluders::from_triangles(tris.clone()));
+    assert!(
+        bvh.wide_stack_need() > super::ray::STACK,
+        "depth {}",
+        bvh.wide_depth
+    );
+    check_wide(&bvh);
+    let mut rng = Rng::new(71);
+    for _ in 0..200 {
+        let p = DVec3::new(
+            rng.uniform(-1.0, 1e12),
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-2.0, 2.0),
+        );
+        let x = DVec3::new(
+            rng.uniform(-1.0, 1e12),
+            rng.uniform(-2.0, 2.0),
+            rng.uniform(-2.0, 2.0),
+        );
+        let brute = !tris.iter().any(|t| segment_blocked(p, x, t));
+        assert_eq!(bvh.segment_unoccluded(p, x), brute, "{p:?} → {x:?}");
+        assert_eq!(bvh.unoccluded_here(Portable, p, x, &mut ()), brute);
+    }
+}
+
+/// A closed convex mesh (an icosphere of 1,280 triangles, scaled and moved
+/// by non-dyadic amounts, up to `10⁶` from the origin) leaks no light and
+/// shadows nothing outside it: segments from inside it to points beyond
+/// each vertex and each edge's midpoint (through shared edges and
+/// vertices, where the `f32` test cannot be certain) are blocked; from a
+/// vertex (on its triangles' planes) outward they are not, from a vertex
+/// across the mesh they are — every answer also brute force's, and the
+/// exact test reached.
+#[test]
+fn a_closed_mesh_is_watertight_at_its_edges_and_vertices() {
+    let mesh = crate::arbitrary::mesh::icosphere(3);
+    let mut rng = Rng::new(71);
+    let mut counts = OcclusionCounts::default();
+    for (offset, radius) in [(0.0, 1.0), (1e3, 0.37), (1e6, 3.1), (-2e4, 1e-3)] {
+        let centre = DVec3::new(
+            offset * rng.uniform(0.5, 1.0),
+            offset * rng.uniform(-1.0, 1.0),
+            offset * rng.uniform(-1.0, 1.0),
+        );
+        let positions: Vec<DVec3> = mesh
+            .positions
+            .iter()
+            .map(|&v| centre + v * radius)
+            .collect();
+        let triangles: Vec<[DVec3; 3]> = mesh
+            .triangles
+            .iter()
+            .map(|t| t.map(|i| positions[i as usize]))
+            .collect();
+        let bvh = Bvh::new(Occluders::from_triangles(triangles.clone()));
+        let brute = |p: DVec3, x: DVec3| !triangles.iter().any(|t| segment_blocked(p, x, t));
+        let mut check = |p: DVec3, x: DVec3, unoccluded: bool| {
+            let got = bvh.segment_unoccluded_counting(p, x, &mut counts);
+            assert_eq!(got, unoccluded, "{p} {x}");
+            assert_eq!(got, brute(p, x), "{p} {x}");
+        };
+        let inside = |rng: &mut Rng| {
+            centre
+                + DVec3::new(
+                    rng.uniform(-0.4, 0.4),
+                    rng.uniform(-0.4, 0.4),
+                    rng.uniform(-0.4, 0.4),
+                ) * radius
+        };
+        let mut through = positions.clone();
+        for t in &mesh.triangles {
+            through.push((positions[t[0] as usize] + positions[t[1] as usize]) * 0.5);
+        }
+        for &v in &through {
+            let p = inside(&mut rng);
+            check(p, p + (v - p) * rng.uniform(1.2, 3.0), false);
+        }
+        for &v in &positions {
+            let k = rng.uniform(0.1, 2.0);
+            check(v, v + (v - centre) * k, true);
+            check(v, centre - (v - centre) * (1.0 + k), false);
+        }
+    }
+    assert!(counts.exact > 1000, "{counts:?}");
 }
