@@ -166,7 +166,12 @@ fn a_receiver_on_the_edge_s_line_reads_one_half() {
     ] {
         let v = values(&m, &stages, &frame);
         for (k, r) in frame.receivers().iter().enumerate() {
-            assert!((exact[k] - 0.5).abs() < 1e-9, "exact at {:?}: {}", r.position, exact[k]);
+            assert!(
+                (exact[k] - 0.5).abs() < 1e-9,
+                "exact at {:?}: {}",
+                r.position,
+                exact[k]
+            );
             assert!(
                 (v[k] - 0.5).abs() < 1e-9,
                 "{} at {:?}: {} where one half is right",
