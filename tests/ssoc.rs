@@ -147,7 +147,7 @@ fn a_receiver_on_the_edge_s_line_reads_one_half() {
     let stages = Stages::new(&scene);
     let mut receivers = Vec::new();
     for k in 0..400 {
-        let lambda = -1.5 + 3.0 * (f64::from(k) + 0.318_309_886) / 400.0;
+        let lambda = -1.5 + 3.0 * (f64::from(k) + 0.377_213_9) / 400.0;
         for off in [0.0, 1e-15, -1e-15] {
             receivers.push(Receiver {
                 position: DVec3::new(0.0, 1e-9, 0.0) + along * lambda + across * off,
