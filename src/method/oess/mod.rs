@@ -79,7 +79,7 @@ use maps::{EndMap, EndpointMaps, Strategies};
 /// receiver's `V` independent of the other receivers of the call), to the
 /// scene and the receivers for a camera image (the real-time practice,
 /// `render`). A receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces)).
+/// light reads `V = 0` ([`Method::hides_back_faces`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Oess {

@@ -199,7 +199,7 @@ pub enum Bound {
 /// a receiver's `V` does not depend on the other receivers of the call
 /// (`tests/maps.rs`), whatever the frame's [`Fit`](crate::render::Fit). A
 /// receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces)).
+/// light reads `V = 0` ([`Method::hides_back_faces`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Sism {
