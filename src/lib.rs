@@ -178,4 +178,4 @@ pub use bvh::{Bvh, Occluders};
 #[cfg(feature = "render")]
 pub use method::Method;
 #[cfg(feature = "render")]
-pub use render::{image::ErrorSummary, Frame, Stages};
+pub use render::{image::ErrorSummary, Fit, Frame, Stages};

@@ -116,6 +116,73 @@ fn a_straight_edge_over_a_disk_light_is_the_model_s_exact_case() {
     assert!(exact.iter().any(|v| *v > 0.05 && *v < 0.95));
 }
 
+/// Receivers on the hard-shadow line of a straight edge, and `1e-15`
+/// off it. The edge runs diagonally through the light's axis at height 1
+/// (a disk light facing down, at height 4): a floor point on the line
+/// through the edge's foot projects onto the projected edge's line up to
+/// the rounding of its two coordinates (`1e-17`), where the direction from
+/// the edge's nearest point to the receiver is rounding noise. Half the
+/// light is hidden (by symmetry; the exact reference agrees to `1e-9`);
+/// SSOC's distortion is `R` along the edge's normal, the middle of the
+/// penumbra: `V = ½` with either falloff, and with the constant bias.
+/// (Not with `bilinear`: of the four texels around the receiver, those
+/// across the hard-shadow line are in the other side's map, where this
+/// side's map names no edge, and give the hard value — its blend is the
+/// texel aliasing §5 trades for.)
+#[test]
+fn a_receiver_on_the_edge_s_line_reads_one_half() {
+    use softshadow::scene::Mesh;
+    let (c, s) = (0.5f64.cos(), 0.5f64.sin());
+    let along = DVec3::new(c, 0.0, s);
+    let across = DVec3::new(-s, 0.0, c);
+    // The plate: the edge from −2·along to 2·along at height 1, the plate
+    // on the −across side, 2.5 wide.
+    let (a, b) = (DVec3::Y - along * 2.0, DVec3::Y + along * 2.0);
+    let plate = Mesh::new(
+        vec![a, b, b - across * 2.5, a - across * 2.5],
+        vec![[0, 1, 2], [0, 2, 3]],
+    )
+    .unwrap();
+    let scene = disk_over_floor(0.6).with_mesh("plate", plate);
+    let stages = Stages::new(&scene);
+    let mut receivers = Vec::new();
+    for k in 0..400 {
+        let lambda = -1.5 + 3.0 * (f64::from(k) + 0.377_213_9) / 400.0;
+        for off in [0.0, 1e-15, -1e-15] {
+            receivers.push(Receiver {
+                position: DVec3::new(0.0, 1e-9, 0.0) + along * lambda + across * off,
+                normal: Some(DVec3::Y),
+                object: Some(0),
+            });
+        }
+    }
+    let frame = Frame::from_receivers(receivers);
+    let exact = values(&Exact, &stages, &frame);
+    for m in [
+        Ssoc::default(),
+        Ssoc::default().with_falloff(softshadow::kernel::falloff::Falloff::Exact),
+        Ssoc::default().with_lookups(1),
+        Ssoc::default().with_constant_bias(true),
+    ] {
+        let v = values(&m, &stages, &frame);
+        for (k, r) in frame.receivers().iter().enumerate() {
+            assert!(
+                (exact[k] - 0.5).abs() < 1e-9,
+                "exact at {:?}: {}",
+                r.position,
+                exact[k]
+            );
+            assert!(
+                (v[k] - 0.5).abs() < 1e-9,
+                "{} at {:?}: {} where one half is right",
+                m.name(),
+                r.position,
+                v[k]
+            );
+        }
+    }
+}
+
 /// Two plates whose edges cross at right angles, at heights 1 and 2: near
 /// the crossing a receiver's footprint meets both edges, and the
 /// multiplicative combination of the successive lookups (§3.2.3) is closer

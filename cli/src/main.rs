@@ -8,7 +8,9 @@
 //! - `softshadow check`: the kernel self-check against closed forms, then the
 //!   exact and Monte Carlo references side by side on the default scene.
 //! - `softshadow visibility --scene NAME|FILE --points FILE --method M
-//!   [--seed S]`: the visibility of each receiver point as JSON on stdout.
+//!   [--seed S] [--fit scene|frame]`: the visibility of each receiver point
+//!   as JSON on stdout (maps fitted to the scene by default: each point's
+//!   value independent of the others).
 //! - `softshadow gbuffer --scene NAME|FILE [--width W --height H] --out
 //!   DIR`: the receivers our camera sees as `.npy` arrays, one `.exr` and
 //!   `camera.json`.

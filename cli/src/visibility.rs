@@ -5,7 +5,7 @@ use crate::progress::Progress;
 use softshadow::float_io::{self, npy_bytes_f64, read_npy_f64, read_npy_i64, ImageKind};
 use softshadow::glam::DVec3;
 use softshadow::method::{self, registry, Method, MethodError, OptionError, ParseError, REGISTRY};
-use softshadow::render::{Frame, Receiver, Stages};
+use softshadow::render::{Fit, Frame, Receiver, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
 use softshadow::scene::file::DOMAIN;
 use softshadow::scene::file::{load_points, load_scene};
@@ -44,6 +44,21 @@ pub struct Args {
     /// (default: half of this machine's memory).
     #[arg(long, value_parser = crate::render::parse_gib)]
     max_memory: Option<f64>,
+    /// What the map methods fit their light-view maps to: scene (the
+    /// occluders; each point's V independent of the other points, so a
+    /// split or sharded run gives the same values) or frame (the scene and
+    /// these points, as `render` does with its camera's receivers).
+    #[arg(long, value_enum, default_value_t = FitArg::Scene)]
+    fit: FitArg,
+}
+
+/// `--fit`: [`Fit`] on the command line.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum FitArg {
+    /// The scene's occluders.
+    Scene,
+    /// The scene's occluders and the points.
+    Frame,
 }
 
 /// Checks a method name (clap's value parser), keeping the name.
@@ -124,7 +139,10 @@ pub fn run(args: &Args) -> Result<(), String> {
         method.name()
     );
     crate::render::check_memory(&what, points.len() as u64, method.as_ref(), args.max_memory)?;
-    let frame = Frame::from_receivers(points);
+    let frame = Frame::from_receivers(points).with_fit(match args.fit {
+        FitArg::Scene => Fit::Scene,
+        FitArg::Frame => Fit::Frame,
+    });
     let stages = Stages::new(&scene);
     let file = args.points.display();
     let npy = args.points.extension().is_some_and(|x| x == "npy");

@@ -527,3 +527,45 @@ fn bad_points_and_arguments_are_one_line_errors() {
         &["sism:sideways", "sideways"],
     );
 }
+
+/// `visibility --fit`: by default (`scene`) a point's value from a map
+/// method is the same asked alone as in a batch; with `--fit frame` the
+/// maps follow the batch, and a deeper point in it changes single-sample's
+/// answer for a penumbra point (its radius scale is set by the farthest
+/// receiver). `--fit` refuses other words.
+#[test]
+fn visibility_fits_the_maps_to_the_scene_unless_asked() {
+    let d = dir("fit");
+    let one = r#"{"p": [-1.19397, 1e-9, -1.46845], "object": 0, "normal": [0, 1, 0]}"#;
+    let others = r#"{"p": [-2.91, 1e-9, -2.89], "object": 0, "normal": [0, 1, 0]}, {"p": [2.77, 1e-9, -2.61], "object": 0, "normal": [0, 1, 0]}"#;
+    let alone = write(&d, "alone.json", &format!(r#"{{"points": [{one}]}}"#));
+    let batch = write(
+        &d,
+        "batch.json",
+        &format!(r#"{{"points": [{one}, {others}]}}"#),
+    );
+    let first = |out: std::process::Output| -> f64 {
+        assert!(
+            out.status.success(),
+            "{}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+        json["visibility"][0].as_f64().unwrap()
+    };
+    for method in ["single-sample", "ssoc", "pcss"] {
+        let a = first(visibility("default", &alone, method, &[]));
+        let b = first(visibility("default", &batch, method, &[]));
+        assert_eq!(
+            a.to_bits(),
+            b.to_bits(),
+            "{method}: {a} alone, {b} in a batch"
+        );
+    }
+    let frame = ["--fit", "frame"];
+    let a = first(visibility("default", &alone, "single-sample", &frame));
+    let b = first(visibility("default", &batch, "single-sample", &frame));
+    assert_ne!(a, b, "single-sample --fit frame: {a} alone and in a batch");
+    let bad = visibility("default", &alone, "pcss", &["--fit", "camera"]);
+    assert!(!bad.status.success());
+}

@@ -102,6 +102,22 @@ pub trait Method: Send + Sync + fmt::Debug {
         Horizon::Off
     }
 
+    /// Whether [`run`] sets `V = 0` for a receiver that faces away from the
+    /// whole light on a closed mesh: a receiver with a normal and an object
+    /// whose mesh is closed (every edge of its topology has an even number
+    /// of faces), whose tangent plane leaves all of the light on its back
+    /// side ([`Emitter::share_above`] is 0). The segment from such a
+    /// receiver to any light point enters its own solid, so the exact
+    /// answer is 0; a method whose shadow map sees past the silhouette
+    /// there (a map texel showing the floor behind a ball's terminator)
+    /// would call it lit. Open surfaces are left to the method: a
+    /// one-sided quad does not hide what is behind it. Default: `false`;
+    /// the map methods of the crate say `true`, since none of their papers
+    /// has an option that asks otherwise.
+    fn hides_back_faces(&self) -> bool {
+        false
+    }
+
     /// An estimate of the peak bytes of the maps the method builds at its
     /// settings, whatever the frame — its light-view maps, whose side is
     /// an option — for a caller that bounds its memory before running it
@@ -453,6 +469,9 @@ pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, M
                 }
             });
     }
+    if method.hides_back_faces() {
+        hide_back_faces(stages, frame, &mut output);
+    }
     let seconds = start.elapsed().as_secs_f64();
     let n = frame.receivers().len();
     let bad = if output.visibility.len() != n {
@@ -485,6 +504,45 @@ pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, M
         seconds,
         stats: stages.stats_since(&before),
     })
+}
+
+/// [`Method::hides_back_faces`]: `V = 0` (and both end weights 0) for each
+/// receiver on a closed mesh whose tangent plane leaves the whole light on
+/// its back side.
+fn hide_back_faces(stages: &Stages, frame: &Frame, output: &mut Output) {
+    let receivers = frame.receivers();
+    if output.visibility.len() != receivers.len() {
+        return;
+    }
+    let light = stages.scene().light();
+    // The receivers facing away from the whole light, first: the meshes'
+    // closedness (the topology stage) is built only when there are some.
+    let away: Vec<usize> = receivers
+        .par_iter()
+        .enumerate()
+        .filter_map(|(k, r)| {
+            let n = r.normal.filter(|_| r.object.is_some())?;
+            let e = light.emitter(r.position).ok()?;
+            (e.share_above(r.position, n) == 0.0).then_some(k)
+        })
+        .collect();
+    if away.is_empty() {
+        return;
+    }
+    let weights = centre::layer_weights(stages);
+    let closed = |o: u32| {
+        weights
+            .get(o as usize)
+            .is_some_and(|w| !w.faces.is_empty() && w.faces.iter().all(|&f| f < 1.0))
+    };
+    for k in away {
+        if receivers[k].object.is_some_and(closed) {
+            output.visibility[k] = 0.0;
+            if let Some(w) = output.end_weights.as_mut().and_then(|w| w.get_mut(k)) {
+                *w = [0.0, 0.0];
+            }
+        }
+    }
 }
 
 /// Steps 1 and 2 of [`run`] without running the method: checks `frame` for

@@ -24,6 +24,32 @@ pub struct Frame {
     /// Whether the pixels are a camera image (neighbouring pixels are
     /// neighbours on screen), not a list of points.
     image: bool,
+    /// What the map methods' light views are fitted to.
+    fit: Fit,
+}
+
+/// What the map methods (`pcss`, `sism`, `single-sample`, `ssoc`,
+/// `backprojected-ssoc`, `oess`) fit their light-view maps to, and what
+/// stands for the receivers where a method sizes something by them (the
+/// farthest receiver's depth, the mean direction to the receivers).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq, Hash)]
+pub enum Fit {
+    /// The scene: every occluder vertex (the receivers' own meshes are
+    /// occluders too). A receiver's `V` then does not depend on the other
+    /// receivers of the call: a batch split into parts, or asked one
+    /// receiver at a time, or sharded over processes, gives bit-identical
+    /// values. A receiver whose projection falls outside the window (a
+    /// point on no mesh, beyond every occluder as the light sees it) is
+    /// off the map, which the methods read as lit. The default of
+    /// [`Frame::from_receivers`] (point queries).
+    #[default]
+    Scene,
+    /// The frame: the scene and the frame's receivers — the real-time
+    /// practice of maps fitted to what the camera sees, so that the texels
+    /// are spent where the receivers are; a receiver's `V` then depends on
+    /// the others. The default of [`Frame::from_camera`] and
+    /// [`Frame::from_pixels`] (images).
+    Frame,
 }
 
 /// Frames are told apart by a process-wide counter, so that stages fitted to
@@ -101,10 +127,13 @@ impl Frame {
             pixels,
             receivers,
             image: true,
+            fit: Fit::Frame,
         }
     }
 
-    /// Receivers given directly (a points file), laid out as one row.
+    /// Receivers given directly (a points file), laid out as one row,
+    /// with the map methods' views fitted to the scene ([`Fit::Scene`]:
+    /// each receiver's `V` independent of the others).
     ///
     /// Frames index receivers with `u32`: beyond `2³² − 2` receivers (some
     /// 200 GB of them) the extra ones are dropped.
@@ -119,6 +148,7 @@ impl Frame {
             pixels: (0..n).collect(),
             receivers,
             image: false,
+            fit: Fit::Scene,
         }
     }
 
@@ -155,6 +185,7 @@ impl Frame {
             pixels: index,
             receivers,
             image: true,
+            fit: Fit::Frame,
         }
     }
 
@@ -165,6 +196,19 @@ impl Frame {
     #[must_use]
     pub fn is_image(&self) -> bool {
         self.image
+    }
+
+    /// The same frame with the map methods' light views fitted to `fit`.
+    #[must_use]
+    pub fn with_fit(mut self, fit: Fit) -> Frame {
+        self.fit = fit;
+        self
+    }
+
+    /// What the map methods' light views are fitted to ([`Fit`]).
+    #[must_use]
+    pub fn fit(&self) -> Fit {
+        self.fit
     }
 
     /// A number unique to this frame within the process.

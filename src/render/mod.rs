@@ -24,8 +24,8 @@ pub mod gbuffer;
 pub mod image;
 pub mod raster;
 pub mod score;
-mod stages;
+pub(crate) mod stages;
 
 pub use crate::scene::Receiver;
-pub use frame::{Frame, BACKGROUND, RECEIVER_OFFSET};
+pub use frame::{Fit, Frame, BACKGROUND, RECEIVER_OFFSET};
 pub use stages::{FittedMaps, Needs, Progress, SharedMaps, StageTime, Stages, Stats};

@@ -2,7 +2,7 @@
 //! and whatever a method builds for itself — built lazily, once, and timed
 //! into [`Stats`].
 
-use super::frame::Frame;
+use super::frame::{Fit, Frame};
 use super::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
 use crate::bvh::{Bvh, Occluders};
 use crate::kernel::silhouette::MeshTopology;
@@ -335,24 +335,22 @@ impl<'a> Stages<'a> {
     }
 
     /// The light-view depth and object maps of `width × height` texels, over
-    /// the window that holds every receiver of `frame` and every occluder
-    /// vertex in front of the light (depth at least `near`, see
-    /// [`LightView::fit`]), built once per frame and size.
+    /// the window that holds every point of [`Stages::fit_points`] in front
+    /// of the light (depth at least `near`, see [`LightView::fit`]): the
+    /// occluders' vertices, and with [`Fit::Frame`] the frame's receivers.
+    /// Built once per size for every frame fitted to the scene, once per
+    /// frame and size for a frame fitted to itself.
     ///
     /// # Errors
     /// [`RasterError`] from fitting the view, e.g. when nothing is in front
     /// of the light.
     pub fn light_maps(&self, frame: &Frame, width: u32, height: u32) -> SharedMaps {
-        let key = format!("frame {} {width}×{height}", frame.id());
+        let key = format!("{} {width}×{height}", fit_key(frame));
         self.cached("light maps", key, || {
             let light_frame = self.light_frame();
             let occluders = self.bvh().occluders();
-            let points = frame
-                .receivers()
-                .iter()
-                .map(|r| r.position)
-                .chain(occluders.triangles().iter().flatten().copied());
-            let near = near_depth(light_frame, occluders.triangles(), frame);
+            let points = self.fit_points(frame);
+            let near = near_depth(light_frame, &points);
             let maps = LightView::fit(light_frame, points, width, height, near).map(|view| {
                 let maps = rasterize_occluders(&view, occluders);
                 FittedMaps { view, maps }
@@ -363,6 +361,35 @@ impl<'a> Stages<'a> {
             };
             (maps, detail)
         })
+    }
+
+    /// What stands for `frame`'s receivers where a map method sizes
+    /// something by them (the farthest receiver's depth, a window): the
+    /// receivers with [`Fit::Frame`], every occluder vertex with
+    /// [`Fit::Scene`] — then nothing depends on the frame.
+    pub fn fit_receivers(&self, frame: &Frame) -> Vec<DVec3> {
+        match frame.fit() {
+            Fit::Frame => frame.positions(),
+            Fit::Scene => self.occluder_vertices(),
+        }
+    }
+
+    /// The points the map methods' light views of `frame` are fitted to:
+    /// [`Stages::fit_receivers`] and every occluder vertex.
+    pub fn fit_points(&self, frame: &Frame) -> Vec<DVec3> {
+        match frame.fit() {
+            Fit::Frame => {
+                let mut points = frame.positions();
+                points.extend(self.occluder_vertices());
+                points
+            }
+            Fit::Scene => self.occluder_vertices(),
+        }
+    }
+
+    fn occluder_vertices(&self) -> Vec<DVec3> {
+        let occluders = self.bvh().occluders();
+        occluders.triangles().iter().flatten().copied().collect()
     }
 
     /// A stage a method builds for itself — distortion maps, endpoint maps,
@@ -442,18 +469,16 @@ impl<'a> Stages<'a> {
     }
 }
 
-/// The near depth of a light view: the least light-frame depth of any
-/// occluder vertex or receiver in front of the light, halved (so nothing of
+/// The near depth of a light view: the least light-frame depth of any of
+/// `points` (the view's [fit points](Stages::fit_points)) in front of the
+/// light, halved (so nothing of
 /// interest is clipped), and at least `2⁻²⁰` of the greatest such depth
 /// (so the perspective stays well conditioned); `1` when nothing is in
 /// front.
-fn near_depth(frame: LightFrame, triangles: &[[DVec3; 3]], receivers: &Frame) -> f64 {
-    let depths = triangles
+pub(crate) fn near_depth(frame: LightFrame, points: &[DVec3]) -> f64 {
+    let depths = points
         .iter()
-        .flatten()
-        .copied()
-        .chain(receivers.receivers().iter().map(|r| r.position))
-        .map(|p| frame.to_light(p).z)
+        .map(|&p| frame.to_light(p).z)
         .filter(|z| z.is_finite() && *z > 0.0);
     let (lo, hi) = depths.fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
         (lo.min(z), hi.max(z))
@@ -462,6 +487,15 @@ fn near_depth(frame: LightFrame, triangles: &[[DVec3; 3]], receivers: &Frame) ->
         return 1.0;
     }
     (lo * 0.5).max(hi * (1.0 / 1_048_576.0))
+}
+
+/// The cache key of what is fitted to `frame` ([`Fit`]): one for every
+/// frame fitted to the scene, one per frame fitted to itself.
+pub(crate) fn fit_key(frame: &Frame) -> String {
+    match frame.fit() {
+        Fit::Scene => "scene".to_owned(),
+        Fit::Frame => format!("frame {}", frame.id()),
+    }
 }
 
 /// `triangles` with every index replaced by the lowest index of a vertex at

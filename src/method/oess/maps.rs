@@ -32,7 +32,6 @@
 use crate::bvh::Occluders;
 use crate::kernel::predicate::{orient3d, Sign};
 use crate::render::raster::{rasterize_occluders, LightMaps, LightView, RasterError};
-use crate::render::Frame;
 use crate::scene::light::Segment;
 use crate::scene::LightFrame;
 use glam::{DVec2, DVec3};
@@ -106,35 +105,19 @@ pub(crate) fn frames(light: &Segment, receivers: &[DVec3]) -> Option<(LightFrame
 
 impl EndpointMaps {
     /// The maps of `occluders` from the ends of `light`, `side × side`,
-    /// over the window that holds every receiver of `frame` and every
-    /// occluder vertex seen from either end.
+    /// over the window that holds every point of `points` (the
+    /// [fit points](crate::render::Stages::fit_points)) seen from either
+    /// end.
     pub(crate) fn new(
         light: &Segment,
         frames: (LightFrame, LightFrame),
         occluders: &Occluders,
-        frame: &Frame,
+        points: &[DVec3],
         side: u32,
         strategies: Strategies,
     ) -> Result<EndpointMaps, RasterError> {
-        let points: Vec<DVec3> = frame
-            .receivers()
-            .iter()
-            .map(|r| r.position)
-            .chain(occluders.triangles().iter().flatten().copied())
-            .collect();
         // The near depth, as the shared light maps choose it.
-        let depths = points
-            .iter()
-            .map(|&p| frames.0.to_light(p).z)
-            .filter(|z| z.is_finite() && *z > 0.0);
-        let (lo, hi) = depths.fold((f64::INFINITY, 0.0f64), |(lo, hi), z| {
-            (lo.min(z), hi.max(z))
-        });
-        let near = if hi == 0.0 {
-            1.0
-        } else {
-            (lo * 0.5).max(hi * (1.0 / 1_048_576.0))
-        };
+        let near = crate::render::stages::near_depth(frames.0, points);
         let fit_l = LightView::fit(frames.0, points.iter().copied(), side, side, near)?;
         let fit_r = LightView::fit(frames.1, points.iter().copied(), side, side, near)?;
         let (lo, hi) = (fit_l.lo().min(fit_r.lo()), fit_l.hi().max(fit_r.hi()));

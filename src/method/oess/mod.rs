@@ -64,6 +64,7 @@ use super::{per_receiver, Input, Method, MethodError, Output};
 use crate::kernel::linear_light::f64::{law_of_sines_fraction, visible_part_3d, VisiblePart};
 use crate::kernel::linear_light::OccluderSide;
 use crate::render::raster::MAX_RESOLUTION;
+use crate::render::stages::fit_key;
 use crate::render::{Needs, Receiver};
 use crate::scene::light::Segment;
 use crate::scene::{Light, LightKind};
@@ -72,6 +73,13 @@ use maps::{EndMap, EndpointMaps, Strategies};
 
 /// Occluding edges soft shadows: see the [module docs](self). Segment
 /// lights only; needs neither normals nor object ids.
+///
+/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
+/// says: to the scene for a frame of points (`Frame::from_receivers`; each
+/// receiver's `V` independent of the other receivers of the call), to the
+/// scene and the receivers for a camera image (the real-time practice,
+/// `render`). A receiver on a closed mesh that faces away from the whole
+/// light reads `V = 0` ([`Method::hides_back_faces`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Oess {
@@ -174,6 +182,11 @@ impl Method for Oess {
         super::options::print(self)
     }
 
+    /// Yes: see the trait's doc (no option of the paper asks otherwise).
+    fn hides_back_faces(&self) -> bool {
+        true
+    }
+
     /// The two endpoint maps — each a depth, object and triangle map
     /// and the edge columns found in it — and the search's rows: measured
     /// 62.5 bytes a texel between `map=1024` and `map=4096` (`/usr/bin/time
@@ -230,7 +243,7 @@ impl Oess {
         // Every segment light (two distinct finite ends, any length) has
         // its frames; `None` would be a bug, reported rather than hidden.
         let frames =
-            maps::frames(&segment, &frame.positions()).ok_or_else(|| MethodError::Contract {
+            maps::frames(&segment, &stages.fit_receivers(frame)).ok_or_else(|| MethodError::Contract {
                 method: self.name(),
                 message: {
                     let (a, b) = (segment.a(), segment.b());
@@ -246,8 +259,8 @@ impl Oess {
             bias: self.bias,
         };
         let key = format!(
-            "frame {} {} tilt {} corr {} bias {:x}",
-            frame.id(),
+            "{} {} tilt {} corr {} bias {:x}",
+            fit_key(frame),
             self.resolution,
             self.tilt,
             self.corresponding,
@@ -258,7 +271,7 @@ impl Oess {
                 &segment,
                 frames,
                 stages.bvh().occluders(),
-                frame,
+                &stages.fit_points(frame),
                 self.resolution,
                 strategies,
             );

@@ -75,6 +75,7 @@ use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires}
 use crate::kernel::falloff::{f64 as falloff, Falloff};
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::{LightMaps, LightView, MAX_RESOLUTION};
+use crate::render::stages::fit_key;
 use crate::render::{FittedMaps, Needs, Receiver};
 use crate::scene::LightKind;
 use glam::{DVec2, DVec3};
@@ -87,6 +88,13 @@ use std::sync::Arc;
 /// and rect lights (the paper's point sample is the light's centre); needs
 /// receiver normals (the depth test's receiver plane) and object ids (the
 /// id test; not with `no-id`).
+///
+/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
+/// says: to the scene for a frame of points (`Frame::from_receivers`; each
+/// receiver's `V` independent of the other receivers of the call), to the
+/// scene and the receivers for a camera image (the real-time practice,
+/// `render`). A receiver on a closed mesh that faces away from the whole
+/// light reads `V = 0` ([`Method::hides_back_faces`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct SingleSample {
@@ -234,6 +242,11 @@ pub struct SingleSamplePasses {
 impl Method for SingleSample {
     fn name(&self) -> String {
         super::options::print(self)
+    }
+
+    /// Yes: see the trait's doc (no option of the paper asks otherwise).
+    fn hides_back_faces(&self) -> bool {
+        true
     }
 
     /// The depth and id maps and their tile summaries (measured 16.6
@@ -444,7 +457,7 @@ impl SingleSample {
             Ok(m) => m,
             Err(e) => return Err(MethodError::LightView(*e)),
         };
-        let key = format!("frame {} {}", frame.id(), self.resolution);
+        let key = format!("{} {}", fit_key(frame), self.resolution);
         let tiles: Arc<Tiles> = stages.cached("single-sample tiles", key, || {
             let tiles = Tiles::new(maps);
             (tiles, format!("{}-texel tiles", search::TILE))
@@ -452,10 +465,10 @@ impl SingleSample {
         let lf = view.frame();
         // The farthest receiver in the light view (a maximum: the same for
         // any thread count).
-        let z_far = frame
-            .receivers()
+        let z_far = stages
+            .fit_receivers(frame)
             .par_iter()
-            .map(|r| lf.to_light(r.position).z)
+            .map(|&p| lf.to_light(p).z)
             .filter(|z| z.is_finite() && *z >= view.near())
             .reduce(|| 0.0, f64::max);
         let resolve = |given: f64, derived: f64| if given > 0.0 { given } else { derived };

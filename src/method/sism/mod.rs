@@ -193,6 +193,13 @@ pub enum Bound {
 /// Sphere lights, and disk lights with the light frame along the disk's
 /// normal. Needs neither normals nor object ids (normals with the
 /// `horizon` option).
+///
+/// It fits no map to the receivers: its grid holds the receivers
+/// themselves and each edge reaches every receiver its footprint meets, so
+/// a receiver's `V` does not depend on the other receivers of the call
+/// (`tests/maps.rs`), whatever the frame's [`Fit`](crate::render::Fit). A
+/// receiver on a closed mesh that faces away from the whole
+/// light reads `V = 0` ([`Method::hides_back_faces`]).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct Sism {
@@ -337,6 +344,11 @@ pub struct SismPasses {
 impl Method for Sism {
     fn name(&self) -> String {
         super::options::print(self)
+    }
+
+    /// Yes: see the trait's doc (no option of the paper asks otherwise).
+    fn hides_back_faces(&self) -> bool {
+        true
     }
 
     fn lights(&self) -> &'static [LightKind] {

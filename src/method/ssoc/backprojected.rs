@@ -18,6 +18,13 @@ use std::collections::HashMap;
 
 /// Backprojected soft shadows with an occlusion camera shadow map: see the
 /// [module docs](super). Sphere and disk lights; needs receiver normals.
+///
+/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
+/// says: to the scene for a frame of points (`Frame::from_receivers`; each
+/// receiver's `V` independent of the other receivers of the call), to the
+/// scene and the receivers for a camera image (the real-time practice,
+/// `render`). A receiver on a closed mesh that faces away from the whole
+/// light reads `V = 0` ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces)).
 #[derive(Clone, Copy, Debug, PartialEq)]
 #[non_exhaustive]
 pub struct BackprojectedSsoc {
@@ -207,6 +214,11 @@ impl BackprojectedSsoc {
 impl Method for BackprojectedSsoc {
     fn name(&self) -> String {
         crate::method::options::print(self)
+    }
+
+    /// Yes: see the trait's doc (no option of the paper asks otherwise).
+    fn hides_back_faces(&self) -> bool {
+        true
     }
 
     /// The shadow and distortion maps, as [`Ssoc`](super::Ssoc)'s.
