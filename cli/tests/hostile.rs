@@ -20,7 +20,7 @@ use std::time::{Duration, Instant};
 #[path = "support/cli.rs"]
 mod cli_support;
 
-use cli_support::{bin, pictures_whole, refused, softshadow, visibility, write};
+use cli_support::{pictures_whole, refused, softshadow, visibility, write};
 
 fn dir(name: &str) -> PathBuf {
     cli_support::dir("hostile", name)
@@ -31,20 +31,26 @@ const SCENE: &str = r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius
  "meshes": [{"name": "floor", "primitive": {"type": "quad", "center": [0, 0, 0], "u": [4, 0, 0], "v": [0, 0, 4]}},
             {"name": "card", "positions": [[-1,1,-1],[1,1,-1],[0,1,1]], "triangles": [[0,1,2]]}]}"#;
 
-/// Starts `softshadow args` with its stdout closed before it writes.
+/// Runs `softshadow args` with the reading end of its stdout closed before
+/// it starts. A shell waits for its stdin to close, then becomes the
+/// program; the test closes the pipe's reading end first, so every write
+/// the program makes fails with a broken pipe however the threads are
+/// scheduled (closing it just after starting the program raced with a
+/// program that wrote first, under load).
 fn with_stdout_closed(args: &[&str]) -> Output {
-    let starting = cli_support::starting();
-    let mut child = bin()
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(r#"read -r _; exec "$0" "$@""#)
+        .arg(env!("CARGO_BIN_EXE_softshadow"))
         .args(args)
+        .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Close the reading end at once, before any other child can be forked
-    // with a copy of it: every write the program makes fails with a broken
-    // pipe.
     drop(child.stdout.take());
-    drop(starting);
+    // The end of its stdin lets the shell go on to the program.
+    drop(child.stdin.take());
     let mut stderr = Vec::new();
     child
         .stderr
@@ -69,7 +75,7 @@ fn with_redirect(args: &[&str], redirect: &str) -> Output {
         env!("CARGO_BIN_EXE_softshadow"),
         quoted.join(" ")
     );
-    cli_support::output(Command::new("sh").arg("-c").arg(&script))
+    Command::new("sh").arg("-c").arg(&script).output().unwrap()
 }
 
 /// The three pictures of `render --method hard` of `scene.json` in `d`,
@@ -303,8 +309,8 @@ fn special_and_oversized_files_are_refused_without_reading_them() {
     );
     // A FIFO would block the reader until a writer came: refused first.
     let fifo = d.join("fifo.json");
-    let made = cli_support::output(Command::new("mkfifo").arg(&fifo));
-    if made.status.success() {
+    let made = Command::new("mkfifo").arg(&fifo).status();
+    if made.is_ok_and(|s| s.success()) {
         refused(
             &softshadow(&[
                 "visibility",
@@ -786,7 +792,7 @@ fn a_full_disk_leaves_no_partial_picture() {
         env!("CARGO_BIN_EXE_softshadow"),
         d.display()
     );
-    let out = cli_support::output(Command::new("sh").arg("-c").arg(&script));
+    let out = Command::new("sh").arg("-c").arg(&script).output().unwrap();
     assert!(!out.status.success(), "the limit did not bite");
     // The process killed mid-write may leave its hidden temporary.
     pictures_whole(&d, true);

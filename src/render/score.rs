@@ -104,8 +104,8 @@ pub fn errors_of(
 }
 
 /// The Monte Carlo sample count of equal RMSE for a score, measured on the
-/// same receivers (or a seeded random subset of them): see
-/// [`mc_equal`].
+/// same receivers (or a seeded random subset of them): see `mc_equal`
+/// (feature `report`).
 #[derive(Clone, Debug, PartialEq)]
 pub struct McEqual {
     /// The fitted `N`, where within the measured range.

@@ -24,7 +24,7 @@
 //! - **Error** of `V` against [`Exact`]: mean absolute, RMSE,
 //!   99th percentile, maximum, mean signed, share over 0.05
 //!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
-//!   exact penumbra ([`in_penumbra`]), the ground (object 0, the floor of
+//!   exact penumbra ([`in_penumbra`](crate::definitions::in_penumbra)), the ground (object 0, the floor of
 //!   every built-in scene) and the occluders (every other object); and the
 //!   same for the shaded value `V·max(0, n·l̂)` (`l̂` toward the light's
 //!   centre), which is what the papers' pictures show.

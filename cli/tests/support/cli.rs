@@ -5,37 +5,7 @@
 #![allow(dead_code)]
 
 use std::path::{Path, PathBuf};
-use std::process::{Child, Command, Output, Stdio};
-use std::sync::{Mutex, MutexGuard, PoisonError};
-
-/// Held while a child is started. A child forked by one test thread holds
-/// a copy of every descriptor of the test process until its `exec`, so a
-/// test that closes the reading end of a pipe (to make the program's
-/// writes fail) holds this from the pipe's creation until that end is
-/// closed: no other child can keep the pipe readable meanwhile.
-static STARTING: Mutex<()> = Mutex::new(());
-
-/// The lock of [`STARTING`].
-pub fn starting() -> MutexGuard<'static, ()> {
-    STARTING.lock().unwrap_or_else(PoisonError::into_inner)
-}
-
-/// Starts `command` under [`starting`], stdin empty, stdout and stderr
-/// captured.
-pub fn start(command: &mut Command) -> Child {
-    let _starting = starting();
-    command
-        .stdin(Stdio::null())
-        .stdout(Stdio::piped())
-        .stderr(Stdio::piped())
-        .spawn()
-        .expect("the child starts")
-}
-
-/// Runs `command` as [`Command::output`] does, started under [`starting`].
-pub fn output(command: &mut Command) -> Output {
-    start(command).wait_with_output().expect("the child runs")
-}
+use std::process::{Command, Output};
 
 /// The binary, ready for arguments.
 pub fn bin() -> Command {
@@ -44,7 +14,10 @@ pub fn bin() -> Command {
 
 /// Runs the binary with `args`, its output captured.
 pub fn softshadow(args: &[&str]) -> Output {
-    output(bin().args(args))
+    bin()
+        .args(args)
+        .output()
+        .expect("the softshadow binary runs")
 }
 
 /// Runs `visibility --scene scene --points points --method method` and
