@@ -21,7 +21,7 @@ use numpy::{
     PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyFileNotFoundError, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyRuntimeError, PyValueError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use softshadow::glam::DVec3;
@@ -539,6 +539,8 @@ impl Scene {
                     PyFileNotFoundError::new_err(e.to_string())
                 }
                 Err(_) => PyOSError::new_err(e.to_string()),
+                Ok(m) if m.is_dir() => PyIsADirectoryError::new_err(e.to_string()),
+                Ok(m) if !m.is_file() => PyOSError::new_err(e.to_string()),
                 Ok(_) => value_error(e.to_string()),
             }),
         }
@@ -759,7 +761,7 @@ fn score<'py>(
         Some(g) => {
             let item = |key: &str| -> PyResult<Bound<'py, PyAny>> {
                 g.get_item(key)
-                    .map_err(|_| value_error(format!("gbuffer: no {key:?} array")))
+                    .map_err(|_| value_error(format!("gbuffer: no '{key}' array")))
             };
             let shape3 = format!("({h}, {w}, 3)");
             let (pos, ps) = floats(&item("position")?, "gbuffer['position']", &shape3, 3)?;
