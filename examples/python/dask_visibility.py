@@ -29,6 +29,7 @@ import sys
 import time
 
 import numpy as np
+from dask.distributed import wait
 
 import softshadow
 
@@ -56,16 +57,20 @@ def receivers(scene, n, seed=1):
     return np.column_stack([rng.uniform(-3, 3, n), np.full(n, 1e-3), rng.uniform(-3, 3, n)])
 
 
-def distributed_visibility(client, scene, points, method="exact", seed=None, chunk=20000):
+def distributed_visibility(client, scene, points, method="exact", seed=None, chunk=20000, timeout=None):
     """V of every row of `points`, the rows split into chunks of `chunk`
-    computed on the cluster of `client`, gathered in order."""
-    if method.split(":")[0] not in PER_RECEIVER:
+    computed on the cluster of `client`, gathered in order (waiting at most
+    `timeout` seconds, if given)."""
+    base = method.split(":")[0]
+    if base not in PER_RECEIVER:
         raise ValueError(
-            f"method {method.split(":")[0]}: its values depend on the frame's receivers; "
+            f"method {base}: its values depend on the frame's receivers; "
             f"chunking is bit-identical only for {', '.join(PER_RECEIVER)}"
         )
     chunks = [points[i : i + chunk] for i in range(0, len(points), chunk)]
     futures = client.map(chunk_visibility, chunks, scene=scene, method=method, seed=seed, pure=False)
+    if timeout is not None:
+        wait(futures, timeout=timeout)
     return np.concatenate(client.gather(futures)) if chunks else np.empty(0)
 
 

@@ -52,6 +52,27 @@ fn value_error(message: impl Into<String>) -> PyErr {
     PyValueError::new_err(message.into())
 }
 
+/// An integer argument as `T`: a Python int out of `T`'s range (a negative
+/// seed, say) is a `ValueError` naming it, not an `OverflowError`.
+fn int_arg<'py, T: FromPyObjectOwned<'py>>(
+    obj: &Bound<'py, PyAny>,
+    what: &str,
+    range: &str,
+) -> PyResult<T> {
+    obj.extract::<T>().map_err(|_| {
+        let shown = obj
+            .repr()
+            .map_or_else(|_| "the value".to_owned(), |r| r.to_string());
+        value_error(format!("{what}={shown}: expected an integer from {range}"))
+    })
+}
+
+/// `seed=`: an integer from 0 to 2⁶⁴ − 1, or None.
+fn seed_arg(seed: Option<&Bound<'_, PyAny>>) -> PyResult<Option<u64>> {
+    seed.map(|s| int_arg::<u64>(s, "seed", "0 to 18446744073709551615"))
+        .transpose()
+}
+
 // ---------------------------------------------------------------- arrays
 
 /// A float array read from Python: borrowed in place (C-contiguous
@@ -64,8 +85,9 @@ enum Floats<'py> {
 impl Floats<'_> {
     fn as_slice(&self) -> &[f64] {
         match self {
-            // C-contiguous was checked before borrowing.
-            Floats::Borrowed(a) => a.as_slice().unwrap_or(&[]),
+            // Contiguous and aligned: checked by `floats` before it keeps
+            // a borrowed array.
+            Floats::Borrowed(a) => a.as_slice().unwrap_or_default(),
             Floats::Owned(v) => v,
         }
     }
@@ -75,7 +97,16 @@ impl Floats<'_> {
 /// `numpy.asarray` (a list of lists, say).
 fn as_array<'py>(obj: &Bound<'py, PyAny>, what: &str) -> PyResult<Bound<'py, PyUntypedArray>> {
     if let Ok(a) = obj.cast::<PyUntypedArray>() {
-        return Ok(a.clone());
+        if a.is_aligned() {
+            return Ok(a.clone());
+        }
+        // An array over a byte buffer at an odd address (as
+        // dask.distributed deserialises them) cannot be read in place:
+        // an aligned copy, of the same layout.
+        return a
+            .call_method0("copy")?
+            .cast_into::<PyUntypedArray>()
+            .map_err(|_| value_error(format!("{what}: not an array")));
     }
     let np = obj.py().import("numpy")?;
     let a = np
@@ -122,10 +153,12 @@ fn floats<'py>(
     let dtype = a.dtype();
     let floats = if dtype.is_equiv_to(&numpy::dtype::<f64>(a.py())) {
         let a = a.cast::<PyArrayDyn<f64>>()?;
-        Floats::Borrowed(
-            a.try_readonly()
-                .map_err(|e| value_error(format!("{what}: {e}")))?,
-        )
+        let r = a
+            .try_readonly()
+            .map_err(|e| value_error(format!("{what}: {e}")))?;
+        r.as_slice()
+            .map_err(|e| value_error(format!("{what}: {e}")))?;
+        Floats::Borrowed(r)
     } else if dtype.is_equiv_to(&numpy::dtype::<f32>(a.py())) {
         let a = a.cast::<PyArrayDyn<f32>>()?;
         let r = a
@@ -611,7 +644,7 @@ impl Scene {
         normals: Option<&Bound<'py, PyAny>>,
         objects: Option<&Bound<'py, PyAny>>,
         method: &str,
-        seed: Option<u64>,
+        seed: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
         let (v, _) = self.timed_visibility(py, points, normals, objects, method, seed)?;
         Ok(v)
@@ -628,9 +661,9 @@ impl Scene {
         normals: Option<&Bound<'py, PyAny>>,
         objects: Option<&Bound<'py, PyAny>>,
         method: &str,
-        seed: Option<u64>,
+        seed: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<(Bound<'py, PyArray1<f64>>, f64)> {
-        let m = parse_method(method, seed)?;
+        let m = parse_method(method, seed_arg(seed)?)?;
         let r = receivers(points, normals, objects, self.scene.meshes().len())?;
         let run = run_on(py, &self.scene, m.as_ref(), r)?;
         Ok((PyArray1::from_vec(py, run.output.visibility), run.seconds))
@@ -644,11 +677,12 @@ impl Scene {
         &self,
         py: Python<'py>,
         points: &Bound<'py, PyAny>,
-        samples: u32,
-        seed: Option<u64>,
+        samples: &Bound<'py, PyAny>,
+        seed: Option<&Bound<'py, PyAny>>,
         normals: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<(Array<'py>, Array<'py>)> {
-        let m = parse_method(&format!("mc:{samples}"), seed)?;
+        let samples: u32 = int_arg(samples, "samples", "2 to 4294967295")?;
+        let m = parse_method(&format!("mc:{samples}"), seed_arg(seed)?)?;
         let r = receivers(points, normals, None, self.scene.meshes().len())?;
         let run = run_on(py, &self.scene, m.as_ref(), r)?;
         let stderr = run.output.stderr.ok_or_else(|| {
@@ -670,10 +704,11 @@ impl Scene {
     fn gbuffer<'py>(
         &self,
         py: Python<'py>,
-        width: usize,
-        height: usize,
+        width: &Bound<'py, PyAny>,
+        height: &Bound<'py, PyAny>,
     ) -> PyResult<Bound<'py, PyDict>> {
-        let camera = self.camera(width, height)?;
+        let side = |v, what| int_arg::<usize>(v, what, &format!("1 to {MAX_SIDE}"));
+        let camera = self.camera(side(width, "width")?, side(height, "height")?)?;
         let scene = &self.scene;
         let g = compute(py, scene, |stages| {
             let frame = Frame::from_camera(&camera, stages.bvh());

@@ -66,9 +66,11 @@ def test_methods_and_seeds(scene, points):
     raises(ValueError, r"seed=3: method mc:8,seed=2 sets seed= already", vis, points, method="mc:8,seed=2", seed=3)
     raises(ValueError, r"needs receiver normals; receiver 0 has none", vis, points, method="sism:horizon")
     raises(ValueError, r"needs receiver object ids", vis, points, normals=np.tile([0.0, 1, 0], (50, 1)), method="single-sample")
-    raises(ValueError, r"mc", scene.monte_carlo, points, 1)
-    raises(OverflowError, r"", scene.monte_carlo, points, -4)
-    raises(OverflowError, r"", vis, points, method="mc:8", seed=-1)
+    raises(ValueError, r"'mc:1': N must be an integer from 2 to 4294967295, got '1'", scene.monte_carlo, points, 1)
+    raises(ValueError, r"samples=-4: expected an integer from 2 to 4294967295", scene.monte_carlo, points, -4)
+    raises(ValueError, r"seed=-1: expected an integer from 0 to 18446744073709551615", vis, points, method="mc:8", seed=-1)
+    raises(ValueError, r"seed=18446744073709551616: expected", vis, points, method="mc:8", seed=2**64)
+    raises(ValueError, r"seed=1.5: expected", vis, points, method="mc:8", seed=1.5)
 
 
 def test_receiver_the_light_cannot_be_seen_from():
@@ -82,11 +84,11 @@ def test_receiver_the_light_cannot_be_seen_from():
 def test_lights():
     raises(ValueError, r"radius", softshadow.SphereLight, [0, 0, 0], -1)
     raises(ValueError, r"radius", softshadow.SphereLight, [0, 0, 0], float("nan"))
-    raises(ValueError, r"", softshadow.SphereLight, [0, float("inf"), 0], 1)
-    raises(ValueError, r"", softshadow.DiskLight, [0, 0, 0], [0, 0, 0], 1)
-    raises(ValueError, r"", softshadow.RectLight, [0, 0, 0], [1, 0, 0], [1, 0, 0])
-    raises(ValueError, r"", softshadow.SegmentLight, [1, 2, 3], [1, 2, 3])
-    raises(ValueError, r"", softshadow.PointLight, [float("nan"), 0, 0])
+    raises(ValueError, r"light field `center` is not finite", softshadow.SphereLight, [0, float("inf"), 0], 1)
+    raises(ValueError, r"disk light normal is zero", softshadow.DiskLight, [0, 0, 0], [0, 0, 0], 1)
+    raises(ValueError, r"rect light half-axes span no area", softshadow.RectLight, [0, 0, 0], [1, 0, 0], [1, 0, 0])
+    raises(ValueError, r"segment light endpoints coincide", softshadow.SegmentLight, [1, 2, 3], [1, 2, 3])
+    raises(ValueError, r"light field `position` is not finite", softshadow.PointLight, [float("nan"), 0, 0])
     with pytest.raises(ValueError, match="expected a sequence of length 3"):
         softshadow.SphereLight([0, 0], 1)
 
@@ -118,12 +120,13 @@ def test_files(tmp_path):
     raises(ValueError, r"bad\.json: ", softshadow.Scene.from_file, f)
     f.write_text('{"light": ')
     raises(ValueError, r"bad\.json:1:", softshadow.Scene.from_file, f)
-    raises(ValueError, r"no built-in scene 'nope' \(built-in: default, ", softshadow.Scene.builtin, "nope")
+    raises(ValueError, r'no built-in scene "nope" \(built-in: default, ', softshadow.Scene.builtin, "nope")
 
 
 def test_gbuffer_and_score(scene):
     raises(ValueError, r"0×10 pixels; an image is 1 to 16384 pixels a side", scene.gbuffer, 0, 10)
     raises(ValueError, r"an image is 1 to 16384", scene.gbuffer, 10, 20000)
+    raises(ValueError, r"width=-3: expected an integer from 1 to 16384", scene.gbuffer, -3, 10)
     no_camera = softshadow.Scene([], softshadow.PointLight([0, 1, 0]))
     raises(ValueError, r"the scene has no camera", no_camera.gbuffer, 4, 4)
     raises(ValueError, r"the scene has no camera", softshadow.score, no_camera, np.zeros((4, 4)))

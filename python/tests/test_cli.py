@@ -57,7 +57,9 @@ def test_gbuffer_and_score_equal_the_cli(cli, tmp_path, name):
     rng = np.random.default_rng(7)
     image = np.clip(g["exact"] + rng.normal(0, 0.05, (h, w)), 0, 1)
     image[np.isnan(image)] = 0.5
-    image[3, 4] = np.nan
+    hit = g["object"] >= 0
+    row, col = np.argwhere(hit)[len(np.argwhere(hit)) // 2]
+    image[row, col] = np.nan
     np.save(tmp_path / "image.npy", image)
     want = json.loads(run_cli(cli, "score", "--scene", name, "--image", tmp_path / "image.npy", "--json"))
     assert softshadow.score(scene, image) == want
@@ -66,7 +68,7 @@ def test_gbuffer_and_score_equal_the_cli(cli, tmp_path, name):
     assert softshadow.score(scene, image, gbuffer=g) == want
     # The exact image scores zero error; the noisy one its own RMSE.
     assert softshadow.score(scene, np.nan_to_num(g["exact"]))["rmse"] == 0.0
-    hit = g["object"] >= 0
     ok = hit & ~np.isnan(image)
     rmse = np.sqrt(np.mean((image[ok] - g["exact"][ok]) ** 2))
     assert abs(want["rmse"] - rmse) < 1e-12 and want["nan_pixels"] == 1
+    assert want["first_nan"] == [row, col]

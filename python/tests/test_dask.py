@@ -1,8 +1,10 @@
 """The Dask example: V over a LocalCluster of worker processes, in chunks,
 equals one process's bit for bit."""
 
-import importlib.util
+import importlib
+import os
 import pathlib
+import sys
 
 import numpy as np
 import pytest
@@ -16,14 +18,24 @@ EXAMPLE = pathlib.Path(__file__).resolve().parents[2] / "examples" / "python" / 
 
 @pytest.fixture(scope="module")
 def example():
-    spec = importlib.util.spec_from_file_location("dask_visibility", EXAMPLE)
-    module = importlib.util.module_from_spec(spec)
-    spec.loader.exec_module(module)
-    return module
+    """The example, imported by name here and on the workers (which start
+    with this environment: PYTHONPATH names its folder)."""
+    folder = str(EXAMPLE.parent)
+    old = os.environ.get("PYTHONPATH")
+    os.environ["PYTHONPATH"] = folder + (os.pathsep + old if old else "")
+    sys.path.insert(0, folder)
+    try:
+        yield importlib.import_module("dask_visibility")
+    finally:
+        sys.path.remove(folder)
+        if old is None:
+            del os.environ["PYTHONPATH"]
+        else:
+            os.environ["PYTHONPATH"] = old
 
 
 @pytest.fixture(scope="module")
-def client():
+def client(example):
     cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None)
     with distributed.Client(cluster) as c:
         yield c
@@ -33,7 +45,7 @@ def client():
 @pytest.mark.parametrize("method,seed", [("exact", None), ("mc:64", 9), ("hard", None)])
 def test_chunks_on_a_cluster_equal_one_process(example, client, method, seed):
     points = example.receivers("default", 5000, seed=4)
-    v = example.distributed_visibility(client, "default", points, method, seed, chunk=700)
+    v = example.distributed_visibility(client, "default", points, method, seed, chunk=700, timeout=120)
     one = softshadow.Scene.builtin("default").visibility(points, method=method, seed=seed)
     assert v.shape == one.shape
     assert np.array_equal(v.view(np.uint64), one.view(np.uint64))
