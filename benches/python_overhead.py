@@ -7,9 +7,11 @@ Python user does without it (JSON through the command line).
    sphere light, and `oess` on `linear-light`) and `exact`, the wall time of
    `scene.timed_visibility` (arrays in, the receivers checked and built,
    the run on a thread of its own with the GIL released, the result handed
-   to numpy) against the seconds the library reports for its own run
-   (`method::run`: checks, stages, the method). Median of --runs calls,
-   overhead = (wall − run) / run, per method.
+   to numpy) against (a) the seconds the library reports for its own run
+   (`method::run` on a ready frame: checks, stages, the method) and (b)
+   that plus the seconds the receivers took to build from the arrays
+   (`scene::file::receiver_from` per row, what a Rust caller holding the
+   same arrays does too). Medians of --runs calls.
 2. `hard` end to end: the numpy call against writing the points as a JSON
    points file, running `softshadow visibility` and parsing its JSON answer
    (median of --runs each, alternated).
@@ -44,15 +46,18 @@ def floor(n, seed=1, half=3.0):
 
 def overhead(scene_name, method, p, nrm, obj, runs):
     scene = softshadow.Scene.builtin(scene_name)
-    walls, insides = [], []
+    rows = []
     for _ in range(runs):
         t = time.perf_counter()
-        _, inside = scene.timed_visibility(p, nrm, obj, method=method)
-        walls.append(time.perf_counter() - t)
-        insides.append(inside)
-    wall, inside = statistics.median(walls), statistics.median(insides)
-    over = [(w - i) / i for w, i in zip(walls, insides)]
-    return wall, inside, statistics.median(over)
+        _, run, build = scene.timed_visibility(p, nrm, obj, method=method)
+        rows.append((time.perf_counter() - t, run, build))
+    med = lambda xs: statistics.median(xs)
+    wall, run, build = (med([r[k] for r in rows]) for k in range(3))
+    # Over the library's run on a ready frame, and over the run plus the
+    # receivers built from the arrays (what a Rust caller does too).
+    over_run = med([(w - r) / r for w, r, _ in rows])
+    over_rust = med([(w - r - b) / (r + b) for w, r, b in rows])
+    return wall, run, build, over_run, over_rust
 
 
 def through_cli(cli, scene_name, p, nrm, obj, method):
@@ -80,16 +85,16 @@ def main():
     n = args.receivers
     p, nrm, obj = floor(n)
     print(f"{n} receivers, median of {args.runs} runs, {os.cpu_count()} cores, numpy {np.__version__}")
-    print("| scene | method | call (s) | library's run (s) | overhead |")
-    print("|---|---|---:|---:|---:|")
-    cases = [("default", m) for m in ["exact"] + [
-        s for e in softshadow.methods() if "sphere" in e["lights"] for s in e["default_run"]]]
+    print("| scene | method | Python call (s) | method::run (s) | receivers built (s) | over method::run | over receivers + run |")
+    print("|---|---|---:|---:|---:|---:|---:|")
+    settings = [s for e in softshadow.methods() if "sphere" in e["lights"] for s in e["default_run"]]
+    cases = [("default", m) for m in dict.fromkeys(["exact"] + settings)]
     cases.append(("linear-light", "oess"))
     for scene_name, method in cases:
         if args.only and method != args.only:
             continue
-        wall, inside, over = overhead(scene_name, method, p, nrm, obj, args.runs)
-        print(f"| {scene_name} | {method} | {wall:.3f} | {inside:.3f} | {100 * over:+.2f} % |", flush=True)
+        wall, run, build, over_run, over_rust = overhead(scene_name, method, p, nrm, obj, args.runs)
+        print(f"| {scene_name} | {method} | {wall:.3f} | {run:.3f} | {build:.3f} | {100 * over_run:+.1f} % | {100 * over_rust:+.1f} % |", flush=True)
     if args.only and args.only != "hard":
         return
     scene = softshadow.Scene.builtin("default")

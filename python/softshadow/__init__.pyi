@@ -120,8 +120,9 @@ class Scene:
         objects: Optional[npt.ArrayLike] = None,
         method: str = "exact",
         seed: Optional[int] = None,
-    ) -> Tuple[FloatArray, float]:
-        """visibility() and the seconds the library's run took (for
+    ) -> Tuple[FloatArray, float, float]:
+        """visibility(), the seconds the library's run took (method::run)
+        and the seconds the receivers took to build from the arrays (for
         measuring the binding's overhead)."""
     def monte_carlo(
         self,

@@ -21,9 +21,12 @@ use numpy::{
     PyArray1, PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray,
     PyUntypedArrayMethods,
 };
-use pyo3::exceptions::{PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyRuntimeError, PyValueError};
+use pyo3::exceptions::{
+    PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyRuntimeError, PyValueError,
+};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
+use rayon::prelude::*;
 use softshadow::glam::DVec3;
 use softshadow::method::registry::{self, SeedError, REGISTRY};
 use softshadow::method::{self, Exact, Method, MethodError};
@@ -36,7 +39,7 @@ use softshadow::scene::{self, Mesh, Scene as LibScene};
 use std::path::PathBuf;
 use std::sync::mpsc::{self, RecvTimeoutError};
 use std::sync::Arc;
-use std::time::Duration;
+use std::time::{Duration, Instant};
 
 /// How often the calling thread checks for signals while the library
 /// computes.
@@ -221,6 +224,7 @@ fn integers(
 /// The receivers of `points` (N×3), with `normals` (N×3) and `objects`
 /// (N) when given, under the points file's rules ([`receiver_from`]).
 fn receivers(
+    py: Python<'_>,
     points: &Bound<'_, PyAny>,
     normals: Option<&Bound<'_, PyAny>>,
     objects: Option<&Bound<'_, PyAny>>,
@@ -254,22 +258,42 @@ fn receivers(
     };
     let p = p.as_slice();
     let nrm = normals.as_ref().map(Floats::as_slice);
-    (0..n)
-        .map(|i| {
-            let row = |a: &[f64]| [a[3 * i], a[3 * i + 1], a[3 * i + 2]];
-            receiver_from(row(p), nrm.map(row), objects.as_ref().map(|o| o[i]), meshes).map_err(
-                |(field, message)| {
-                    let array = match field {
-                        ReceiverField::Position => "points",
-                        ReceiverField::Normal => "normals",
-                        ReceiverField::Object => "objects",
-                    };
-                    value_error(format!("{array}: row {i}: {message}"))
-                },
-            )
-        })
-        .collect()
+    let objects = objects.as_deref();
+    let build = |i: usize| {
+        let row = |a: &[f64]| [a[3 * i], a[3 * i + 1], a[3 * i + 2]];
+        receiver_from(row(p), nrm.map(row), objects.map(|o| o[i]), meshes)
+    };
+    // In parallel and without the GIL: the first row at fault, then the
+    // receivers, written in place.
+    let built = py.detach(|| {
+        if let Some(i) = (0..n).into_par_iter().position_first(|i| build(i).is_err()) {
+            return Err((i, build(i).err()));
+        }
+        let mut out = Vec::with_capacity(n);
+        (0..n)
+            .into_par_iter()
+            .map(|i| build(i).unwrap_or(UNREACHED))
+            .collect_into_vec(&mut out);
+        Ok(out)
+    });
+    built.map_err(|(i, e)| {
+        let (field, message) = e.unwrap_or((ReceiverField::Position, String::new()));
+        let array = match field {
+            ReceiverField::Position => "points",
+            ReceiverField::Normal => "normals",
+            ReceiverField::Object => "objects",
+        };
+        value_error(format!("{array}: row {i}: {message}"))
+    })
 }
+
+/// A receiver standing for one [`receiver_from`] refused, where every row
+/// was checked before (never in a result).
+const UNREACHED: Receiver = Receiver {
+    position: DVec3::ZERO,
+    normal: None,
+    object: None,
+};
 
 // ------------------------------------------------------------- computing
 
@@ -345,16 +369,15 @@ fn parse_method(name: &str, seed: Option<u64>) -> PyResult<Box<dyn Method>> {
     })
 }
 
-/// A method's run on the receivers: its output, and the seconds the
-/// library's run took (the binding's overhead is the rest).
+/// A method's run on a frame of receivers: its output, and the seconds
+/// the library's run took (the binding's overhead is the rest).
 fn run_on(
     py: Python<'_>,
     scene: &LibScene,
     method: &dyn Method,
-    receivers: Vec<Receiver>,
+    frame: &Frame,
 ) -> PyResult<method::Run> {
-    let frame = Frame::from_receivers(receivers);
-    compute(py, scene, |stages| method::run(method, stages, &frame))?.map_err(method_error)
+    compute(py, scene, |stages| method::run(method, stages, frame))?.map_err(method_error)
 }
 
 // ---------------------------------------------------------------- lights
@@ -646,12 +669,14 @@ impl Scene {
         method: &str,
         seed: Option<&Bound<'py, PyAny>>,
     ) -> PyResult<Bound<'py, PyArray1<f64>>> {
-        let (v, _) = self.timed_visibility(py, points, normals, objects, method, seed)?;
+        let (v, _, _) = self.timed_visibility(py, points, normals, objects, method, seed)?;
         Ok(v)
     }
 
-    /// `visibility` and the seconds the library's run took (checks,
-    /// stages and the method's pass), for measuring the binding's
+    /// `visibility`, the seconds the library's run took (checks, stages
+    /// and the method's pass: `method::run`) and the seconds the receivers
+    /// and their frame took to build from the arrays (what a Rust caller
+    /// holding the same arrays does too), for measuring the binding's
     /// overhead.
     #[pyo3(signature = (points, normals = None, objects = None, method = "exact", seed = None))]
     fn timed_visibility<'py>(
@@ -662,11 +687,23 @@ impl Scene {
         objects: Option<&Bound<'py, PyAny>>,
         method: &str,
         seed: Option<&Bound<'py, PyAny>>,
-    ) -> PyResult<(Bound<'py, PyArray1<f64>>, f64)> {
+    ) -> PyResult<(Bound<'py, PyArray1<f64>>, f64, f64)> {
         let m = parse_method(method, seed_arg(seed)?)?;
-        let r = receivers(points, normals, objects, self.scene.meshes().len())?;
-        let run = run_on(py, &self.scene, m.as_ref(), r)?;
-        Ok((PyArray1::from_vec(py, run.output.visibility), run.seconds))
+        let start = Instant::now();
+        let frame = Frame::from_receivers(receivers(
+            py,
+            points,
+            normals,
+            objects,
+            self.scene.meshes().len(),
+        )?);
+        let building = start.elapsed().as_secs_f64();
+        let run = run_on(py, &self.scene, m.as_ref(), &frame)?;
+        Ok((
+            PyArray1::from_vec(py, run.output.visibility),
+            run.seconds,
+            building,
+        ))
     }
 
     /// Monte Carlo light sampling with `samples` samples per receiver
@@ -683,8 +720,8 @@ impl Scene {
     ) -> PyResult<(Array<'py>, Array<'py>)> {
         let samples: u32 = int_arg(samples, "samples", "2 to 4294967295")?;
         let m = parse_method(&format!("mc:{samples}"), seed_arg(seed)?)?;
-        let r = receivers(points, normals, None, self.scene.meshes().len())?;
-        let run = run_on(py, &self.scene, m.as_ref(), r)?;
+        let r = receivers(py, points, normals, None, self.scene.meshes().len())?;
+        let run = run_on(py, &self.scene, m.as_ref(), &Frame::from_receivers(r))?;
         let stderr = run.output.stderr.ok_or_else(|| {
             PyRuntimeError::new_err("internal error: Monte Carlo gave no standard errors")
         })?;

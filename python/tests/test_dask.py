@@ -36,7 +36,7 @@ def example():
 
 @pytest.fixture(scope="module")
 def client(example):
-    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=None)
+    cluster = distributed.LocalCluster(n_workers=2, threads_per_worker=1, dashboard_address=":0")
     with distributed.Client(cluster) as c:
         yield c
     cluster.close()

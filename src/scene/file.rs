@@ -759,10 +759,12 @@ pub fn receiver_from(
     let position = check(position, ReceiverField::Position)?;
     let normal = match normal {
         Some(n) => Some(
-            crate::kernel::eft::unit(check(n, ReceiverField::Normal)?).ok_or((
-                ReceiverField::Normal,
-                "the normal has zero length".to_owned(),
-            ))?,
+            crate::kernel::eft::unit(check(n, ReceiverField::Normal)?).ok_or_else(|| {
+                (
+                    ReceiverField::Normal,
+                    "the normal has zero length".to_owned(),
+                )
+            })?,
         ),
         None => None,
     };
