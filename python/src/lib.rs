@@ -232,30 +232,28 @@ fn receivers(
 ) -> PyResult<Vec<Receiver>> {
     let (p, shape) = floats(points, "points", "(n, 3)", 2)?;
     let n = shape[0];
-    let normals = match normals {
-        Some(obj) => {
+    // An array beside `points` has its n rows.
+    let rows = |what: &str, s: &[usize], want: &str| {
+        if s[0] == n {
+            Ok(())
+        } else {
+            Err(value_error(format!(
+                "{what}: shape {s:?}, points has {n} rows (expected {want})"
+            )))
+        }
+    };
+    let normals = normals
+        .map(|obj| {
             let (a, s) = floats(obj, "normals", "(n, 3)", 2)?;
-            if s[0] != n {
-                return Err(value_error(format!(
-                    "normals: shape {s:?}, points has {n} rows (expected [{n}, 3])"
-                )));
-            }
-            Some(a)
-        }
-        None => None,
-    };
-    let objects = match objects {
-        Some(obj) => {
+            rows("normals", &s, &format!("[{n}, 3]")).map(|()| a)
+        })
+        .transpose()?;
+    let objects = objects
+        .map(|obj| {
             let (a, s) = integers(obj, "objects", "(n,)", 1)?;
-            if s[0] != n {
-                return Err(value_error(format!(
-                    "objects: shape {s:?}, points has {n} rows (expected [{n}])"
-                )));
-            }
-            Some(a)
-        }
-        None => None,
-    };
+            rows("objects", &s, &format!("[{n}]")).map(|()| a)
+        })
+        .transpose()?;
     let p = p.as_slice();
     let nrm = normals.as_ref().map(Floats::as_slice);
     let objects = objects.as_deref();
