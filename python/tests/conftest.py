@@ -20,7 +20,9 @@ def cli():
     release build (built here if missing)."""
     path = os.environ.get("SOFTSHADOW_CLI")
     if path:
-        return pathlib.Path(path)
+        path = pathlib.Path(path)
+        assert path.is_file(), f"SOFTSHADOW_CLI={path}: no such program"
+        return path
     path = ROOT / "target" / "release" / "softshadow"
     subprocess.run(
         ["cargo", "build", "--release", "--quiet", "-p", "softshadow-cli"],
