@@ -19,7 +19,7 @@ class Light:
     def kind(self) -> str:
         """The light's kind: "sphere", "disk", "rect", "segment" or "point"."""
     @property
-    def center(self) -> Tuple[float, float, float]:
+    def center(self) -> list[float]:
         """The light's centre."""
 
 class SphereLight(Light):

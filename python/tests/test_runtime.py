@@ -68,19 +68,31 @@ def long_receivers(scene):
 
 
 def test_the_gil_is_released_while_the_library_computes():
-    scene = softshadow.Scene.builtin("default")
-    p = floor_points(3000)
-    done = threading.Event()
-    worker = threading.Thread(target=lambda: (scene.monte_carlo(p, 512), done.set()))
+    """Another Python thread runs all through a call of a second or more:
+    the longest pause between its loop's turns is a small part of the call
+    (with the GIL held through the call, one pause would be the whole
+    call)."""
+    scene = softshadow.Scene.builtin("depth-complexity")
+    p = long_receivers(scene)[:8000]
+    span = []
+
+    def call():
+        t = time.perf_counter()
+        scene.visibility(p)
+        span.append(time.perf_counter() - t)
+
+    worker = threading.Thread(target=call)
+    last = time.perf_counter()
     worker.start()
-    count = 0
-    while not done.is_set():
-        count += 1
+    gap = 0.0
+    while worker.is_alive():
+        now = time.perf_counter()
+        gap = max(gap, now - last)
+        last = now
     worker.join()
-    # With the GIL held through the call, this thread could not count at
-    # all while it ran (a few counts before it starts, at most).
-    print(f"{count} counts during the call")
-    assert count > 100_000
+    print(f"call {span[0]:.2f} s, longest pause of the other thread {gap * 1e3:.1f} ms")
+    assert span[0] > 0.5, "the call is too short to tell"
+    assert gap < 0.25 * span[0]
 
 
 def test_ctrl_c_cancels_a_long_call_and_the_scene_computes_again():
