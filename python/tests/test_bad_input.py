@@ -98,6 +98,8 @@ def test_meshes():
     pos = np.array([[0.0, 1, 0], [1, 1, 0], [0, 1, 1]])
     tri = np.array([[0, 1, 2]])
     assert softshadow.Scene([(pos, tri)], light).triangle_count == 1
+    named = softshadow.Scene(meshes=[(pos, tri)], light=light, names=["card"])
+    assert named.mesh_names == ["card"] and named.light_kind == "point"
     assert softshadow.Scene([(pos, tri.astype(np.uint32))], light).triangle_count == 1
     raises(ValueError, r"meshes\[0\]: triangle 0 refers to vertex 3, but there are 3 vertices", softshadow.Scene, [(pos, tri + 1)], light)
     raises(ValueError, r"meshes\[0\] triangles: row 0: vertex index -1", softshadow.Scene, [(pos, tri - 1)], light)
