@@ -360,3 +360,56 @@ fn pcss_shadows_a_receiver_right_behind_its_own_sheet() {
     assert_eq!(exact, [0.0, 0.0, 0.0]);
     assert_eq!(values(&Pcss::default(), &stages, &frame), exact);
 }
+
+#[test]
+fn a_cancelled_run_stops_early_and_returns_no_values() {
+    use std::sync::{mpsc, Arc, Mutex};
+    let scene = builtin("default").unwrap();
+    // Refused at once on stages cancelled before the run.
+    let stages = Stages::new(&scene);
+    let frame = frame(&scene, &stages, 64);
+    let total = frame.receivers().len();
+    stages.cancel();
+    assert_eq!(
+        method::run(&Exact, &stages, &frame).unwrap_err(),
+        method::MethodError::Cancelled
+    );
+    // Cancelled from another thread after the first chunk: the progress
+    // callback waits until the cancel is made, so the run cannot finish
+    // before it, and fewer receivers than the frame's are computed.
+    let stages = Stages::new(&scene);
+    let done = Arc::new(Mutex::new(0usize));
+    let (first, cancelled) = (mpsc::channel::<()>(), mpsc::channel::<()>());
+    let (tell, ack) = (Mutex::new(first.0), Mutex::new(cancelled.1));
+    let counted = Arc::clone(&done);
+    stages.set_progress(Some(Arc::new(move |n| {
+        let mut d = counted.lock().unwrap();
+        *d += n;
+        if *d == n {
+            tell.lock().unwrap().send(()).unwrap();
+            ack.lock().unwrap().recv().unwrap();
+        }
+    })));
+    let (first_rx, cancelled_tx) = (first.1, cancelled.0);
+    let shared = &stages;
+    let result = std::thread::scope(|s| {
+        s.spawn(move || {
+            first_rx.recv().unwrap();
+            shared.cancel();
+            cancelled_tx.send(()).unwrap();
+        });
+        method::run(&MonteCarlo::new(256), &stages, &frame)
+    });
+    assert_eq!(result.unwrap_err(), method::MethodError::Cancelled);
+    let computed = *done.lock().unwrap();
+    assert!(
+        computed < total / 2,
+        "{computed} of {total} receivers computed"
+    );
+    // New stages compute again, and the same values as without a cancel.
+    let again = Stages::new(&scene);
+    assert_eq!(
+        values(&Exact, &again, &frame),
+        values(&Exact, &Stages::new(&scene), &frame)
+    );
+}

@@ -713,3 +713,65 @@ fn large_points_files_stream_with_the_same_answers_and_messages() {
         "{msg}"
     );
 }
+
+#[test]
+fn an_array_row_makes_the_receiver_a_points_file_makes_or_names_its_fault() {
+    use softshadow::scene::file::{receiver_from, ReceiverField};
+    // Normals of every scale normalise to the points file's bits.
+    let p = [0.123_456_789, -4.5e6, 1e-9];
+    for n in [
+        [0.3, 0.4, 0.5],
+        [3e-300, 4e-300, 5e-300],
+        [1e29, -2e29, 3e28],
+    ] {
+        let text = format!(
+            "{{\"points\": [{{\"p\": [{:?}, {:?}, {:?}], \"object\": 1, \"normal\": [{:?}, {:?}, {:?}]}}]}}",
+            p[0], p[1], p[2], n[0], n[1], n[2]
+        );
+        let file = points_from_str("p.json", &text, 2).unwrap();
+        let row = receiver_from(p, Some(n), Some(1), 2).unwrap();
+        assert_eq!(file[0], row, "{n:?}");
+        let unit = row.normal.unwrap();
+        assert!((unit.length() - 1.0).abs() < 1e-15, "{n:?}");
+    }
+    assert_eq!(
+        receiver_from(p, None, None, 0).unwrap(),
+        Receiver {
+            position: DVec3::from_array(p),
+            normal: None,
+            object: None
+        }
+    );
+    let fault = |p, n, o, m| receiver_from(p, n, o, m).unwrap_err();
+    assert_eq!(
+        fault([0.0, f64::NAN, 0.0], None, None, 1),
+        (
+            ReceiverField::Position,
+            "NaN is not a finite number within ±1e30".to_owned()
+        )
+    );
+    assert_eq!(
+        fault([0.0, 0.0, 2e30], None, None, 1).0,
+        ReceiverField::Position
+    );
+    assert_eq!(
+        fault(p, Some([0.0; 3]), None, 1),
+        (
+            ReceiverField::Normal,
+            "the normal has zero length".to_owned()
+        )
+    );
+    assert_eq!(
+        fault(p, Some([f64::INFINITY, 0.0, 0.0]), None, 1).0,
+        ReceiverField::Normal
+    );
+    for id in [-1, 2, i64::MAX] {
+        assert_eq!(
+            fault(p, None, Some(id), 2),
+            (
+                ReceiverField::Object,
+                format!("object id {id}, the scene has meshes 0 to 1")
+            )
+        );
+    }
+}

@@ -3,12 +3,11 @@
 
 use crate::progress::Progress;
 use softshadow::float_io::{self, npy_bytes_f64, read_npy_f64, read_npy_i64, ImageKind};
-use softshadow::glam::DVec3;
-use softshadow::method::{self, registry, Method, MethodError, OptionError, ParseError, REGISTRY};
+use softshadow::method::registry::SeedError;
+use softshadow::method::{self, registry, Method, MethodError, ParseError};
 use softshadow::render::{Fit, Frame, Receiver, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
-use softshadow::scene::file::DOMAIN;
-use softshadow::scene::file::{load_points, load_scene};
+use softshadow::scene::file::{load_points, load_scene, receiver_from, ReceiverField};
 use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};
 use std::sync::Arc;
@@ -67,30 +66,15 @@ pub fn parse_method(s: &str) -> Result<String, ParseError> {
 }
 
 /// The method `name`, with `seed=S` added to its options when `--seed S`
-/// is given. Refused, rather than one of them silently dropped: `--seed`
-/// for a method without a seed, and `--seed` beside a `seed=` of the name.
+/// is given ([`registry::parse_with_seed`]).
 pub fn method_with_seed(name: &str, seed: Option<u64>) -> Result<Box<dyn Method>, String> {
-    let Some(seed) = seed else {
-        return method::parse(name).map_err(|e| e.to_string());
-    };
-    let base = name.split(':').next().unwrap_or(name);
-    if !registry::entry(base).is_some_and(|e| e.accepts("seed")) {
-        let seeded: Vec<String> = REGISTRY
-            .iter()
-            .filter(|e| e.is_built() && e.accepts("seed"))
-            .map(|e| e.usage())
-            .collect();
-        return Err(format!(
-            "--seed {seed}: method {base} has no seed (methods with one: {})",
-            seeded.join(", ")
-        ));
-    }
-    let sep = if name.contains(':') { ',' } else { ':' };
-    method::parse(&format!("{name}{sep}seed={seed}")).map_err(|e| match e.option() {
-        Some(OptionError::Repeated { .. }) => {
-            format!("--seed {seed}: --method {name} sets seed= already; give the seed once")
-        }
-        _ => e.to_string(),
+    registry::parse_with_seed(name, seed).map_err(|e| match e {
+        SeedError::Parse(e) => e.to_string(),
+        SeedError::Repeated => format!(
+            "--seed {}: --method {name} sets seed= already; give the seed once",
+            seed.unwrap_or_default()
+        ),
+        e => format!("--seed {}: {e}", seed.unwrap_or_default()),
     })
 }
 
@@ -251,38 +235,14 @@ fn read_points(
     (0..n)
         .map(|i| {
             let row = &a.data[i * cols..(i + 1) * cols];
-            let bad = |what: String| format!("{file}: row {i}: {what}");
-            if let Some(x) = row.iter().find(|x| !x.is_finite() || x.abs() > DOMAIN) {
-                return Err(bad(format!("{x} is not a finite number within ±1e30")));
-            }
-            let normal = if cols == 6 {
-                let n = DVec3::from_slice(&row[3..6]);
-                Some(
-                    n.try_normalize()
-                        .ok_or_else(|| bad("the normal has zero length".into()))?,
-                )
-            } else {
-                None
-            };
-            let object = match &ids {
-                Some(ids) => {
-                    let id = ids[i];
-                    if id < 0 || id >= meshes as i64 {
-                        return Err(format!(
-                            "{}: row {i}: object id {id}, the scene has meshes 0 to {}",
-                            objects.map_or(String::new(), |o| o.display().to_string()),
-                            meshes as i64 - 1
-                        ));
-                    }
-                    Some(id as u32)
-                }
-                None => None,
-            };
-            Ok(Receiver {
-                position: DVec3::from_slice(&row[..3]),
-                normal,
-                object,
-            })
+            let normal = (cols == 6).then(|| [row[3], row[4], row[5]]);
+            let object = ids.as_ref().map(|ids| ids[i]);
+            receiver_from([row[0], row[1], row[2]], normal, object, meshes).map_err(
+                |(field, what)| match (field, objects) {
+                    (ReceiverField::Object, Some(o)) => format!("{}: row {i}: {what}", o.display()),
+                    _ => format!("{file}: row {i}: {what}"),
+                },
+            )
         })
         .collect()
 }

@@ -376,6 +376,8 @@ pub enum MethodError {
         /// What is wrong.
         message: String,
     },
+    /// The run was stopped by [`Stages::cancel`] before it finished.
+    Cancelled,
 }
 
 impl fmt::Display for MethodError {
@@ -408,6 +410,7 @@ impl fmt::Display for MethodError {
             MethodError::Contract { method, message } => {
                 write!(f, "{method} broke the method contract: {message}")
             }
+            MethodError::Cancelled => write!(f, "cancelled"),
         }
     }
 }
@@ -446,6 +449,9 @@ pub struct Run {
 ///    standard error for each if any ([`MethodError::Contract`] otherwise)
 ///    — and times the whole.
 ///
+/// A run on [`Stages`] that are [cancelled](Stages::cancel), before or
+/// while it runs, returns [`MethodError::Cancelled`] and no values.
+///
 /// [`Run::stats`] is what the stage log gained during the run: runs on one
 /// [`Stages`] from several threads at once still compute the right values,
 /// but their stats then mix.
@@ -456,8 +462,14 @@ pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, M
     let before = stages.stats();
     let start = Instant::now();
     let horizon = method.horizon() == Horizon::Clamp;
+    if stages.is_cancelled() {
+        return Err(MethodError::Cancelled);
+    }
     let input = check(method, stages, frame)?;
     let mut output = method.visibility(&input)?;
+    if stages.is_cancelled() {
+        return Err(MethodError::Cancelled);
+    }
     if horizon && output.visibility.len() == input.emitters.len() {
         output
             .visibility
@@ -575,7 +587,9 @@ pub(crate) fn check_options<T: Configurable>(m: &T) -> Result<(), MethodError> {
 /// The receivers' visibility computed one receiver at a time, in parallel
 /// in chunks (rayon), with per-worker state from `init`, progress reported
 /// per chunk; the first error (by receiver index) wins. The result does not
-/// depend on the number of threads.
+/// depend on the number of threads. Once the stages are
+/// [cancelled](Stages::cancel), each chunk not yet started returns
+/// [`MethodError::Cancelled`] at once.
 pub(crate) fn per_receiver<S, T: Send>(
     input: &Input<'_, '_>,
     init: impl Fn() -> S + Send + Sync,
@@ -588,6 +602,9 @@ pub(crate) fn per_receiver<S, T: Send>(
         .par_chunks(CHUNK)
         .enumerate()
         .map_init(&init, |state, (c, chunk)| {
+            if stages.is_cancelled() {
+                return Err(MethodError::Cancelled);
+            }
             let out = chunk
                 .iter()
                 .enumerate()

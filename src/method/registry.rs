@@ -216,6 +216,70 @@ pub fn parse(name: &str) -> Result<Box<dyn Method>, ParseError> {
     build(name, &items)
 }
 
+/// Why [`parse_with_seed`] refused a name with a seed.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum SeedError {
+    /// The name is not a method ([`parse`]'s error).
+    Parse(ParseError),
+    /// The method has no option `seed`.
+    NoSeed {
+        /// Its base name.
+        base: &'static str,
+        /// The methods that have one, as their usage (`mc:N`).
+        seeded: String,
+    },
+    /// The name sets `seed=` already.
+    Repeated,
+}
+
+impl std::fmt::Display for SeedError {
+    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
+        match self {
+            SeedError::Parse(e) => write!(f, "{e}"),
+            SeedError::NoSeed { base, seeded } => {
+                write!(f, "method {base} has no seed (methods with one: {seeded})")
+            }
+            SeedError::Repeated => write!(f, "the name sets seed= already; give the seed once"),
+        }
+    }
+}
+
+impl std::error::Error for SeedError {}
+
+/// [`parse`] with the option `seed=S` added when `seed` is given: the
+/// command line's `--seed S` and the Python package's `seed=S`. Refused,
+/// rather than one of them silently dropped: a seed for a method without
+/// one, and a seed beside a `seed=` of the name.
+///
+/// # Errors
+/// [`SeedError`].
+pub fn parse_with_seed(name: &str, seed: Option<u64>) -> Result<Box<dyn Method>, SeedError> {
+    let Some(seed) = seed else {
+        return parse(name).map_err(SeedError::Parse);
+    };
+    let base = name.split(':').next().unwrap_or(name);
+    let Some(entry) = entry(base).filter(|e| e.is_built()) else {
+        return parse(name).map_err(SeedError::Parse);
+    };
+    if !entry.accepts("seed") {
+        let seeded: Vec<String> = REGISTRY
+            .iter()
+            .filter(|e| e.is_built() && e.accepts("seed"))
+            .map(Entry::usage)
+            .collect();
+        return Err(SeedError::NoSeed {
+            base: entry.name,
+            seeded: seeded.join(", "),
+        });
+    }
+    let sep = if name.contains(':') { ',' } else { ':' };
+    parse(&format!("{name}{sep}seed={seed}")).map_err(|e| match e.option() {
+        Some(options::OptionError::Repeated { .. }) => SeedError::Repeated,
+        _ => SeedError::Parse(e),
+    })
+}
+
 /// At most 60 characters of `s`, for messages.
 fn short(s: &str) -> String {
     match s.char_indices().nth(60) {
@@ -260,4 +324,45 @@ pub fn help() -> String {
         }
     }
     out
+}
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+
+    #[test]
+    fn a_seed_is_the_option_seed_and_is_refused_where_it_cannot_apply() {
+        for (name, seed, want) in [
+            ("mc:16", Some(3), "mc:16,seed=3"),
+            ("mc", Some(3), "mc:64,seed=3"),
+            ("mc:16", None, "mc:16"),
+            ("hard", None, "hard"),
+        ] {
+            let m = parse_with_seed(name, seed).unwrap();
+            assert_eq!(m.name(), parse(want).unwrap().name(), "{name} {seed:?}");
+        }
+        // The seed changes the answer's name, hence the method.
+        assert_ne!(
+            parse_with_seed("mc:16", Some(3)).unwrap().name(),
+            parse_with_seed("mc:16", Some(4)).unwrap().name()
+        );
+        match parse_with_seed("hard", Some(1)) {
+            Err(SeedError::NoSeed { base, seeded }) => {
+                assert_eq!((base, seeded.as_str()), ("hard", "mc:N"));
+            }
+            other => panic!("{other:?}"),
+        }
+        assert_eq!(
+            parse_with_seed("mc:16,seed=2", Some(1)).err(),
+            Some(SeedError::Repeated)
+        );
+        assert!(matches!(
+            parse_with_seed("nope", Some(1)),
+            Err(SeedError::Parse(ParseError::UnknownMethod { .. }))
+        ));
+        assert!(matches!(
+            parse_with_seed("mc:1", Some(1)),
+            Err(SeedError::Parse(ParseError::Option { .. }))
+        ));
+    }
 }

@@ -11,6 +11,7 @@ use glam::DVec3;
 use std::any::{Any, TypeId};
 use std::collections::HashMap;
 use std::fmt;
+use std::sync::atomic::{AtomicBool, Ordering};
 use std::sync::{Arc, Mutex, OnceLock};
 use std::time::{Duration, Instant};
 
@@ -184,6 +185,7 @@ pub struct Stages<'a> {
     cache: Mutex<HashMap<CacheKey, Slot>>,
     log: Mutex<Stats>,
     progress: Mutex<Option<Progress<'a>>>,
+    cancelled: AtomicBool,
 }
 
 /// The key of a cached stage: the type of what it holds, its name, and the
@@ -216,7 +218,27 @@ impl<'a> Stages<'a> {
             cache: Mutex::new(HashMap::new()),
             log: Mutex::new(Stats::default()),
             progress: Mutex::new(None),
+            cancelled: AtomicBool::new(false),
         }
+    }
+
+    /// Asks every method running on these stages to stop: from any
+    /// thread, at any time. [`crate::method::run`] then returns
+    /// [`MethodError::Cancelled`](crate::method::MethodError::Cancelled):
+    /// methods that work per receiver stop within a chunk of 256
+    /// receivers, the others when their pass ends; a run started later on
+    /// the same stages is refused the same way (cancelling is for good:
+    /// make new stages to compute again). A run is never cut short into a
+    /// partial answer, so an answer that is returned is the whole
+    /// computation's, bit for bit.
+    pub fn cancel(&self) {
+        self.cancelled.store(true, Ordering::Relaxed);
+    }
+
+    /// Whether [`Stages::cancel`] was called.
+    #[must_use]
+    pub fn is_cancelled(&self) -> bool {
+        self.cancelled.load(Ordering::Relaxed)
     }
 
     /// From now on, calls `f(n)` as receivers are finished, `n` at a time

@@ -726,6 +726,70 @@ pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
 /// the field and the value, rather than answered wrongly.
 pub const DOMAIN: f64 = 1e30;
 
+/// The input of a receiver that [`receiver_from`] refused.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub enum ReceiverField {
+    /// The position.
+    Position,
+    /// The normal.
+    Normal,
+    /// The object id.
+    Object,
+}
+
+/// A receiver from numbers as an array row gives them (the command line's
+/// `.npy` points, the Python package's arrays), under the points file's
+/// rules: every coordinate finite and within [`DOMAIN`], a normal non-zero
+/// (normalised, to the same bits as a points file's), an object id of one
+/// of `mesh_count` meshes.
+///
+/// # Errors
+/// The first input at fault, in the order position, normal, object, with
+/// a message that names the value.
+pub fn receiver_from(
+    position: [f64; 3],
+    normal: Option<[f64; 3]>,
+    object: Option<i64>,
+    mesh_count: usize,
+) -> Result<Receiver, (ReceiverField, String)> {
+    let check = |v: [f64; 3], field| match v.iter().find(|x| !x.is_finite() || x.abs() > DOMAIN) {
+        Some(x) => Err((field, format!("{x} is not a finite number within ±1e30"))),
+        None => Ok(DVec3::from_array(v)),
+    };
+    let position = check(position, ReceiverField::Position)?;
+    let normal = match normal {
+        Some(n) => Some(
+            crate::kernel::eft::unit(check(n, ReceiverField::Normal)?).ok_or_else(|| {
+                (
+                    ReceiverField::Normal,
+                    "the normal has zero length".to_owned(),
+                )
+            })?,
+        ),
+        None => None,
+    };
+    let object = match object {
+        Some(id) => match u32::try_from(id) {
+            Ok(o) if (o as usize) < mesh_count => Some(o),
+            _ => {
+                return Err((
+                    ReceiverField::Object,
+                    format!(
+                        "object id {id}, the scene has meshes 0 to {}",
+                        mesh_count as i64 - 1
+                    ),
+                ))
+            }
+        },
+        None => None,
+    };
+    Ok(Receiver {
+        position,
+        normal,
+        object,
+    })
+}
+
 /// The largest scene, points or report JSON file read (256 MiB).
 pub const MAX_TEXT_BYTES: u64 = 256 << 20;
 
