@@ -14,25 +14,26 @@
 //!
 //! ## Accuracy
 //!
-//! The answer is exact up to the rounding of the half-planes, the crossing
-//! parameters and the documented accuracy of [`segment_disk_area`]: about
-//! `1e-15` absolute in `V` on ordinary scenes (so a fully covered light may
-//! give `1e-16` rather than `0`), held within `1e-9` of closed forms by
-//! the tests (`docs/accuracy/references.md`). Seen at a grazing elevation
-//! `θ` (the light nearly in the occluder's plane as seen from `p`) the
-//! error grows about as `ε/θ`: `4·10⁻¹⁰` at `θ = 10⁻⁶`
-//! (`softshadow stability`, `docs/stability.md`).
+//! Every combinatorial decision is an exact predicate: which side of each
+//! triangle's plane the receiver lies on (however close: a receiver on a
+//! triangle is hidden nothing by it, one a hair behind it everything it
+//! covers; [definitions](crate::definitions#receivers-on-an-occluder)),
+//! which side of each image edge the light's points lie on. The images are
+//! built from determinants of the inputs taken relative to the receiver,
+//! each evaluated exactly where its rounding could move an image edge or
+//! corner by more than `2⁻⁴⁰` of the light's radius (segment lights: an
+//! interval's end by `2⁻⁴⁰` of the light), so a receiver `10⁻¹⁷` from an
+//! edge, a light `10⁻¹⁶` long or a corner `10²⁰` away costs no accuracy.
+//! What is left is rounding: about `10⁻¹⁵` absolute in `V` on ordinary
+//! scenes (so a fully covered light may give `1e-16` rather than `0`),
+//! held to `10⁻¹³` of a 256-bit evaluation at contact by the tests
+//! (`tests/contact.rs`), and within `1e-9` of closed forms
+//! (`docs/accuracy/references.md`).
 //!
-//! **Domain**: the predicates are exact for coordinates within `±1e30`
-//! (every orientation determinant, a product of three coordinate
-//! differences, stays within [`orient3d`]'s exact domain), and the
-//! constructed points — crossings of edges with planes — are accurate when
-//! the triangles' corners lie within about `10⁶` times the light's distance
-//! from `p`. A corner `10²⁰` away whose long edge crosses the light's view
-//! near the scene is located to only about `10⁻¹⁶ · 10²⁰` (found by the
-//! `exact` fuzz target: a segment light answered 0.30 where Monte Carlo
-//! says 0.73). Beyond the domain the answer is still in `[0, 1]` and never
-//! NaN. Split or clip such triangles before asking.
+//! **Domain**: the predicates are exact for coordinates `0` or of
+//! magnitude within `[1e-90, 1e90]` (every orientation determinant, a
+//! product of three coordinate differences, stays within [`orient3d`]'s
+//! exact domain). Beyond it the answer is still in `[0, 1]` and never NaN.
 //!
 //! ## Cost
 //!
@@ -43,7 +44,6 @@
 //! measured costs against the number of occluders).
 //!
 //! [`orient3d`]: crate::kernel::predicate::orient3d
-//! [`segment_disk_area`]: crate::kernel::disk::f64::segment_disk_area
 
 use crate::bvh::Bvh;
 use crate::kernel::receiver_view::{self, AreaView, SegmentView};

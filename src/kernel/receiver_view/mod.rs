@@ -37,7 +37,16 @@
 //!   between `p` and the light occludes (projecting unclipped triangles is
 //!   the classic bug), and no point near `p` or behind it is ever
 //!   constructed — a corner `10⁻¹²` above the receiver is as exact as one
-//!   far from it. A triangle wholly between `p` and a disk light whose
+//!   far from it. Every half-plane's coefficients are 3×3 determinants of
+//!   the inputs taken relative to the receiver (`det[u − p, v − u, ·]` for
+//!   the plane through `p` and the edge `uv`, against the plane's axes and
+//!   `center − p`; the triangle's own plane relative to a corner), each
+//!   rounded with a bound on its error and computed exactly where that
+//!   bound could move the line by more than `2⁻⁴⁰` of the light's radius —
+//!   a receiver within `10⁻¹⁷` of an edge, whose plane through the edge
+//!   a rounded cross product would turn at random, or a light of radius
+//!   `10⁻⁶`. The disk's plane is spanned exactly (its normal crossed with
+//!   two coordinate axes). A triangle wholly between `p` and a disk light whose
 //!   corners project inside the square takes a fast path: its projected
 //!   corners, the same bits in every triangle sharing them. Images are
 //!   split into triangles, each oriented counter-clockwise by the exact
@@ -52,11 +61,15 @@
 //!   edge that two images share in opposite directions (a mesh edge, the
 //!   fast path's corners the same bits in both) lies between them and is
 //!   dropped at once: on a mesh's images most edges are.
-//! - **Segment** ([`SegmentView`]). The plane through `p` and the segment
-//!   cuts each triangle in a segment; clipped to the triangle `(p, a, b)`
-//!   and projected from `p` onto the light it blocks one interval of the
-//!   light's parameter ([`SegmentView::blocked`]). The occluded fraction is
-//!   the length of the union of the blocked intervals.
+//! - **Segment** ([`SegmentView`]). The same four conditions, along the
+//!   light `x(s) = a + s (b − a)`: each is `(1 − s) F(a) + s F(b)` with
+//!   `F(a)`, `F(b)` determinants of the inputs with exact signs, so a
+//!   triangle hides one interval of `s` ([`SegmentView::blocked`]), its
+//!   ends the quotients `F(a) / (F(a) − F(b))` of values accurate to `2⁻⁴⁰`
+//!   of their difference. No point is constructed: a receiver `10⁻¹⁷`
+//!   behind a triangle, or a light `10⁻¹⁶` long, costs no accuracy. The
+//!   occluded fraction is the length of the union of the blocked
+//!   intervals.
 //! - **Point.** One exact open-segment test ([`segment_blocked`]).
 //!
 //! Every topological decision is an exact predicate — which side of a
@@ -79,9 +92,12 @@
 //!   Edges that coincide only to rounding are cut consistently and leave
 //!   slivers of rounding size.
 //! - Triangles whose plane holds `p` (seen edge-on from a receiver lying on
-//!   them), or that lie in the light's own plane, hide nothing, exactly as
-//!   the open segment `(p, x)` meets them in at most a null set of light
-//!   points. Triangles with a non-finite corner hide nothing.
+//!   them: on a face, an edge or a vertex), or that lie in the light's own
+//!   plane, hide nothing, exactly as the open segment `(p, x)` meets them
+//!   in at most a null set of light points
+//!   ([definitions](crate::definitions#receivers-on-an-occluder)); which
+//!   side of a triangle `p` lies on is decided exactly, however close.
+//!   Triangles with a non-finite corner hide nothing.
 //! - Touching at a point, and edges through a vertex, change no area.
 //!
 //! Accuracy and domain are those of `reference::exact` (about `1e-15`
@@ -96,6 +112,7 @@
 //! [`Light::visibility_among`]: crate::scene::Light::visibility_among
 
 mod area;
+mod bounded;
 mod segment;
 mod union;
 
