@@ -426,3 +426,180 @@ fn monte_carlo_at_contact() {
         failures.join("\n")
     );
 }
+
+/// The methods that answer the definition exactly or statistically —
+/// `exact`, `mc:N` and `hard` (a point light's answer) — through
+/// `method::run` on receivers given as in a points file (no offset): the
+/// corners of a tetrahedron with ordinary coordinates (exactly on three of
+/// its faces), points exactly on an axis-aligned floor, and points an ulp
+/// and 10⁻¹⁷ off them. `exact` within `TOLERANCE` of the 256-bit answer,
+/// `mc` within its statistical tolerance, and for a point light all three
+/// give the 256-bit answer bit for bit.
+#[cfg(feature = "render")]
+#[test]
+fn methods_agree_at_contact() {
+    use softshadow::method::{self, Exact, HardShadow, Method, MonteCarlo};
+    use softshadow::render::{Frame, Receiver, Stages};
+    use softshadow::scene::{Mesh, Scene};
+
+    let tetra = [
+        DVec3::new(0.0132, 0.0071, 0.0093),
+        DVec3::new(0.0371, 0.0113, 0.0157),
+        DVec3::new(0.0201, 0.0313, 0.0109),
+        DVec3::new(0.0224, 0.0167, 0.0341),
+    ];
+    let faces = [[0u32, 2, 1], [0, 1, 3], [1, 2, 3], [2, 0, 3]];
+    let floor = [
+        DVec3::new(-0.1, 0.0, -0.1),
+        DVec3::new(0.1, 0.0, -0.1),
+        DVec3::new(0.1, 0.0, 0.1),
+        DVec3::new(-0.1, 0.0, 0.1),
+    ];
+    // The floor at y = 0 and the tetrahedron standing above it (y up).
+    let lift = |v: DVec3| DVec3::new(v.x, v.z, v.y);
+    let tetra: Vec<DVec3> = tetra.iter().map(|&v| lift(v)).collect();
+    let mut points: Vec<DVec3> = tetra.clone();
+    points.push(DVec3::new(0.0243, 0.0, 0.0197));
+    points.push(DVec3::new(0.0311, 0.0, 0.0221));
+    let base = points.clone();
+    for &q in &base {
+        points.push(DVec3::new(q.x, step_ulps(q.y, -1), q.z));
+        points.push(DVec3::new(q.x, step_ulps(q.y, 1), q.z));
+        points.push(q + DVec3::new(1e-17, -1e-17, 1e-17));
+        points.push(q - DVec3::new(1e-17, -1e-17, 1e-17));
+    }
+    let mut tris: Vec<[DVec3; 3]> = faces.iter().map(|f| f.map(|i| tetra[i as usize])).collect();
+    tris.push([floor[0], floor[1], floor[2]]);
+    tris.push([floor[0], floor[2], floor[3]]);
+    let frame = Frame::from_receivers(
+        points
+            .iter()
+            .map(|&position| Receiver {
+                position,
+                normal: None,
+                object: None,
+            })
+            .collect(),
+    );
+    const N: u32 = 4096;
+    for light in [
+        Light::point(DVec3::new(0.0412, 0.0623, 0.0281)).unwrap(),
+        Light::disk(
+            DVec3::new(0.0312, 0.0581, 0.0244),
+            DVec3::new(0.1, -1.0, 0.2),
+            0.0093,
+        )
+        .unwrap(),
+        Light::sphere(DVec3::new(0.0212, 0.0681, 0.0144), 0.0121).unwrap(),
+    ] {
+        let scene = Scene::new(light)
+            .with_mesh(
+                "floor",
+                Mesh::new(floor.to_vec(), vec![[0, 1, 2], [0, 2, 3]]).unwrap(),
+            )
+            .with_mesh(
+                "tetrahedron",
+                Mesh::new(tetra.clone(), faces.to_vec()).unwrap(),
+            );
+        let stages = Stages::new(&scene);
+        let run = |m: &dyn Method| method::run(m, &stages, &frame).unwrap().output;
+        let exact = run(&Exact).visibility;
+        let mc = run(&MonteCarlo::new(N));
+        let hard = run(&HardShadow::default()).visibility;
+        let q =
+            student_t_two_sided_quantile(sidak(1e-3, points.len()), monte_carlo::REPLICATES - 1);
+        for (i, &p) in points.iter().enumerate() {
+            let truth = view::visibility(&light, p, &tris);
+            assert!(
+                (exact[i] - truth).abs() <= TOLERANCE,
+                "exact at {p:?}: {} vs {truth}",
+                exact[i]
+            );
+            let estimate = monte_carlo::Estimate {
+                visibility: mc.visibility[i],
+                stderr: mc.stderr.as_ref().expect("Monte Carlo's errors")[i],
+            };
+            let tol = agreement_tolerance(&estimate, N, q);
+            assert!(
+                (estimate.visibility - truth).abs() <= tol,
+                "mc at {p:?}: {estimate:?} vs {truth}"
+            );
+            if matches!(light, Light::Point(_)) {
+                assert_eq!(
+                    [exact[i], mc.visibility[i], hard[i]],
+                    [truth; 3],
+                    "point light at {p:?}"
+                );
+            }
+        }
+    }
+}
+
+/// Issue 39, item 19: one convex polygon given as a fan of slivers from
+/// an apex (a mesh's fan, every sliver sharing its corners with its
+/// neighbours) hides what the polygon hides: exactly the whole light when
+/// it covers it (the answer was 1.95·10⁻¹³ at 10⁵ slivers), and within
+/// `TOLERANCE` of the 256-bit polygon's answer when it covers part, with
+/// the apex in view and out of it, disk and rect lights.
+#[test]
+fn a_convex_polygon_as_a_fan_of_slivers() {
+    let n = if support::exhaustive() {
+        100_000
+    } else {
+        10_000
+    };
+    let p = DVec3::new(0.0137, 0.0213, 0.0);
+    let lights = [
+        Light::disk(
+            DVec3::new(0.1031, 0.2017, 4.0),
+            DVec3::new(0.03, 0.01, 1.0),
+            0.5,
+        )
+        .unwrap(),
+        Light::rect(
+            DVec3::new(0.1031, 0.2017, 4.0),
+            DVec3::new(0.5, 0.01, 0.0),
+            DVec3::new(0.02, 0.4, 0.01),
+        )
+        .unwrap(),
+    ];
+    // (centre of the ring, its radius, apex): covering wholly with the
+    // apex in view and far out of it; covering part of the light.
+    let cases = [
+        (
+            DVec3::new(0.0, 0.0, 2.0),
+            50.0,
+            DVec3::new(0.0313, 0.0271, 2.0),
+        ),
+        (DVec3::new(0.0, 0.0, 2.0), 50.0, DVec3::new(30.3, 20.1, 2.0)),
+        (
+            DVec3::new(0.35, 0.2, 2.0),
+            0.23,
+            DVec3::new(0.3513, 0.1871, 2.0),
+        ),
+    ];
+    for (case, (center, radius, apex)) in cases.into_iter().enumerate() {
+        // The 256-bit reference clips the image by every edge: fewer
+        // slivers where the polygon's edges cross the light.
+        let n = if case == 2 { n / 10 } else { n };
+        let ring: Vec<DVec3> = (0..n)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / n as f64;
+                center + DVec3::new(a.cos(), a.sin(), 0.0) * radius
+            })
+            .collect();
+        let tris: Vec<[DVec3; 3]> = (0..n).map(|k| [apex, ring[k], ring[(k + 1) % n]]).collect();
+        for light in lights {
+            let v = light.visibility_among(p, &tris).unwrap();
+            let truth = view::visibility_polygon(&light, p, &ring);
+            if truth == 0.0 {
+                assert_eq!(v, 0.0, "{light:?}, apex {apex}");
+            } else {
+                assert!(
+                    (v - truth).abs() <= TOLERANCE,
+                    "{light:?}, apex {apex}: {v} vs {truth}"
+                );
+            }
+        }
+    }
+}

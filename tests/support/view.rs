@@ -234,6 +234,69 @@ fn image_halves(plane: &Plane, p: DVec3, tri: &[DVec3; 3]) -> Option<Vec<Half>> 
     Some(out)
 }
 
+/// The 256-bit `V(p)` of an area `light` behind one convex planar polygon
+/// (corners in order): the cone over each edge and the polygon's plane, as
+/// for a triangle.
+pub fn visibility_polygon(light: &Light, p: DVec3, poly: &[DVec3]) -> f64 {
+    let mut ctx = Ctx::new();
+    let plane = match *light {
+        Light::Sphere(s) => {
+            let c = B3::new(s.center());
+            let n = c.sub(&B3::new(p)).unit();
+            disk_plane(c, n, s.radius())
+        }
+        Light::Disk(d) => disk_plane(B3::new(d.center()), B3::new(d.normal()).unit(), d.radius()),
+        Light::Rect(r) => Plane {
+            center: B3::new(r.center()),
+            e0: B3::new(r.u()),
+            e1: B3::new(r.v()),
+            disk: false,
+        },
+        _ => panic!("an area light"),
+    };
+    let sigma = orient3d_sign(poly[0], poly[1], poly[2], p);
+    let one = Big::new(1.0);
+    if sigma == 0 {
+        return 1.0;
+    }
+    let s = Big::new(f64::from(sigma));
+    let pb = B3::new(p);
+    let q: Vec<B3> = poly.iter().map(|&v| B3::new(v)).collect();
+    let mut halves = Vec::new();
+    let mut half = |u: &B3, v: &B3, o: &B3| {
+        let n = u.cross(v);
+        halves.push(Half(
+            s.mul(&n.dot(&plane.e0)),
+            s.mul(&n.dot(&plane.e1)),
+            s.mul(&n.dot(&plane.center.sub(o))),
+        ));
+    };
+    let k = q.len();
+    for i in 0..k {
+        half(&q[i].sub(&pb), &q[(i + 1) % k].sub(&pb), &pb);
+    }
+    half(&q[1].sub(&q[0]), &q[2].sub(&q[0]), &q[0]);
+    let big = 64.0;
+    let square = |h: f64| {
+        vec![
+            P2(Big::new(-h), Big::new(-h)),
+            P2(Big::new(h), Big::new(-h)),
+            P2(Big::new(h), Big::new(h)),
+            P2(Big::new(-h), Big::new(h)),
+        ]
+    };
+    let image = halves.iter().fold(square(big), |poly, h| clip(&poly, h));
+    if image.len() < 3 {
+        return 1.0;
+    }
+    let area = if plane.disk {
+        disk_area(&image, &mut ctx).div(&ctx.pi())
+    } else {
+        shoelace(&edges(&square(1.0)).iter().fold(image, |q, h| clip(&q, h))).div(&Big::new(4.0))
+    };
+    one.sub(&area).to_f64()
+}
+
 /// The 256-bit `V(p)` of `light` among `tris` (see the module docs).
 pub fn visibility(light: &Light, p: DVec3, tris: &[[DVec3; 3]]) -> f64 {
     let mut ctx = Ctx::new();

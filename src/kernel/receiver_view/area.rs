@@ -51,13 +51,18 @@ pub struct AreaView {
     /// likewise.
     m: [f64; 3],
     inv: [f64; 3],
+    /// The axes as rows.
+    rows: [Row; 2],
     half: f64,
     measure: Measure,
-    /// For a disk: what projecting corners directly needs.
-    direct: Option<Direct>,
+    /// What projecting corners needs.
+    direct: Direct,
+    /// Whether a triangle wholly between `p` and the light whose corners
+    /// project inside the square is taken as its projected corners.
+    fast: bool,
 }
 
-/// A disk view's direct projection of a corner `q` (`d = q − p`): its
+/// The projection of a corner `q` (`d = q − p`) onto the light's plane: its
 /// oblique coordinates are `X = det[c, d, f₁] / det[d, f₀, f₁]` and `Y =
 /// −det[c, d, f₀] / det[d, f₀, f₁]`, `c = center − p` (the point where the
 /// ray from `p` through `q` meets the plane), each determinant `d · w` with
@@ -162,7 +167,7 @@ impl AreaView {
         m: [f64; 3],
         half: f64,
         measure: Measure,
-        direct: bool,
+        fast: bool,
     ) -> Option<AreaView> {
         let inv = [1.0 / m[0], -(m[1] / m[0]) / m[2], 1.0 / m[2]];
         let regular = |x: f64| x.is_finite() && x != 0.0;
@@ -183,11 +188,11 @@ impl AreaView {
             return None;
         }
         let sgn = if depth.value > 0.0 { 1.0 } else { -1.0 };
-        let direct = direct.then(|| Direct {
+        let direct = Direct {
             w: [Cross::of(f[1], c.r), Cross::of(f[0], c.r), n],
             sgn,
             depth: depth.signed(sgn),
-        });
+        };
         Some(AreaView {
             p,
             center,
@@ -195,9 +200,11 @@ impl AreaView {
             f,
             m,
             inv,
+            rows: [r0, r1],
             half,
             measure,
             direct,
+            fast,
         })
     }
 
@@ -285,22 +292,22 @@ impl AreaView {
             }
         };
         match self.polygon(tri) {
-            Polygon::Corners([a, b, c]) => {
+            Polygon::Corners([a, b, c], [ea, eb, ec]) => {
                 if let Some(t) = Tri::new(a, b, c) {
                     if measure.covered_by(&t) {
                         return true;
                     }
-                    keep(t);
+                    keep(t.with_err(ea.max(eb).max(ec)));
                 }
             }
             Polygon::Clipped(image) => {
-                let v = image.vertices();
+                let (v, e) = (image.vertices(), image.errors());
                 if measure.covered_by_convex(v) {
                     return true;
                 }
                 for k in 1..v.len().saturating_sub(1) {
                     if let Some(t) = Tri::new(v[0], v[k], v[k + 1]) {
-                        keep(t);
+                        keep(t.with_err(e[0].max(e[k]).max(e[k + 1])));
                     }
                 }
             }
@@ -317,100 +324,84 @@ impl AreaView {
     #[must_use]
     pub fn image(&self, tri: &[DVec3; 3]) -> Image {
         match self.polygon(tri) {
-            Polygon::Corners([a, b, c]) => match orient2d(a, b, c) {
-                Sign::Positive => Image::from_slice(&[a, b, c]),
-                Sign::Negative => Image::from_slice(&[a, c, b]),
+            Polygon::Corners([a, b, c], [ea, eb, ec]) => match orient2d(a, b, c) {
+                Sign::Positive => Image::from_slice(&[a, b, c], &[ea, eb, ec]),
+                Sign::Negative => Image::from_slice(&[a, c, b], &[ea, ec, eb]),
                 Sign::Zero => Image::EMPTY,
             },
             Polygon::Clipped(image) => image,
         }
     }
 
-    /// The corners' images when all three lie certainly strictly between
-    /// `p` and the light's plane and project inside the square, each within
-    /// [`TOLERANCE`] of the exact projection.
-    fn projected(&self, tri: &[DVec3; 3]) -> Option<[DVec2; 3]> {
-        let direct = self.direct.as_ref()?;
-        let mut out = [DVec2::ZERO; 3];
-        for (q, &v) in out.iter_mut().zip(tri) {
-            *q = self.project(direct, &Row::diff(v, self.p))?;
-        }
-        Some(out)
-    }
-
-    /// One corner's image (`d` its row from `p`), if it lies certainly
-    /// strictly between `p` and the light's plane and inside the square.
+    /// One corner's image (`d` its row from `p`) and a bound on its error,
+    /// if the corner lies certainly in front of `p`, and its depth's
+    /// rounded value (`sgn · det[d, f₀, f₁]`, with its bound): the point
+    /// where the ray from `p` through the corner meets the plane, within
+    /// [`TOLERANCE`] where it lies in the square (exact determinants where
+    /// the rounded ones are not that close).
     #[inline(always)]
-    fn project(&self, direct: &Direct, d: &Row) -> Option<DVec2> {
+    fn corner(&self, d: &Row) -> CornerImage {
+        let direct = &self.direct;
         let [wx, wy, wz] = direct.w;
         let z = wz.dot(d.r).signed(direct.sgn);
-        match self.corner(direct, wx.dot(d.r), wy.dot(d.r), z) {
-            Corner::Outside => None,
-            Corner::At(q) => Some(q),
-            Corner::Unsure => {
-                let (c, f0, f1) = (&self.c, &Row::vector(self.f[0]), &Row::vector(self.f[1]));
+        let first = self.corner_from(wx.dot(d.r), wy.dot(d.r), z);
+        match first {
+            Some((q, err)) if err <= TOLERANCE || q.abs().max_element() - err > self.half => {
+                CornerImage { at: first, z }
+            }
+            _ => {
+                let (c, f0, f1) = (&self.c, &self.rows[0], &self.rows[1]);
                 let z = det3_exact(d, f0, f1).signed(direct.sgn);
-                match self.corner(direct, det3_exact(c, d, f1), det3_exact(c, d, f0), z) {
-                    Corner::At(q) => Some(q),
-                    // Within rounding of p's depth or the light's: left to
-                    // the clipped path.
-                    Corner::Outside | Corner::Unsure => None,
+                let at = self.corner_from(det3_exact(c, d, f1), det3_exact(c, d, f0), z);
+                // Beyond the exact arithmetic's range, the rounded image.
+                CornerImage {
+                    at: at.or(first),
+                    z,
                 }
             }
         }
     }
 
     /// The corner's image from the determinants `nx = det[c, d, f₁]`, `ny
-    /// = det[c, d, f₀]` and its depth `z = sgn · det[d, f₀, f₁]`.
+    /// = det[c, d, f₀]` and its depth `z = sgn · det[d, f₀, f₁]`, with a
+    /// bound on its error; `None` unless `z` is certainly positive (above
+    /// twice its bound).
     #[inline(always)]
-    fn corner(&self, direct: &Direct, nx: Bounded, ny: Bounded, z: Bounded) -> Corner {
-        let depth = direct.depth;
-        // Certainly in front of p and before the light.
-        let gap = depth.value - z.value;
-        if !(z.value > 2.0 * z.bound
-            && gap > (depth.bound + z.bound) * 1.01 + f64::EPSILON * depth.value)
-        {
-            return Corner::Unsure;
+    fn corner_from(&self, nx: Bounded, ny: Bounded, z: Bounded) -> Option<(DVec2, f64)> {
+        if z.value <= 2.0 * z.bound || z.value.is_nan() {
+            return None;
         }
-        let sz = direct.sgn / z.value;
+        let sz = self.direct.sgn / z.value;
         let (x, y) = (nx.value * sz, -ny.value * sz);
         let [m00, m01, m11] = self.m;
         let q = DVec2::new(m00 * x + m01 * y, m11 * y);
         // First order in the determinants' bounds (z's bound is below half
-        // of z), and the roundings of the quotients and the map.
+        // of z, so the quotient's relative error is below twice it), and
+        // the roundings of the quotients and the map.
         let rel = z.bound / (z.value - z.bound);
         let ex = (nx.bound * sz.abs() + x.abs() * rel) * 1.01 + x.abs() * f64::EPSILON;
         let ey = (ny.bound * sz.abs() + y.abs() * rel) * 1.01 + y.abs() * f64::EPSILON;
         let err = (m00.abs() * ex + m01.abs() * ey).max(m11.abs() * ey)
             + 2.0 * f64::EPSILON * q.abs().max_element();
-        if q.x.abs() + err < self.half && q.y.abs() + err < self.half {
-            if err <= TOLERANCE {
-                Corner::At(q)
-            } else {
-                Corner::Unsure
-            }
-        } else if q.x.abs() - err > self.half || q.y.abs() - err > self.half {
-            Corner::Outside
-        } else {
-            Corner::Unsure
-        }
+        (q.is_finite() && err.is_finite()).then_some((q, err))
     }
 
     /// The half-plane of light points `x` with `det[u, v, x − o] ≥ 0`
     /// (rows `u`, `v` relative to `o`, `center_o` the row `center − o`),
-    /// with coefficients within [`TOLERANCE`] (exact determinants where the
-    /// rounded ones are not), and `None` when its line certainly misses the
-    /// square (then the square lies wholly on one side; `Some(true)` inside).
+    /// with coefficients within [`TOLERANCE`] (exact determinants where
+    /// the rounded ones are not), or `Err` when its line certainly misses
+    /// the square (then the square lies wholly on one side; `Err(true)`
+    /// inside).
     fn line(&self, u: &Row, v: &Row, center_o: &Row) -> Result<Line, bool> {
         let cross = Cross::of(u.r, v.r);
-        let (f0, f1) = (Row::vector(self.f[0]), Row::vector(self.f[1]));
+        let [f0, f1] = &self.rows;
         let line = self.in_view(cross.dot(f0.r), cross.dot(f1.r), cross.dot(center_o.r));
         if let Some(settled) = self.settled(line) {
             return settled;
         }
         let exact = self.in_view(
-            det3_exact(u, v, &f0),
-            det3_exact(u, v, &f1),
+            det3_exact(u, v, f0),
+            det3_exact(u, v, f1),
             det3_exact(u, v, center_o),
         );
         // Beyond the exact arithmetic's range (coordinates far outside the
@@ -479,16 +470,37 @@ impl AreaView {
             Sign::Negative => -1.0,
             Sign::Zero => return Polygon::Clipped(Image::EMPTY),
         };
-        if let Some(corners) = self.projected(tri) {
-            return Polygon::Corners(corners);
+        // The fast path: every corner certainly between p and the light's
+        // plane and inside the square. Its corners' images serve the
+        // clipped path too (where two cone planes meet, at a corner).
+        let mut corners = [None; 3];
+        let depth = self.direct.depth;
+        let mut fast = self.fast;
+        for (k, &v) in tri.iter().enumerate() {
+            if !fast {
+                break;
+            }
+            let corner = self.corner(&Row::diff(v, self.p));
+            let z = corner.z;
+            let before =
+                depth.value - z.value > (depth.bound + z.bound) * 1.01 + f64::EPSILON * depth.value;
+            fast = before
+                && corner.at.is_some_and(|(q, err)| {
+                    q.x.abs() + err < self.half && q.y.abs() + err < self.half
+                });
+            corners[k] = Some(corner.at);
         }
-        let mut poly = Image::square(self.half);
+        if fast {
+            let at = corners.map(|c| c.flatten().expect("every corner projected"));
+            return Polygon::Corners(at.map(|a| a.0), at.map(|a| a.1));
+        }
+        let mut clip = Clip::new(self.half);
         // The cone: for the edge (j, k) opposite corner i, the plane through
         // p and the edge, oriented toward corner i (σ · det[qⱼ − p, qₖ − p,
         // qᵢ − p] = σ², a cyclic shift of the rows). The edge's ends are
         // taken in a canonical order, so that the two triangles sharing an
         // edge cut their images along the same line, bit for bit.
-        for (j, k) in [(1, 2), (2, 0), (0, 1)] {
+        for (i, (j, k)) in [(1, 2), (2, 0), (0, 1)].into_iter().enumerate() {
             let (u, v, s) = if lexicographic(tri[j], tri[k]) {
                 (tri[j], tri[k], sigma)
             } else {
@@ -498,31 +510,291 @@ impl AreaView {
             // direction cancels far less than a second direction from p
             // (small or distant edges subtend small angles).
             let (ru, e) = (Row::diff(u, self.p), Row::diff(v, u));
-            if !poly.clip_by(self.line(&ru, &e, &self.c), s) {
-                return Polygon::Clipped(poly);
+            let line = self.line(&ru, &e, &self.c);
+            if !clip.cut(On::Cone(i as u8), line, s, |corner| {
+                *corners[corner]
+                    .get_or_insert_with(|| self.corner(&Row::diff(tri[corner], self.p)).at)
+            }) {
+                return Polygon::Clipped(Image::EMPTY);
             }
         }
         // Strictly beyond the triangle's plane: σ · det[q₁ − q₀, q₂ − q₀,
         // x − q₀] > 0 (at x = p it is −σ).
         let (e1, e2) = (Row::diff(tri[1], tri[0]), Row::diff(tri[2], tri[0]));
-        poly.clip_by(self.line(&e1, &e2, &Row::diff(self.center, tri[0])), sigma);
-        Polygon::Clipped(poly)
+        let line = self.line(&e1, &e2, &Row::diff(self.center, tri[0]));
+        clip.cut(On::Plane, line, sigma, |_| None);
+        Polygon::Clipped(clip.image)
     }
 }
 
-/// A corner's image on the fast path: inside the square within
-/// [`TOLERANCE`], certainly outside it (or not between `p` and the light),
-/// or not yet settled by rounded determinants.
-enum Corner {
-    At(DVec2),
-    Outside,
-    Unsure,
+/// The largest error, in half-widths of the square, of a vertex computed
+/// from its two lines alone (beyond it, as where two lines are nearly
+/// parallel, the vertex is the crossing on the edge being cut).
+const WELL_PLACED: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// A corner's image, if it lies certainly in front of `p`, with its error
+/// bound; and its depth `sgn · det[d, f₀, f₁]`.
+#[derive(Clone, Copy, Debug)]
+struct CornerImage {
+    at: Option<(DVec2, f64)>,
+    z: Bounded,
+}
+
+/// The line a clipped image's edge lies on: a side of the square (bottom,
+/// right, top, left), the plane through `p` and the edge opposite a corner,
+/// or the triangle's own plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+enum On {
+    Side(u8),
+    Cone(u8),
+    Plane,
+}
+
+/// The square cut by half-planes, each vertex computed from the two lines
+/// it lies on — a line and a side of the square from the line's
+/// coefficients, two planes through `p` at their common corner's image —
+/// never from the segment being cut, so that two triangles sharing an edge
+/// (the same line, bit for bit) and a corner get the same vertices: their
+/// shared edges are exactly reverse and drop out of the union. Each vertex
+/// carries a bound on its error.
+struct Clip {
+    image: Image,
+    /// The line of the edge from each vertex to the next.
+    on: [On; Image::CAP],
+    /// The lines cut by so far (cone planes 0–2, the plane 3).
+    lines: [Option<Line>; 4],
+    half: f64,
+}
+
+impl Clip {
+    fn new(h: f64) -> Clip {
+        let mut image = Image::EMPTY;
+        image.v[..4].copy_from_slice(&[
+            DVec2::new(-h, -h),
+            DVec2::new(h, -h),
+            DVec2::new(h, h),
+            DVec2::new(-h, h),
+        ]);
+        image.len = 4;
+        let mut on = [On::Plane; Image::CAP];
+        on[..4].copy_from_slice(&[On::Side(0), On::Side(1), On::Side(2), On::Side(3)]);
+        Clip {
+            image,
+            on,
+            lines: [None; 4],
+            half: h,
+        }
+    }
+
+    /// Cuts by the half-plane `s · line ≥ 0` (`s = ±1`), or by a line that
+    /// misses the square (`Err(inside)`: keep all or none); whether
+    /// anything is left. `corner(k)` is the image of the triangle's corner
+    /// `k` (where two cone planes meet), if it lies in front of `p`.
+    /// Sutherland–Hodgman: nothing is left when no vertex is strictly
+    /// inside (the rest has no area: a triangle lying in the light's own
+    /// plane hides nothing, as the open segment says).
+    fn cut(
+        &mut self,
+        id: On,
+        line: Result<Line, bool>,
+        s: f64,
+        mut corner: impl FnMut(usize) -> Option<(DVec2, f64)>,
+    ) -> bool {
+        let line = match line {
+            Ok(l) => Line {
+                a: s * l.a,
+                b: s * l.b,
+                c: s * l.c,
+                err: l.err,
+            },
+            Err(inside) => {
+                if (s > 0.0) != inside {
+                    self.image.len = 0;
+                }
+                return self.image.len > 0;
+            }
+        };
+        let slot = match id {
+            On::Cone(i) => usize::from(i),
+            _ => 3,
+        };
+        self.lines[slot] = Some(line);
+        let n = self.image.len;
+        let mut f = [0.0; Image::CAP];
+        let (mut any_in, mut all_in) = (false, true);
+        for (fk, &v) in f.iter_mut().zip(&self.image.v[..n]) {
+            *fk = line.at(v);
+            any_in |= *fk > 0.0;
+            all_in &= *fk >= 0.0;
+        }
+        if !any_in {
+            self.image.len = 0;
+            return false;
+        }
+        if all_in {
+            return true;
+        }
+        let mut out = Clip {
+            image: Image::EMPTY,
+            on: [On::Plane; Image::CAP],
+            lines: self.lines,
+            half: self.half,
+        };
+        for k in 0..n {
+            // The next vertex, without a division.
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            let (fa, fb) = (f[k], f[j]);
+            if fa >= 0.0 {
+                out.push(self.image.v[k], self.image.err[k], self.on[k]);
+            }
+            if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
+                let (a, b) = (self.image.v[k], self.image.v[j]);
+                let (mut q, mut err) = self.meet(id, self.on[k], &mut corner);
+                // Where the two lines are so nearly parallel (or the
+                // corner so ill-placed) that their meeting point falls off
+                // the edge being cut, the crossing on the edge: within its
+                // ends' and the line's errors over the sine of the angle,
+                // and the edge's length.
+                let (lo, hi) = (a.min(b), a.max(b));
+                let slack = WELL_PLACED * self.half;
+                let on_edge = q.cmpge(lo - slack).all() && q.cmple(hi + slack).all();
+                if !(err <= slack && on_edge) {
+                    q = crossing(a, fa, b, fb);
+                    err = err.min(
+                        (b - a).abs().max_element() + self.image.err[k].max(self.image.err[j]),
+                    );
+                }
+                // Leaving: the boundary follows the new line; entering: the
+                // rest of the edge.
+                out.push(q, err, if fa > 0.0 { id } else { self.on[k] });
+            }
+        }
+        *self = out;
+        self.image.len >= 3
+    }
+
+    fn push(&mut self, q: DVec2, err: f64, on: On) {
+        let n = self.image.len;
+        if n < Image::CAP {
+            self.image.v[n] = q;
+            self.image.err[n] = err;
+            self.on[n] = on;
+            self.image.len = n + 1;
+        }
+    }
+
+    /// The point where the lines `l` and `e` meet, and a bound on its
+    /// error, from the two lines alone.
+    fn meet(
+        &self,
+        l: On,
+        e: On,
+        corner: &mut impl FnMut(usize) -> Option<(DVec2, f64)>,
+    ) -> (DVec2, f64) {
+        let line = |id: On| match id {
+            On::Cone(i) => self.lines[usize::from(i)],
+            On::Plane => self.lines[3],
+            On::Side(_) => None,
+        };
+        match (l, e) {
+            (On::Side(s), other) | (other, On::Side(s)) => match line(other) {
+                Some(m) => side_crossing(&m, s, self.half),
+                // Two sides meet at a corner of the square.
+                None => (square_corner(l, e, self.half), 0.0),
+            },
+            (On::Cone(i), On::Cone(j)) => {
+                // The planes through p and two edges meet along the ray
+                // through their common corner.
+                let k = 3 - usize::from(i) - usize::from(j);
+                match corner(k) {
+                    Some(at) => at,
+                    None => cramer(&line(l).expect("cut"), &line(e).expect("cut")),
+                }
+            }
+            _ => cramer(&line(l).expect("cut"), &line(e).expect("cut")),
+        }
+    }
+}
+
+/// Where the line crosses side `s` of the square `|X|, |Y| ≤ h` (bottom,
+/// right, top, left), from its coefficients alone (the same bits for the
+/// line negated), clamped to the side; and a bound on its error: the
+/// line's own moved along the side (by `|(a, b)| / |b|` for a vertical
+/// side), and the rounding of the quotient.
+fn side_crossing(m: &Line, s: u8, h: f64) -> (DVec2, f64) {
+    let (fixed, along_x) = match s {
+        0 => (-h, true),
+        1 => (h, false),
+        2 => (h, true),
+        _ => (-h, false),
+    };
+    // On a horizontal side y = fixed: x = −(b·fixed + c) / a; on a vertical
+    // one x = fixed: y = −(a·fixed + c) / b.
+    let (num, den, across) = if along_x {
+        (m.b * fixed + m.c, m.a, m.b)
+    } else {
+        (m.a * fixed + m.c, m.b, m.a)
+    };
+    let t = (-num / den).clamp(-h, h);
+    let err = m.err * (den.abs() + across.abs()) / den.abs()
+        + 2.0 * f64::EPSILON * ((across * fixed).abs() + m.c.abs()) / den.abs()
+        + f64::EPSILON * t.abs();
+    let q = if along_x {
+        DVec2::new(t, fixed)
+    } else {
+        DVec2::new(fixed, t)
+    };
+    (q, if err.is_finite() { err } else { f64::INFINITY })
+}
+
+/// The corner of the square where the sides `l` and `e` meet.
+fn square_corner(l: On, e: On, h: f64) -> DVec2 {
+    let mut q = DVec2::ZERO;
+    for id in [l, e] {
+        match id {
+            On::Side(0) => q.y = -h,
+            On::Side(1) => q.x = h,
+            On::Side(2) => q.y = h,
+            On::Side(3) => q.x = -h,
+            _ => {}
+        }
+    }
+    q
+}
+
+/// Where two lines meet (Cramer's rule), and a bound on its error: the
+/// lines' own over the sine of their angle, and the roundings of the
+/// three 2×2 determinants.
+fn cramer(l1: &Line, l2: &Line) -> (DVec2, f64) {
+    let det = l1.a * l2.b - l2.a * l1.b;
+    let q = DVec2::new(
+        (l1.b * l2.c - l2.b * l1.c) / det,
+        (l1.c * l2.a - l2.c * l1.a) / det,
+    );
+    let n1 = l1.a.abs() + l1.b.abs();
+    let n2 = l2.a.abs() + l2.b.abs();
+    let perm = (l1.a * l2.b).abs() + (l2.a * l1.b).abs();
+    let err = (l1.err + l2.err) * n1 * n2 / det.abs()
+        + 4.0
+            * f64::EPSILON
+            * ((l1.b * l2.c).abs()
+                + (l2.b * l1.c).abs()
+                + (l1.c * l2.a).abs()
+                + (l2.c * l1.a).abs()
+                + q.abs().max_element() * perm)
+            / det.abs();
+    if q.is_finite() && err.is_finite() {
+        (q, err)
+    } else {
+        (DVec2::ZERO, f64::INFINITY)
+    }
 }
 
 /// A triangle's image before it is handed out: the fast path's corners (in
 /// either orientation) or the clipped polygon.
 enum Polygon {
-    Corners([DVec2; 3]),
+    /// The corners' images and their error bounds.
+    Corners([DVec2; 3], [f64; 3]),
     Clipped(Image),
 }
 
@@ -537,6 +809,8 @@ fn lexicographic(a: DVec3, b: DVec3) -> bool {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Image {
     v: [DVec2; Image::CAP],
+    /// A bound on each vertex's distance from the exact one.
+    err: [f64; Image::CAP],
     len: usize,
 }
 
@@ -544,6 +818,7 @@ impl Image {
     const CAP: usize = 8;
     const EMPTY: Image = Image {
         v: [DVec2::ZERO; Image::CAP],
+        err: [0.0; Image::CAP],
         len: 0,
     };
 
@@ -568,98 +843,25 @@ impl Image {
         0.5 * (0..n).map(|k| v[k].perp_dot(v[(k + 1) % n])).sum::<f64>()
     }
 
-    fn from_slice(v: &[DVec2]) -> Image {
+    /// A bound on each vertex's distance from the exact vertex.
+    pub(super) fn errors(&self) -> &[f64] {
+        &self.err[..self.len]
+    }
+
+    fn from_slice(v: &[DVec2], err: &[f64]) -> Image {
         let mut image = Image::EMPTY;
         image.v[..v.len()].copy_from_slice(v);
+        image.err[..v.len()].copy_from_slice(err);
         image.len = v.len();
         image
     }
-
-    fn square(h: f64) -> Image {
-        let mut v = [DVec2::ZERO; Image::CAP];
-        v[..4].copy_from_slice(&[
-            DVec2::new(-h, -h),
-            DVec2::new(h, -h),
-            DVec2::new(h, h),
-            DVec2::new(-h, h),
-        ]);
-        Image { v, len: 4 }
-    }
-
-    /// Cuts the polygon by the half-plane `s · line ≥ 0` (`s = ±1`), or
-    /// by a line that misses the square (`Err(inside)`: keep all or none);
-    /// whether anything is left.
-    fn clip_by(&mut self, line: Result<Line, bool>, s: f64) -> bool {
-        match line {
-            Ok(l) => self.clip(Line {
-                a: s * l.a,
-                b: s * l.b,
-                c: s * l.c,
-                err: l.err,
-            }),
-            Err(inside) => {
-                if (s > 0.0) != inside {
-                    self.len = 0;
-                }
-            }
-        }
-        self.len > 0
-    }
-
-    /// Sutherland–Hodgman against the half-plane. Nothing is left when no
-    /// vertex is strictly inside: the rest has no area (a triangle lying in
-    /// the light's own plane hides nothing, as the open segment says).
-    fn clip(&mut self, line: Line) {
-        let mut f = [0.0; Image::CAP];
-        let (mut any_in, mut all_in) = (false, true);
-        for (fk, &v) in f.iter_mut().zip(&self.v[..self.len]) {
-            *fk = line.at(v);
-            any_in |= *fk > 0.0;
-            all_in &= *fk >= 0.0;
-        }
-        if !any_in {
-            self.len = 0;
-            return;
-        }
-        if all_in {
-            return;
-        }
-        let mut out = [DVec2::ZERO; Image::CAP];
-        let mut n = 0;
-        let mut push = |v: DVec2| {
-            if n < Image::CAP {
-                out[n] = v;
-                n += 1;
-            }
-        };
-        for k in 0..self.len {
-            // The next vertex, without a division.
-            let j = if k + 1 == self.len { 0 } else { k + 1 };
-            let (a, fa, b, fb) = (self.v[k], f[k], self.v[j], f[j]);
-            if fa >= 0.0 {
-                push(a);
-            }
-            if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
-                push(crossing(a, fa, b, fb));
-            }
-        }
-        self.v = out;
-        self.len = n;
-    }
 }
 
-/// The point where the segment `a b` crosses a line (or plane) with values
-/// `fa`, `fb` of strictly opposite signs at its ends; symmetric in its
+/// The point where the segment `a b` crosses a line with values `fa`,
+/// `fb` of strictly opposite signs at its ends; symmetric in its
 /// arguments. Measured from the end nearer the line (`t ≤ ½`), so that the
-/// rounding is relative to the distance from that end, not to the far end's
-/// magnitude.
-pub(super) fn crossing<V>(a: V, fa: f64, b: V, fb: f64) -> V
-where
-    V: Copy
-        + std::ops::Add<Output = V>
-        + std::ops::Sub<Output = V>
-        + std::ops::Mul<f64, Output = V>,
-{
+/// rounding is relative to the distance from that end.
+fn crossing(a: DVec2, fa: f64, b: DVec2, fb: f64) -> DVec2 {
     let (a, fa, b, fb) = if fa.abs() <= fb.abs() {
         (a, fa, b, fb)
     } else {

@@ -46,9 +46,18 @@
 //!   a receiver within `10⁻¹⁷` of an edge, whose plane through the edge
 //!   a rounded cross product would turn at random, or a light of radius
 //!   `10⁻⁶`. The disk's plane is spanned exactly (its normal crossed with
-//!   two coordinate axes). A triangle wholly between `p` and a disk light whose
+//!   two coordinate axes). A triangle wholly between `p` and the light whose
 //!   corners project inside the square takes a fast path: its projected
-//!   corners, the same bits in every triangle sharing them. Images are
+//!   corners (`det[center − p, q − p, ·] / det[q − p, f₀, f₁]`, the same
+//!   determinants), the same bits in every triangle sharing them. Every
+//!   vertex of a clipped image is likewise computed from the two lines it
+//!   lies on alone — a line and a side of the square from the line's
+//!   coefficients, two planes through `p` at their common corner's image —
+//!   not from the edge being cut, so two triangles sharing an edge and
+//!   a corner (a mesh, a fan of slivers) get the same vertices whether
+//!   clipped or not (where two lines are so nearly parallel that their
+//!   meeting point is ill-conditioned, the crossing on the edge is taken).
+//!   Images are
 //!   split into triangles, each oriented counter-clockwise by the exact
 //!   [`orient2d`]. Then the occluded fraction is
 //!   `area(∪ images ∩ M) / area(M)`, where the area of the union is Green's

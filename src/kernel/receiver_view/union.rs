@@ -15,6 +15,10 @@ pub(super) struct Tri {
     v: [DVec2; 3],
     lo: DVec2,
     hi: DVec2,
+    /// A bound on each corner's distance from the exact one (where the
+    /// images' constructions leave it).
+    #[allow(dead_code)] // Read by the certified bound (the next change).
+    pub(super) err: f64,
 }
 
 impl Tri {
@@ -30,7 +34,13 @@ impl Tri {
             v,
             lo: a.min(b).min(c),
             hi: a.max(b).max(c),
+            err: 0.0,
         })
+    }
+
+    /// The triangle with the error bound `err` on its corners.
+    pub(super) fn with_err(self, err: f64) -> Tri {
+        Tri { err, ..self }
     }
 
     fn edge(&self, k: usize) -> (DVec2, DVec2) {
