@@ -13,7 +13,9 @@
 //!
 //! The exact reference (over a BVH), the kernel alone
 //! (`Light::visibility_among`) and Monte Carlo (within its statistical
-//! tolerance) are each held to that evaluation.
+//! tolerance) are each held to that evaluation, and the exact reference's
+//! certified bound (`visibility_bounded`, the same value bit for bit) must
+//! contain its error.
 #![cfg(all(feature = "reference", feature = "arbitrary"))]
 
 mod support;
@@ -209,8 +211,15 @@ fn check(c: &Contact, lights: &[Light], failures: &mut Vec<String>) -> f64 {
             let k = light
                 .visibility_among(p, &c.tris)
                 .expect("receiver accepted");
+            let b = exact::visibility_bounded(&bvh, light, p).expect("receiver accepted");
             let err = (e - truth).abs().max((k - truth).abs());
             worst = worst.max(err);
+            if b.visibility.to_bits() != e.to_bits() || (b.visibility - truth).abs() > b.bound {
+                failures.push(format!(
+                    "{} {name}, {light:?}: bounded {b:?}, exact {e}, 256-bit {truth}\n  p = {p:?}\n  tris = {:?}",
+                    c.what, c.tris
+                ));
+            }
             if err > TOLERANCE {
                 failures.push(format!(
                     "{} {name}, {light:?}: exact {e}, kernel {k}, 256-bit {truth}\n  p = {p:?}\n  tris = {:?}",

@@ -145,6 +145,32 @@ pub(crate) fn orient2d_value_finite(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     orient2d_expansion(a, b, c).approximate()
 }
 
+/// [`orient2d_value_finite`] (the same value, bit for bit) and a bound on
+/// its error: the filter's where the rounded determinant is taken, else
+/// the expansion's rounding.
+pub(crate) fn orient2d_value_bounded(a: DVec2, b: DVec2, c: DVec2) -> Bounded {
+    let (det, detleft, detright, exact_zero) = orient2d_rounded(a, b, c);
+    if value_is_rounded(det, detleft, detright) {
+        return Bounded {
+            value: det,
+            bound: CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) + 1e-300,
+        };
+    }
+    if exact_zero {
+        return Bounded {
+            value: 0.0,
+            bound: 0.0,
+        };
+    }
+    let sum = orient2d_expansion(a, b, c);
+    let terms = &sum.terms[..sum.len];
+    let magnitude: f64 = terms.iter().map(|t| t.abs()).sum();
+    Bounded {
+        value: sum.approximate(),
+        bound: terms.len() as f64 * EPS * 1.01 * magnitude + 1e-300,
+    }
+}
+
 /// Whether the rounded determinant is within `2⁻⁴⁰` of the exact one,
 /// relatively: its error is at most the filter's bound, and the bound is
 /// `2⁻⁴⁰` of it.

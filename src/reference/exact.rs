@@ -24,11 +24,19 @@
 //! corner by more than `2⁻⁴⁰` of the light's radius (segment lights: an
 //! interval's end by `2⁻⁴⁰` of the light), so a receiver `10⁻¹⁷` from an
 //! edge, a light `10⁻¹⁶` long or a corner `10²⁰` away costs no accuracy.
-//! What is left is rounding: about `10⁻¹⁵` absolute in `V` on ordinary
-//! scenes (so a fully covered light may give `1e-16` rather than `0`),
-//! held to `10⁻¹³` of a 256-bit evaluation at contact by the tests
-//! (`tests/contact.rs`), and within `1e-9` of closed forms
-//! (`docs/accuracy/references.md`).
+//! What is left is rounding: a few units in the last place of `V` (so a
+//! fully covered light may give `1e-16` rather than `0`), the same far
+//! from the origin as at it, held to a 256-bit evaluation on stiff
+//! families by the tests (`tests/certified.rs`, `tests/contact.rs`;
+//! `docs/accuracy/references.md`).
+//!
+//! **Certified bound**: [`visibility_bounded`] (and `visibility_many_bounded`,
+//! `emitter_visibility_bounded`) returns `V` with a bound `|V − V_true| ≤
+//! bound` guaranteed in the domain below ([`Bounded`]; the analysis is in
+//! the [receiver view's documentation](crate::kernel::receiver_view#the-certified-bound)).
+//! The value is bit for bit [`visibility`]'s. The bound is typically
+//! `10⁻¹⁴`–`10⁻¹²` where some edge crosses the light, `≈ 10⁻¹⁶` where
+//! none does, 0 for a point light.
 //!
 //! **Domain**: the predicates are exact for coordinates `0` or of
 //! magnitude within `[1e-90, 1e90]` (every orientation determinant, a
@@ -46,7 +54,7 @@
 //! [`orient3d`]: crate::kernel::predicate::orient3d
 
 use crate::bvh::Bvh;
-use crate::kernel::receiver_view::{self, AreaView, SegmentView};
+use crate::kernel::receiver_view::{self, AreaView, Fraction, SegmentView};
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::DVec3;
 
@@ -56,6 +64,16 @@ use glam::DVec3;
 pub struct Scratch {
     candidates: Vec<u32>,
     view: receiver_view::Scratch,
+}
+
+/// An exact answer with its certified bound: `|visibility − V(p)| ≤ bound`
+/// for inputs in the documented domain (module documentation).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Bounded {
+    /// `V(p)`, in `[0, 1]`.
+    pub visibility: f64,
+    /// The bound, `≥ 0` (0 for a point light, whose answer is exact).
+    pub bound: f64,
 }
 
 /// The exact `V(p)` for the scene `bvh` was built over.
@@ -127,6 +145,90 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, scratch: &mut 
         }),
     };
     (1.0 - hidden).clamp(0.0, 1.0)
+}
+
+/// [`visibility`] with its certified bound ([`Bounded`]).
+///
+/// # Errors
+/// As [`visibility`].
+pub fn visibility_bounded(bvh: &Bvh, light: &Light, p: DVec3) -> Result<Bounded, ReceiverError> {
+    visibility_bounded_with(bvh, light, p, &mut Scratch::default())
+}
+
+/// [`visibility_bounded`] for every point, in parallel over the points
+/// (as [`visibility_many`]).
+#[must_use]
+pub fn visibility_many_bounded(
+    bvh: &Bvh,
+    light: &Light,
+    points: &[DVec3],
+) -> Vec<Result<Bounded, ReceiverError>> {
+    use rayon::prelude::*;
+    points
+        .par_iter()
+        .map_init(Scratch::default, |scratch, &p| {
+            visibility_bounded_with(bvh, light, p, scratch)
+        })
+        .collect()
+}
+
+/// [`visibility_bounded`] with caller-provided buffers.
+///
+/// # Errors
+/// As [`visibility`].
+pub fn visibility_bounded_with(
+    bvh: &Bvh,
+    light: &Light,
+    p: DVec3,
+    scratch: &mut Scratch,
+) -> Result<Bounded, ReceiverError> {
+    Ok(emitter_visibility_bounded(
+        bvh,
+        &light.emitter(p)?,
+        p,
+        scratch,
+    ))
+}
+
+/// [`emitter_visibility`] with its certified bound ([`Bounded`]).
+#[must_use]
+pub fn emitter_visibility_bounded(
+    bvh: &Bvh,
+    emitter: &Emitter,
+    p: DVec3,
+    scratch: &mut Scratch,
+) -> Bounded {
+    let Scratch { candidates, view } = scratch;
+    let hidden = match *emitter {
+        Emitter::Point(x) => Fraction {
+            value: if bvh.segment_unoccluded(p, x.position()) {
+                0.0
+            } else {
+                1.0
+            },
+            bound: 0.0,
+        },
+        Emitter::Segment(s) => SegmentView::new(p, s.a(), s.b()).map_or(Fraction::default(), |v| {
+            v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
+        }),
+        Emitter::Disk(d) => AreaView::disk(p, d.center(), d.normal(), d.radius())
+            .map_or(Fraction::default(), |v| {
+                v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
+            }),
+        Emitter::Rect(r) => AreaView::rect(p, r.center(), r.u(), r.v())
+            .map_or(Fraction::default(), |v| {
+                v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
+            }),
+    };
+    // 1 − hidden rounds once; clamping to [0, 1] only moves toward V.
+    Bounded {
+        visibility: (1.0 - hidden.value).clamp(0.0, 1.0),
+        bound: if hidden.bound > 0.0 {
+            hidden.bound + f64::EPSILON / 2.0
+        } else {
+            0.0
+        },
+    }
 }
 
 /// The triangles whose bounds meet the hull of `points`.

@@ -3,12 +3,12 @@
 //! projected onto the light's plane ([`Image`]), and the area of the union
 //! of those images within the light.
 
-use super::bounded::{det3_exact, Bounded, Cross, Row};
+use super::bounded::{det3_exact, max_abs, Bounded, Cross, Row};
 use super::union::{union_area, Measure, Tri};
-use super::Scratch;
+use super::{Fraction, Scratch};
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use glam::{DVec2, DVec3};
-use std::f64::consts::PI;
+use std::f64::consts::{PI, SQRT_2};
 
 /// The receiver view of a disk or rect light from one receiver `p`: the
 /// light's plane with 2D coordinates `(X, Y)` for the point
@@ -51,8 +51,9 @@ pub struct AreaView {
     /// likewise.
     m: [f64; 3],
     inv: [f64; 3],
-    /// The axes as rows.
+    /// The axes as rows, and their largest magnitudes.
     rows: [Row; 2],
+    rows_max: [f64; 2],
     half: f64,
     measure: Measure,
     /// What projecting corners needs.
@@ -180,7 +181,7 @@ impl AreaView {
         // The light's depth from p, det[c, f₀, f₁]: zero when the axes are
         // parallel or p lies in the plane.
         let n = Cross::of(f[0], f[1]);
-        let mut depth = n.dot(c.r);
+        let mut depth = n.dot(c.r, max_abs(c.r));
         if depth.sign().is_none() {
             depth = det3_exact(&r0, &r1, &c);
         }
@@ -201,6 +202,7 @@ impl AreaView {
             m,
             inv,
             rows: [r0, r1],
+            rows_max: [max_abs(f[0]), max_abs(f[1])],
             half,
             measure,
             direct,
@@ -263,56 +265,151 @@ impl AreaView {
         triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
         scratch: &mut Scratch,
     ) -> f64 {
+        self.occluded::<false>(triangles, scratch).value
+    }
+
+    /// [`AreaView::occluded_fraction`] and a bound on its error
+    /// ([module documentation](super#the-certified-bound)).
+    #[must_use]
+    pub fn occluded_fraction_bounded<'t>(
+        &self,
+        triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
+        scratch: &mut Scratch,
+    ) -> Fraction {
+        self.occluded::<true>(triangles, scratch)
+    }
+
+    /// The occluded fraction, with its bound if `B`.
+    fn occluded<'t, const B: bool>(
+        &self,
+        triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
+        scratch: &mut Scratch,
+    ) -> Fraction {
         // The generic loop is kept to a call per triangle, so that the work
         // is compiled once, here, not in every caller.
         scratch.triangles.clear();
+        scratch.weights.clear();
+        let mut extra = 0.0;
         for tri in triangles {
-            if self.add_image(tri, &mut scratch.triangles) {
-                return 1.0;
+            if let Some(bound) = self.add_image::<B>(
+                tri,
+                &mut scratch.triangles,
+                &mut scratch.weights,
+                &mut extra,
+            ) {
+                // One image covers the whole light.
+                let bound = bound / self.light_area() + 2.0 * f64::EPSILON;
+                return Fraction { value: 1.0, bound };
             }
         }
-        let covered = union_area(
+        let (covered, bound) = union_area::<B>(
             &scratch.triangles,
+            &scratch.weights,
             self.measure,
             self.half,
             &mut scratch.union,
         );
-        (covered / self.light_area()).clamp(0.0, 1.0)
+        let area = self.light_area();
+        let value = (covered / area).clamp(0.0, 1.0);
+        let bound = if B {
+            // The union's bound and the images' extras in the view's area,
+            // the division, and the frame: the disk in the view's
+            // coordinates is the unit disk only to the rounding of the map
+            // `M` (its entries within a few ulps), and a sphere's facing
+            // disk turned by the rounding of its normal, each moving the
+            // answer by a few ulps.
+            (bound + extra) / area * (1.0 + 4.0 * f64::EPSILON)
+                + 16.0 * f64::EPSILON * value.max(1e-300)
+                + 2.0 * f64::EPSILON
+        } else {
+            0.0
+        };
+        Fraction { value, bound }
     }
 
-    /// Appends the parts of the triangle's image that meet the light; true
-    /// when the image covers the whole light (checked on the convex image
-    /// before it is split, so that a covering image ends the work however
-    /// many images came before it).
-    fn add_image(&self, tri: &[DVec3; 3], out: &mut Vec<Tri>) -> bool {
+    /// Appends the parts of the triangle's image that meet the light (and,
+    /// if `B`, their edges' area allowances to `weights`, what is dropped
+    /// of them to `extra`); `Some(bound)` when the image covers the whole
+    /// light (checked on the convex image before it is split, so that a
+    /// covering image ends the work however many images came before it),
+    /// with a bound on the area it may leave uncovered.
+    fn add_image<const B: bool>(
+        &self,
+        tri: &[DVec3; 3],
+        out: &mut Vec<Tri>,
+        weights: &mut Vec<[f64; 3]>,
+        extra: &mut f64,
+    ) -> Option<f64> {
         let measure = self.measure;
-        let mut keep = |t: Tri| {
-            if !measure.misses(&t) {
-                out.push(t);
-            }
-        };
-        match self.polygon(tri) {
-            Polygon::Corners([a, b, c], [ea, eb, ec]) => {
+        let image = match self.polygon::<B>(tri) {
+            // Without the bound, the corners go straight to a triangle.
+            Polygon::Corners([a, b, c], _) if !B => {
                 if let Some(t) = Tri::new(a, b, c) {
                     if measure.covered_by(&t) {
-                        return true;
+                        return Some(0.0);
                     }
-                    keep(t.with_err(ea.max(eb).max(ec)));
+                    if !measure.misses(&t) {
+                        out.push(t);
+                    }
                 }
+                return None;
             }
-            Polygon::Clipped(image) => {
-                let (v, e) = (image.vertices(), image.errors());
-                if measure.covered_by_convex(v) {
-                    return true;
-                }
-                for k in 1..v.len().saturating_sub(1) {
-                    if let Some(t) = Tri::new(v[0], v[k], v[k + 1]) {
-                        keep(t.with_err(e[0].max(e[k]).max(e[k + 1])));
+            Polygon::Corners([a, b, c], [ea, eb, ec]) => {
+                Image::from_slice::<B>(&[a, b, c], &[ea, eb, ec])
+            }
+            Polygon::Clipped(image) => image,
+        };
+        let (v, w) = (image.vertices(), image.weights());
+        if B {
+            *extra += image.extra();
+        }
+        if measure.covered_by_convex(v) {
+            // Covered but for what its edges' bands may leave: each band
+            // within the light is at most its edge's allowance.
+            return Some(if B { w.iter().sum::<f64>() } else { 0.0 });
+        }
+        let n = v.len();
+        for k in 1..n.saturating_sub(1) {
+            // The fan's diagonals are shared with the neighbouring pieces
+            // of the same image: no allowance.
+            let wk = [
+                if k == 1 { w[0] } else { 0.0 },
+                w[k],
+                if k + 2 == n { w[n - 1] } else { 0.0 },
+            ];
+            let t = Tri::new(v[0], v[k], v[k + 1]);
+            match t {
+                Some(t) if !measure.misses(&t) => {
+                    out.push(t);
+                    if B {
+                        // Oriented as given, or reversed (a, c, b).
+                        weights.push(if t.first_edge_is(v[0], v[k]) {
+                            wk
+                        } else {
+                            [wk[2], wk[1], wk[0]]
+                        });
                     }
                 }
+                // Missing the light, or degenerate: what its edges' bands
+                // may hold of the light, if it comes within their width of
+                // the light's box (each allowance is at least twice the
+                // width times the edge's length).
+                _ if B => {
+                    let (p, q, r) = (v[0], v[k], v[k + 1]);
+                    let width = [(p, q, wk[0]), (q, r, wk[1]), (r, p, wk[2])]
+                        .iter()
+                        .map(|&(a, b, w)| w / (2.0 * (b - a).length()))
+                        .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) });
+                    let (lo, hi) = (p.min(q).min(r), p.max(q).max(r));
+                    let reach = measure.radius() + width;
+                    if lo.cmplt(DVec2::splat(reach)).all() && hi.cmpgt(DVec2::splat(-reach)).all() {
+                        *extra += wk.iter().sum::<f64>();
+                    }
+                }
+                _ => {}
             }
         }
-        false
+        None
     }
 
     /// The image of a triangle on the light's plane: the light points it
@@ -323,10 +420,10 @@ impl AreaView {
     /// its plane holds `p`, or it has a non-finite corner).
     #[must_use]
     pub fn image(&self, tri: &[DVec3; 3]) -> Image {
-        match self.polygon(tri) {
+        match self.polygon::<true>(tri) {
             Polygon::Corners([a, b, c], [ea, eb, ec]) => match orient2d(a, b, c) {
-                Sign::Positive => Image::from_slice(&[a, b, c], &[ea, eb, ec]),
-                Sign::Negative => Image::from_slice(&[a, c, b], &[ea, ec, eb]),
+                Sign::Positive => Image::from_slice::<true>(&[a, b, c], &[ea, eb, ec]),
+                Sign::Negative => Image::from_slice::<true>(&[a, c, b], &[ea, ec, eb]),
                 Sign::Zero => Image::EMPTY,
             },
             Polygon::Clipped(image) => image,
@@ -338,27 +435,46 @@ impl AreaView {
     /// rounded value (`sgn · det[d, f₀, f₁]`, with its bound): the point
     /// where the ray from `p` through the corner meets the plane, within
     /// [`TOLERANCE`] where it lies in the square (exact determinants where
-    /// the rounded ones are not that close).
+    /// the rounded ones are not that close). With `refine` false, the
+    /// rounded image only (`exact` false where it is not within the
+    /// tolerance, or its depth is uncertain).
     #[inline(always)]
-    fn corner(&self, d: &Row) -> CornerImage {
+    fn corner<const B: bool>(&self, d: &Row, refine: bool) -> CornerImage {
         let direct = &self.direct;
         let [wx, wy, wz] = direct.w;
-        let z = wz.dot(d.r).signed(direct.sgn);
-        let first = self.corner_from(wx.dot(d.r), wy.dot(d.r), z);
-        match first {
-            Some((q, err)) if err <= TOLERANCE || q.abs().max_element() - err > self.half => {
-                CornerImage { at: first, z }
-            }
-            _ => {
-                let (c, f0, f1) = (&self.c, &self.rows[0], &self.rows[1]);
-                let z = det3_exact(d, f0, f1).signed(direct.sgn);
-                let at = self.corner_from(det3_exact(c, d, f1), det3_exact(c, d, f0), z);
-                // Beyond the exact arithmetic's range, the rounded image.
-                CornerImage {
-                    at: at.or(first),
-                    z,
+        let d_max = max_abs(d.r);
+        let z = wz.dot(d.r, d_max).signed(direct.sgn);
+        let (nx, ny) = (wx.dot(d.r, d_max), wy.dot(d.r, d_max));
+        let first = self.corner_from(nx, ny, z);
+        let settled = match first {
+            Some((q, err)) => err <= TOLERANCE || q.abs().max_element() - err > self.half,
+            None => false,
+        };
+        if settled || !refine {
+            // Decided on the cheap bounds; the bound reports the closer ones.
+            let at = match first {
+                Some((q, _)) if B => {
+                    let closer = |w: &Cross, b: Bounded| Bounded {
+                        bound: w.precise(d.r),
+                        ..b
+                    };
+                    let z = closer(&wz, z);
+                    self.corner_from(closer(&wx, nx), closer(&wy, ny), z)
+                        .map(|(_, err)| (q, err))
+                        .or(first)
                 }
-            }
+                _ => first,
+            };
+            return CornerImage { at, z, settled };
+        }
+        let (c, f0, f1) = (&self.c, &self.rows[0], &self.rows[1]);
+        let z = det3_exact(d, f0, f1).signed(direct.sgn);
+        let at = self.corner_from(det3_exact(c, d, f1), det3_exact(c, d, f0), z);
+        // Beyond the exact arithmetic's range, the rounded image.
+        CornerImage {
+            at: at.or(first),
+            z,
+            settled: true,
         }
     }
 
@@ -392,12 +508,40 @@ impl AreaView {
     /// the rounded ones are not), or `Err` when its line certainly misses
     /// the square (then the square lies wholly on one side; `Err(true)`
     /// inside).
-    fn line(&self, u: &Row, v: &Row, center_o: &Row) -> Result<Line, bool> {
+    fn line<const B: bool>(&self, u: &Row, v: &Row, center_o: &Row) -> Result<Line, bool> {
         let cross = Cross::of(u.r, v.r);
         let [f0, f1] = &self.rows;
-        let line = self.in_view(cross.dot(f0.r), cross.dot(f1.r), cross.dot(center_o.r));
+        let [m0, m1] = self.rows_max;
+        let (a, b, c) = (
+            cross.dot(f0.r, m0),
+            cross.dot(f1.r, m1),
+            cross.dot(center_o.r, max_abs(center_o.r)),
+        );
+        let line = self.in_view(a, b, c);
         if let Some(settled) = self.settled(line) {
-            return settled;
+            // Decided on the cheap bounds; the bound reports the closer ones.
+            return match settled {
+                Ok(line) if B => Ok(Line {
+                    err: self
+                        .in_view(
+                            Bounded {
+                                bound: cross.precise(f0.r),
+                                ..a
+                            },
+                            Bounded {
+                                bound: cross.precise(f1.r),
+                                ..b
+                            },
+                            Bounded {
+                                bound: cross.precise(center_o.r),
+                                ..c
+                            },
+                        )
+                        .err,
+                    ..line
+                }),
+                other => other,
+            };
         }
         let exact = self.in_view(
             det3_exact(u, v, f0),
@@ -459,7 +603,7 @@ impl AreaView {
 
     /// The image of a triangle: its projected corners on the fast path,
     /// else the square cut by the four half-planes.
-    fn polygon(&self, tri: &[DVec3; 3]) -> Polygon {
+    fn polygon<const B: bool>(&self, tri: &[DVec3; 3]) -> Polygon {
         if !tri.iter().all(|v| v.is_finite()) {
             return Polygon::Clipped(Image::EMPTY);
         }
@@ -473,22 +617,38 @@ impl AreaView {
         // The fast path: every corner certainly between p and the light's
         // plane and inside the square. Its corners' images serve the
         // clipped path too (where two cone planes meet, at a corner).
-        let mut corners = [None; 3];
+        // The corners' images, settled (within the tolerance, or refined)
+        // or not yet.
+        let mut corners: [Option<Option<(DVec2, f64)>>; 3] = [None; 3];
         let depth = self.direct.depth;
         let mut fast = self.fast;
         for (k, &v) in tri.iter().enumerate() {
             if !fast {
                 break;
             }
-            let corner = self.corner(&Row::diff(v, self.p));
-            let z = corner.z;
-            let before =
-                depth.value - z.value > (depth.bound + z.bound) * 1.01 + f64::EPSILON * depth.value;
-            fast = before
-                && corner.at.is_some_and(|(q, err)| {
-                    q.x.abs() + err < self.half && q.y.abs() + err < self.half
-                });
-            corners[k] = Some(corner.at);
+            let d = Row::diff(v, self.p);
+            // Rounded first: a corner near p's depth, or outside the
+            // square, ends the fast path without being refined (the
+            // clipped path asks for it only if two cone planes meet there).
+            let mut corner = self.corner::<B>(&d, false);
+            let plausible = |c: &CornerImage| {
+                let before = depth.value - c.z.value
+                    > (depth.bound + c.z.bound) * 1.01 + f64::EPSILON * depth.value;
+                before
+                    && c.at.is_some_and(|(q, err)| {
+                        q.x.abs() + err.min(1.0) < self.half && q.y.abs() + err.min(1.0) < self.half
+                    })
+            };
+            if !corner.settled && corner.at.is_some() && plausible(&corner) {
+                corner = self.corner::<B>(&d, true);
+            }
+            fast = corner.settled && plausible(&corner) && {
+                let (q, err) = corner.at.expect("plausible");
+                q.x.abs() + err < self.half && q.y.abs() + err < self.half
+            };
+            if corner.settled {
+                corners[k] = Some(corner.at);
+            }
         }
         if fast {
             let at = corners.map(|c| c.flatten().expect("every corner projected"));
@@ -510,20 +670,21 @@ impl AreaView {
             // direction cancels far less than a second direction from p
             // (small or distant edges subtend small angles).
             let (ru, e) = (Row::diff(u, self.p), Row::diff(v, u));
-            let line = self.line(&ru, &e, &self.c);
+            let line = self.line::<B>(&ru, &e, &self.c);
             if !clip.cut(On::Cone(i as u8), line, s, |corner| {
-                *corners[corner]
-                    .get_or_insert_with(|| self.corner(&Row::diff(tri[corner], self.p)).at)
+                *corners[corner].get_or_insert_with(|| {
+                    self.corner::<B>(&Row::diff(tri[corner], self.p), true).at
+                })
             }) {
-                return Polygon::Clipped(Image::EMPTY);
+                return Polygon::Clipped(clip.finish::<B>());
             }
         }
         // Strictly beyond the triangle's plane: σ · det[q₁ − q₀, q₂ − q₀,
         // x − q₀] > 0 (at x = p it is −σ).
         let (e1, e2) = (Row::diff(tri[1], tri[0]), Row::diff(tri[2], tri[0]));
-        let line = self.line(&e1, &e2, &Row::diff(self.center, tri[0]));
+        let line = self.line::<B>(&e1, &e2, &Row::diff(self.center, tri[0]));
         clip.cut(On::Plane, line, sigma, |_| None);
-        Polygon::Clipped(clip.image)
+        Polygon::Clipped(clip.finish::<B>())
     }
 }
 
@@ -533,11 +694,14 @@ impl AreaView {
 const WELL_PLACED: f64 = 1.0 / (1u64 << 30) as f64;
 
 /// A corner's image, if it lies certainly in front of `p`, with its error
-/// bound; and its depth `sgn · det[d, f₀, f₁]`.
+/// bound; its depth `sgn · det[d, f₀, f₁]`; and whether the image is
+/// settled (within the tolerance, certainly outside the square, or
+/// refined).
 #[derive(Clone, Copy, Debug)]
 struct CornerImage {
     at: Option<(DVec2, f64)>,
     z: Bounded,
+    settled: bool,
 }
 
 /// The line a clipped image's edge lies on: a side of the square (bottom,
@@ -564,18 +728,28 @@ struct Clip {
     /// The lines cut by so far (cone planes 0–2, the plane 3).
     lines: [Option<Line>; 4],
     half: f64,
+    /// The allowance of a thin image within its lines' errors of being
+    /// cut away whole (see [`Image::extra`]).
+    extra: f64,
 }
 
 impl Clip {
     fn new(h: f64) -> Clip {
-        let mut image = Image::EMPTY;
-        image.v[..4].copy_from_slice(&[
-            DVec2::new(-h, -h),
-            DVec2::new(h, -h),
-            DVec2::new(h, h),
-            DVec2::new(-h, h),
-        ]);
-        image.len = 4;
+        let z = DVec2::ZERO;
+        let image = Image {
+            v: [
+                DVec2::new(-h, -h),
+                DVec2::new(h, -h),
+                DVec2::new(h, h),
+                DVec2::new(-h, h),
+                z,
+                z,
+                z,
+                z,
+            ],
+            len: 4,
+            ..Image::EMPTY
+        };
         let mut on = [On::Plane; Image::CAP];
         on[..4].copy_from_slice(&[On::Side(0), On::Side(1), On::Side(2), On::Side(3)]);
         Clip {
@@ -583,6 +757,7 @@ impl Clip {
             on,
             lines: [None; 4],
             half: h,
+            extra: 0.0,
         }
     }
 
@@ -628,24 +803,38 @@ impl Clip {
             all_in &= *fk >= 0.0;
         }
         if !any_in {
+            // The exact image may still be a sliver within the lines'
+            // errors of the vertices left.
+            let norm = line.a.abs().max(line.b.abs());
+            let (most, err) = (0..n).fold((f64::NEG_INFINITY, 0.0_f64), |(m, e), k| {
+                (m.max(f[k] / norm), e.max(self.image.err[k]))
+            });
+            if most > -(line.err + err) * 2.0 {
+                self.extra += 2.0 * (line.err + err) * 2.0 * SQRT_2 * self.half;
+            }
             self.image.len = 0;
             return false;
         }
         if all_in {
             return true;
         }
-        let mut out = Clip {
-            image: Image::EMPTY,
-            on: [On::Plane; Image::CAP],
-            lines: self.lines,
-            half: self.half,
+        // The new polygon, into local arrays (copied back at the end).
+        let mut v = [DVec2::ZERO; Image::CAP];
+        let mut errs = [0.0; Image::CAP];
+        let mut on = [On::Plane; Image::CAP];
+        let mut len = 0;
+        let mut push = |q: DVec2, err: f64, id: On| {
+            if len < Image::CAP {
+                (v[len], errs[len], on[len]) = (q, err, id);
+                len += 1;
+            }
         };
         for k in 0..n {
             // The next vertex, without a division.
             let j = if k + 1 == n { 0 } else { k + 1 };
             let (fa, fb) = (f[k], f[j]);
             if fa >= 0.0 {
-                out.push(self.image.v[k], self.image.err[k], self.on[k]);
+                push(self.image.v[k], self.image.err[k], self.on[k]);
             }
             if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
                 let (a, b) = (self.image.v[k], self.image.v[j]);
@@ -666,21 +855,106 @@ impl Clip {
                 }
                 // Leaving: the boundary follows the new line; entering: the
                 // rest of the edge.
-                out.push(q, err, if fa > 0.0 { id } else { self.on[k] });
+                push(q, err, if fa > 0.0 { id } else { self.on[k] });
             }
         }
-        *self = out;
-        self.image.len >= 3
+        self.image.v[..len].copy_from_slice(&v[..len]);
+        self.image.err[..len].copy_from_slice(&errs[..len]);
+        self.on[..len].copy_from_slice(&on[..len]);
+        self.image.len = len;
+        len >= 3
     }
 
-    fn push(&mut self, q: DVec2, err: f64, on: On) {
+    /// The image with each vertex's distance from its edges' computed
+    /// lines (a posteriori, in place of the construction's errors), and
+    /// each edge's area allowance: an edge on a line whose error is `δ`
+    /// (a side of the square: 0), its ends within `ρ` of their lines, lies
+    /// within `δ + ρ` of the exact image's edge on that line, which may run
+    /// on past either end by `(δ_in + δ_out + 2ρ) / sin θ` (`θ` the angle of
+    /// the two lines there, at most the square's diagonal): a band of twice
+    /// `δ + ρ` along that length holds what the two images differ by near
+    /// the edge. A line passing within its error of a vertex without
+    /// cutting the image adds a band along the square's diagonal
+    /// ([`Image::extra`]).
+    fn finish<const B: bool>(mut self) -> Image {
         let n = self.image.len;
-        if n < Image::CAP {
-            self.image.v[n] = q;
-            self.image.err[n] = err;
-            self.on[n] = on;
-            self.image.len = n + 1;
+        let mut image = self.image;
+        image.extra = self.extra;
+        if n < 3 {
+            image.len = 0;
+            return image;
         }
+        if !B {
+            return image;
+        }
+        let diagonal = 2.0 * SQRT_2 * self.half;
+        let line = |id: On| match id {
+            On::Cone(i) => self.lines[usize::from(i)],
+            On::Plane => self.lines[3],
+            On::Side(_) => None,
+        };
+        let delta = |id: On| line(id).map_or(0.0, |l| l.err);
+        let normal = |id: On| match (id, line(id)) {
+            (On::Side(0 | 2), _) => DVec2::Y,
+            (On::Side(_), _) => DVec2::X,
+            (_, Some(l)) => DVec2::new(l.a, l.b),
+            (_, None) => DVec2::ZERO,
+        };
+        // On a side, a vertex is exactly on it (its coordinate ±half is
+        // kept exactly by every construction).
+        let dist = |q: DVec2, id: On| line(id).map_or(0.0, |l| distance(&l, q));
+        let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
+        let mut rho = [0.0; Image::CAP];
+        for (k, (r, &q)) in rho.iter_mut().zip(&image.v[..n]).enumerate() {
+            *r = dist(q, self.on[prev(k)]).max(dist(q, self.on[k]));
+        }
+        let mut ext = [0.0; Image::CAP];
+        for k in 0..n {
+            let (a, b) = (self.on[prev(k)], self.on[k]);
+            let (na, nb) = (normal(a), normal(b));
+            let sin = na.perp_dot(nb).abs() / (na.length() * nb.length());
+            let e = (delta(a) + delta(b) + 2.0 * rho[k]) / sin;
+            ext[k] = if e < diagonal { e } else { diagonal };
+        }
+        for k in 0..n {
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            image.err[k] = rho[k];
+            image.w[k] = match self.on[k] {
+                On::Side(_) => 0.0,
+                id => {
+                    let width = delta(id) + rho[k].max(rho[j]);
+                    let length = (image.v[j] - image.v[k]).length() + ext[k] + ext[j];
+                    2.0 * width
+                        * length.min(diagonal + ext[k] + ext[j])
+                        * (1.0 + 8.0 * f64::EPSILON)
+                }
+            };
+        }
+        let most_rho = rho[..n].iter().fold(0.0_f64, |m, &r| m.max(r));
+        for (slot, l) in self.lines.iter().enumerate() {
+            let Some(l) = l else { continue };
+            let id = if slot == 3 {
+                On::Plane
+            } else {
+                On::Cone(slot as u8)
+            };
+            if self.on[..n].contains(&id) {
+                continue;
+            }
+            let near = image.v[..n]
+                .iter()
+                .map(|&q| {
+                    let norm = l.a.abs().max(l.b.abs());
+                    let terms = (l.a * q.x).abs() + (l.b * q.y).abs() + l.c.abs();
+                    (l.at(q) - 4.0 * f64::EPSILON * terms) / norm
+                })
+                .fold(f64::INFINITY, f64::min);
+            if near < (l.err + most_rho) * 2.0 {
+                image.extra += 2.0 * (l.err + most_rho) * diagonal;
+            }
+        }
+        self.image = image;
+        self.image
     }
 
     /// The point where the lines `l` and `e` meet, and a bound on its
@@ -714,6 +988,23 @@ impl Clip {
             _ => cramer(&line(l).expect("cut"), &line(e).expect("cut")),
         }
     }
+}
+
+/// The area allowance of an edge between two corners' images, each within
+/// its error of the exact one: the exact edge lies within the larger error
+/// of this one, so the two images differ along it by at most a band of
+/// twice that width.
+fn corner_edge_weight(a: DVec2, b: DVec2, ea: f64, eb: f64) -> f64 {
+    2.0 * ea.max(eb) * (b - a).length() * (1.0 + 4.0 * f64::EPSILON)
+}
+
+/// A bound on the distance from `q` to the line: the rounded value over
+/// the larger coefficient (at most the gradient's length), its rounding
+/// included.
+fn distance(line: &Line, q: DVec2) -> f64 {
+    let norm = line.a.abs().max(line.b.abs());
+    let terms = (line.a * q.x).abs() + (line.b * q.y).abs() + line.c.abs();
+    ((line.at(q).abs() + 4.0 * f64::EPSILON * terms) / norm) * (1.0 + 4.0 * f64::EPSILON)
 }
 
 /// Where the line crosses side `s` of the square `|X|, |Y| ≤ h` (bottom,
@@ -809,8 +1100,16 @@ fn lexicographic(a: DVec3, b: DVec3) -> bool {
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub struct Image {
     v: [DVec2; Image::CAP],
-    /// A bound on each vertex's distance from the exact one.
+    /// A bound on each vertex's distance from the lines of its two edges
+    /// as computed (the lines' own errors apart).
     err: [f64; Image::CAP],
+    /// Per edge (from each vertex to the next), a bound on the area by
+    /// which the exact image differs from this one along it
+    /// ([`AreaView::image_weights`]).
+    w: [f64; Image::CAP],
+    /// A bound on the area the exact image may hold beyond all edges'
+    /// (lines passing within their error of a vertex without cutting).
+    extra: f64,
     len: usize,
 }
 
@@ -819,6 +1118,8 @@ impl Image {
     const EMPTY: Image = Image {
         v: [DVec2::ZERO; Image::CAP],
         err: [0.0; Image::CAP],
+        w: [0.0; Image::CAP],
+        extra: 0.0,
         len: 0,
     };
 
@@ -843,16 +1144,29 @@ impl Image {
         0.5 * (0..n).map(|k| v[k].perp_dot(v[(k + 1) % n])).sum::<f64>()
     }
 
-    /// A bound on each vertex's distance from the exact vertex.
-    pub(super) fn errors(&self) -> &[f64] {
-        &self.err[..self.len]
+    /// Per edge (from each vertex to the next), a bound on the area by
+    /// which the exact image may differ from this one along it.
+    pub(super) fn weights(&self) -> &[f64] {
+        &self.w[..self.len]
     }
 
-    fn from_slice(v: &[DVec2], err: &[f64]) -> Image {
+    /// A bound on the exact image's area beyond its edges' allowances.
+    pub(super) fn extra(&self) -> f64 {
+        self.extra
+    }
+
+    fn from_slice<const B: bool>(v: &[DVec2], err: &[f64]) -> Image {
         let mut image = Image::EMPTY;
-        image.v[..v.len()].copy_from_slice(v);
-        image.err[..v.len()].copy_from_slice(err);
-        image.len = v.len();
+        let n = v.len();
+        image.v[..n].copy_from_slice(v);
+        image.err[..n].copy_from_slice(err);
+        if B {
+            for k in 0..n {
+                let j = (k + 1) % n;
+                image.w[k] = corner_edge_weight(v[k], v[j], err[k], err[j]);
+            }
+        }
+        image.len = n;
         image
     }
 }

@@ -26,32 +26,54 @@ const G8: f64 = gamma(8);
 /// Covers gradual underflow in a bound.
 pub(super) const FLOOR: f64 = 1e-300;
 
-/// A cross product `u × v` of two rows, rounded, with the sums of the
-/// magnitudes of each component's two products (which scale its error).
+/// A cross product `u × v` of two rows, rounded, with the sum of the
+/// magnitudes of its components and of their two products each (which
+/// scales its error).
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Cross {
     pub(super) m: DVec3,
+    /// `|m̂ₖ| + Mₖ` per component.
     abs: DVec3,
+    /// `Σₖ |m̂ₖ| + Mₖ`.
+    scale: f64,
 }
 
 impl Cross {
     #[inline(always)]
     pub(super) fn of(u: DVec3, v: DVec3) -> Cross {
         let (a, b) = (u.yzx() * v.zxy(), u.zxy() * v.yzx());
+        let m = a - b;
+        let abs = m.abs() + a.abs() + b.abs();
         Cross {
-            m: a - b,
-            abs: a.abs() + b.abs(),
+            m,
+            abs,
+            scale: abs.element_sum(),
         }
+    }
+
+    /// The bound of [`Cross::dot`] itself, `γ₈ Σₖ |ŵₖ| (|m̂ₖ| + Mₖ)`: never
+    /// above the one `dot` gives (which decides; this one is reported).
+    #[inline(always)]
+    pub(super) fn precise(&self, w: DVec3) -> f64 {
+        G8 * w.abs().dot(self.abs) + FLOOR
     }
 
     /// `(u × v) · w` and its bound against the exact determinant
     /// `det[u; v; w]` of the exact rows (`w` rounded at most once from
-    /// its exact value).
+    /// its exact value; `w_max` its largest magnitude): `γ₈ Σₖ |ŵₖ| (|m̂ₖ| +
+    /// Mₖ)` (module docs), taken at most `γ₈ |ŵ|∞ Σₖ (|m̂ₖ| + Mₖ)` — one
+    /// product per dot product, the sum being the cross product's.
     #[inline(always)]
-    pub(super) fn dot(&self, w: DVec3) -> Bounded {
+    pub(super) fn dot(&self, w: DVec3, w_max: f64) -> Bounded {
         Bounded {
             value: self.m.dot(w),
-            bound: G8 * w.abs().dot(self.m.abs() + self.abs) + FLOOR,
+            bound: G8 * self.scale * w_max + FLOOR,
         }
     }
+}
+
+/// The largest magnitude of a vector's components.
+#[inline(always)]
+pub(super) fn max_abs(w: DVec3) -> f64 {
+    w.abs().max_element()
 }

@@ -3,8 +3,8 @@
 //! of its shadow (the three through the receiver and an edge, and its own);
 //! the occluded fraction is the length of their union.
 
-use super::bounded::{det3_exact, Bounded, Cross, Row};
-use super::Scratch;
+use super::bounded::{det3_exact, max_abs, Bounded, Cross, Row};
+use super::{Fraction, Scratch};
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use glam::{DVec2, DVec3};
 
@@ -32,7 +32,7 @@ pub struct SegmentView {
 
 /// The largest error of a blocked interval's end, as a fraction of the
 /// light, above which its two determinants are evaluated exactly.
-const TOLERANCE: f64 = 1.0 / (1u64 << 40) as f64;
+const TOLERANCE: f64 = 1.0 / (1u64 << 50) as f64;
 
 impl SegmentView {
     /// The view of the segment `a b` from `p`.
@@ -155,15 +155,16 @@ impl SegmentView {
         self.occluded_fraction_bounded(triangles, scratch).value
     }
 
-    /// [`SegmentView::occluded_fraction`] and a bound on its error: each
-    /// interval's ends within their bounds, the union's length moves by
-    /// at most the sum of those bounds, and its sum by one rounding of
-    /// the unit interval a term.
-    pub(super) fn occluded_fraction_bounded<'t>(
+    /// [`SegmentView::occluded_fraction`] and a certified bound on its
+    /// error: each interval's ends within their bounds, the union's length
+    /// moves by at most the sum of those bounds, and its sum by one
+    /// rounding of the unit interval a term.
+    #[must_use]
+    pub fn occluded_fraction_bounded<'t>(
         &self,
         triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
         scratch: &mut Scratch,
-    ) -> Bounded {
+    ) -> Fraction {
         scratch.intervals.clear();
         let mut bound = 0.0;
         for tri in triangles {
@@ -173,7 +174,7 @@ impl SegmentView {
             }
         }
         let n = scratch.intervals.len() as f64;
-        Bounded {
+        Fraction {
             value: union_length(&mut scratch.intervals),
             bound: bound + 2.0 * n * f64::EPSILON,
         }
@@ -186,12 +187,25 @@ impl SegmentView {
 /// a cut between them within [`TOLERANCE`] of the light, else exact.
 #[inline(always)]
 fn values(cross: &Cross, (u, v): (&Row, &Row), ra: &Row, rb: &Row) -> (Bounded, Bounded) {
-    let (fa, fb) = (cross.dot(ra.r), cross.dot(rb.r));
+    let (fa, fb) = (
+        cross.dot(ra.r, max_abs(ra.r)),
+        cross.dot(rb.r, max_abs(rb.r)),
+    );
     let certain = fa.sign().is_some() && fb.sign().is_some();
     // A cut lies at fa / (fa − fb), its error below (δa + δb) / |fa − fb|.
     let accurate = fa.bound + fb.bound <= TOLERANCE * (fa.value - fb.value).abs();
     if certain && (accurate || fa.value * fb.value > 0.0) {
-        (fa, fb)
+        // Decided on the cheap bounds; the closer ones are reported.
+        (
+            Bounded {
+                bound: cross.precise(ra.r),
+                ..fa
+            },
+            Bounded {
+                bound: cross.precise(rb.r),
+                ..fb
+            },
+        )
     } else {
         (det3_exact(u, v, ra), det3_exact(u, v, rb))
     }
