@@ -76,10 +76,16 @@
 //!
 //! ## Feature flags
 //!
-//! With `--no-default-features` the crate is the kernels alone, on `glam`.
+//! The default features are what a library user needs: `simd`, `render`
+//! (hence `bvh` and `reference`) and `scene-file`. The command-line program
+//! is the crate `softshadow-cli`, whose crates (`clap`, `indicatif`) a
+//! dependant never builds. With `--no-default-features` the crate is the
+//! kernels alone, on `glam`.
 //!
-//! - `cli` (default): the `softshadow` command-line program (turns on
-//!   `render`, `scene-file` and `report`; `clap`, `indicatif`).
+//! - `simd` (default): the batched kernels, Monte Carlo's passes, the
+//!   culling query and the occlusion rays in AVX2 registers with FMA where
+//!   the processor has them, chosen at run time (`pulp`); the same bits
+//!   without it.
 //! - `bvh`: `softshadow::bvh`, the occluders and the BVH over them
 //!   (`obvhs` for the build, `rayon`).
 //! - `reference`: `softshadow::reference`, the visibility references
@@ -89,8 +95,8 @@
 //! - `scene-file`: `scene::file` and `scene::builtin`: JSON scene and points
 //!   files, OBJ meshes, the built-in scenes (`serde`, `serde_json`, `tobj`).
 //! - `report`: [`report`], the accuracy-against-run-time report (turns on
-//!   `render` and `scene-file`; `plotters` for the SVG plots). On by
-//!   default through `cli`.
+//!   `render` and `scene-file`; `plotters` for the SVG plots). Not on by
+//!   default; the command line turns it on.
 //! - `arbitrary`: `softshadow::arbitrary`, deterministic generators of near-degenerate
 //!   inputs, shared by the property tests, the fuzz targets and the
 //!   benchmarks.

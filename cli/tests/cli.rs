@@ -220,8 +220,8 @@ fn visibility_answers_match_the_library() {
         .map(|x| x.as_f64().unwrap())
         .collect();
 
-    use glam::DVec3;
     use softshadow::bvh::{Bvh, Occluders};
+    use softshadow::glam::DVec3;
     use softshadow::reference::exact;
     use softshadow::scene::{Light, Mesh, Scene};
     let mesh = Mesh::new(

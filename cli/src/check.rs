@@ -4,8 +4,8 @@
 //! time each takes.
 
 use crate::selfcheck;
-use glam::DVec3;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};

@@ -5,7 +5,7 @@
 //! reference at that hit point, and the shading and heat-map formulas
 //! written out again.
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::render::image::{BACKGROUND_RGB, HEAT_RANGE};
 use softshadow::render::{Frame, Stages, BACKGROUND, RECEIVER_OFFSET};

@@ -2,7 +2,7 @@
 //! closed-form answer, printed side by side with that answer and the error
 //! in units of the precision's machine epsilon.
 
-use glam::{DVec2, DVec3, Vec2};
+use softshadow::glam::{DVec2, DVec3, Vec2};
 use softshadow::kernel::falloff::Falloff;
 use softshadow::kernel::linear_light::OccluderSide;
 use softshadow::kernel::silhouette::MeshTopology;

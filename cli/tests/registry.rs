@@ -100,7 +100,7 @@ fn help_lists_every_method_with_its_options() {
 #[test]
 fn the_readme_s_table_lists_exactly_the_registered_methods() {
     let readme =
-        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/README.md")).unwrap();
+        std::fs::read_to_string(concat!(env!("CARGO_MANIFEST_DIR"), "/../README.md")).unwrap();
     let start = readme
         .find("| method | lights | what |")
         .expect("the README's table of methods");
