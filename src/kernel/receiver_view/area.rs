@@ -893,27 +893,34 @@ impl Clip {
             On::Plane => self.lines[3],
             On::Side(_) => None,
         };
-        let delta = |id: On| line(id).map_or(0.0, |l| l.err);
-        let normal = |id: On| match (id, line(id)) {
-            (On::Side(0 | 2), _) => DVec2::Y,
-            (On::Side(_), _) => DVec2::X,
-            (_, Some(l)) => DVec2::new(l.a, l.b),
-            (_, None) => DVec2::ZERO,
-        };
+        // Per edge: its line, the line's error and normal.
+        let mut lines = [None; Image::CAP];
+        let mut delta = [0.0; Image::CAP];
+        let mut normal = [DVec2::ZERO; Image::CAP];
+        for k in 0..n {
+            let id = self.on[k];
+            lines[k] = line(id);
+            (delta[k], normal[k]) = match (id, lines[k]) {
+                (On::Side(0 | 2), _) => (0.0, DVec2::Y),
+                (On::Side(_), _) => (0.0, DVec2::X),
+                (_, Some(l)) => (l.err, DVec2::new(l.a, l.b)),
+                (_, None) => (0.0, DVec2::ZERO),
+            };
+        }
         // On a side, a vertex is exactly on it (its coordinate ±half is
         // kept exactly by every construction).
-        let dist = |q: DVec2, id: On| line(id).map_or(0.0, |l| distance(&l, q));
+        let dist = |q: DVec2, l: &Option<Line>| l.as_ref().map_or(0.0, |l| distance(l, q));
         let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
         let mut rho = [0.0; Image::CAP];
         for (k, (r, &q)) in rho.iter_mut().zip(&image.v[..n]).enumerate() {
-            *r = dist(q, self.on[prev(k)]).max(dist(q, self.on[k]));
+            *r = dist(q, &lines[prev(k)]).max(dist(q, &lines[k]));
         }
         let mut ext = [0.0; Image::CAP];
         for k in 0..n {
-            let (a, b) = (self.on[prev(k)], self.on[k]);
-            let (na, nb) = (normal(a), normal(b));
+            let (a, b) = (prev(k), k);
+            let (na, nb) = (normal[a], normal[b]);
             let sin = na.perp_dot(nb).abs() / (na.length() * nb.length());
-            let e = (delta(a) + delta(b) + 2.0 * rho[k]) / sin;
+            let e = (delta[a] + delta[b] + 2.0 * rho[k]) / sin;
             ext[k] = if e < diagonal { e } else { diagonal };
         }
         for k in 0..n {
@@ -921,8 +928,8 @@ impl Clip {
             image.err[k] = rho[k];
             image.w[k] = match self.on[k] {
                 On::Side(_) => 0.0,
-                id => {
-                    let width = delta(id) + rho[k].max(rho[j]);
+                _ => {
+                    let width = delta[k] + rho[k].max(rho[j]);
                     let length = (image.v[j] - image.v[k]).length() + ext[k] + ext[j];
                     2.0 * width
                         * length.min(diagonal + ext[k] + ext[j])

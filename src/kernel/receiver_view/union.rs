@@ -293,13 +293,21 @@ fn union_area_in<const DEEP: bool, const B: bool>(
             }
             let (lo, hi) = (a.min(b), a.max(b));
             scratch.intervals.clear();
+            if B {
+                scratch.bounded.clear();
+            }
             let mut cover = Cover::default();
             let mut whole = false;
             let (fx0, fy0, fx1, fy1) = grid.fine.range(lo, hi, half);
             if DEEP {
                 let cells = (fx0, fy0, fx1, fy1);
                 let (interior, searched) = (&scratch.interior, &mut scratch.searched);
+                let bounded = &mut scratch.bounded;
                 whole = searched_cells(&grid.fine, interior, (a, b), cells, half, searched, |u| {
+                    if B {
+                        // A covered passage: its ends are never a piece's.
+                        bounded.push([u.0, u.1, 0.0, 0.0]);
+                    }
                     cover.add(u, &mut scratch.intervals)
                 });
             }
@@ -322,6 +330,12 @@ fn union_area_in<const DEEP: bool, const B: bool>(
                     // whole, and their search ends at the span that
                     // completes the cover (see [`Cover`]).
                     whole = cover.add(span, &mut scratch.intervals);
+                    if B {
+                        // The same span again, with its ends' errors.
+                        if let Some(bounded) = covered_span_bounded(a, b, tj, j < i) {
+                            scratch.bounded.push(bounded);
+                        }
+                    }
                 }
                 !whole
             });
@@ -333,7 +347,7 @@ fn union_area_in<const DEEP: bool, const B: bool>(
                 }
                 add_uncovered(a, b, &mut scratch.intervals, measure, &mut sum);
                 if B {
-                    bound += cut_errors(a, b, i, tris, grid, &mut scratch.bounded);
+                    bound += cut_errors(a, b, &mut scratch.bounded);
                 }
             }
         }
@@ -344,40 +358,14 @@ fn union_area_in<const DEEP: bool, const B: bool>(
     (sum.value(), bound)
 }
 
-/// For an edge `a → b` of triangle `i` with pieces on the boundary, the
-/// sum of `|b − a| Δt` over the pieces' ends that are cuts by other edges,
-/// `Δt` a bound on each cut's error: the spans of every triangle near the
-/// edge computed again with their ends' errors (their union, whose
-/// complement the pieces are, does not depend on the order; the raster's
-/// covered passages are within the spans of the triangles listed there,
-/// so taking every cell gives the same pieces).
+/// For an edge `a → b` with pieces on the boundary, the sum of `|b − a|
+/// Δt` over the pieces' ends that are cuts by other edges, `Δt` a bound on
+/// each cut's error, from every span its search found (each computed
+/// again with its ends' errors: the pieces are the complement of their
+/// union, whatever the order; the raster's covered passages, whose ends
+/// are never a piece's, with none).
 #[inline(never)]
-fn cut_errors(
-    a: DVec2,
-    b: DVec2,
-    i: usize,
-    tris: &[Tri],
-    grid: &Grid,
-    spans: &mut Vec<[f64; 4]>,
-) -> f64 {
-    spans.clear();
-    let (lo, hi) = (a.min(b), a.max(b));
-    grid.for_each_near(
-        lo,
-        hi,
-        |_, _| true,
-        |j| {
-            let j = j as usize;
-            let tj = &tris[j];
-            if j == i || tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
-                return true;
-            }
-            if let Some(span) = covered_span_bounded(a, b, tj, j < i) {
-                spans.push(span);
-            }
-            true
-        },
-    );
+fn cut_errors(a: DVec2, b: DVec2, spans: &mut [[f64; 4]]) -> f64 {
     // The complement of the union of the spans, in order: its interior
     // ends are span ends, each with its error (the larger where ends
     // coincide).
