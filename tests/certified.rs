@@ -10,8 +10,8 @@
 
 mod support;
 
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
+use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::scene::Light;
 use softshadow::{Bvh, Occluders};

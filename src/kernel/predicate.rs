@@ -89,7 +89,7 @@ const O3D_ERR_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
 /// the module docs); [`Sign::Zero`] for non-finite input.
 ///
 /// ```
-/// use glam::DVec2;
+/// use softshadow::glam::DVec2;
 /// use softshadow::kernel::predicate::{orient2d, Sign};
 ///
 /// // A point a few ulps off the line y = x, where the rounded determinant

@@ -119,7 +119,7 @@ pub fn visibility_with(
 /// [`visibility_with`] for a receiver whose view of the light is already
 /// known: `emitter` must be `light.emitter(p)` for the scene's light (the
 /// renderer's methods get it once per receiver from
-/// [`method::run`](crate::method::run)).
+/// `method::run`).
 #[must_use]
 pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, scratch: &mut Scratch) -> f64 {
     let Scratch { candidates, view } = scratch;

@@ -191,7 +191,7 @@ pub fn visibility(
 /// [`visibility`] for a receiver whose view of the light is already known:
 /// `emitter` must be `light.emitter(p)` for the scene's light (the
 /// renderer's methods get it once per receiver from
-/// [`method::run`](crate::method::run)). A sample count below
+/// `method::run`). A sample count below
 /// [`MIN_SAMPLES`] is raised to it.
 #[must_use]
 pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Options) -> Estimate {

@@ -118,7 +118,8 @@ impl AreaView {
         if !(p.is_finite() && center.is_finite() && radius.is_finite() && radius > 0.0) {
             return None;
         }
-        let n = normal.try_normalize()?;
+        // Any finite non-zero normal, however long or short.
+        let n = crate::kernel::eft::unit(normal)?;
         // The normal's largest component k: the axes n × eᵢ, n × eⱼ for the
         // other two are independent (their cross product is n nₖ).
         let k = (0..3).fold(0, |m, k| if n[k].abs() > n[m].abs() { k } else { m });
@@ -148,11 +149,24 @@ impl AreaView {
         if !(p.is_finite() && center.is_finite() && u.is_finite() && v.is_finite()) {
             return None;
         }
+        // Half-axes far from 1 (1e200, 1e-200: an area beyond `f64`) are
+        // scaled by a common power of two `2^k` into `[1, 4)`, the map `M
+        // = 2^k I` taking the scaled oblique coordinates back: every
+        // product then stays in range, and both scalings are exact.
+        let big = u.abs().max_element().max(v.abs().max_element());
+        let (f, scale) = if (2f64.powi(-100)..=2f64.powi(100)).contains(&big) {
+            ([u, v], 1.0)
+        } else {
+            let (_, k) =
+                crate::kernel::eft::pow2_scaled(if big == u.abs().max_element() { u } else { v })?;
+            let at = |w: DVec3| w.map(|x| crate::kernel::eft::times_pow2(x, k));
+            ([at(u), at(v)], crate::kernel::eft::times_pow2(1.0, k))
+        };
         Self::new(
             p,
             center,
-            [u, v],
-            [1.0, 0.0, 1.0],
+            f,
+            [scale, 0.0, scale],
             1.0,
             Measure::Square,
             false,

@@ -7,7 +7,7 @@
 //! the kernels alone:
 //!
 //! ```
-//! use glam::DVec3;
+//! use softshadow::glam::DVec3;
 //! use softshadow::kernel::receiver_view::{AreaView, Scratch};
 //!
 //! // A disk light of radius 1 at height 4; a receiver at the origin; a
