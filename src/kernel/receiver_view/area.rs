@@ -32,7 +32,7 @@ use std::f64::consts::{PI, SQRT_2};
 /// relative to the receiver (`qⱼ − p`, `center − p`, the plane's axes),
 /// each evaluated in `f64` with a bound on its error and evaluated exactly
 /// where the bound would let the constructed line or corner stray by more
-/// than `2⁻⁴⁸` of the light's radius (a receiver `10⁻¹⁷` from an edge, a
+/// than `2⁻⁴³` of the light's radius (a receiver `10⁻¹⁷` from an edge, a
 /// light of radius `10⁻⁶` four units away, a corner `10²⁰` away).
 #[derive(Clone, Copy, Debug)]
 pub struct AreaView {
