@@ -282,17 +282,7 @@ fn exact_tolerance_refuses_weak_answers() {
         "points.json",
         r#"{"points": [{"p": [5, 0, 5]}, {"p": [0.3, 0, 0.9]}]}"#,
     );
-    let run = |method: &str| {
-        softshadow(&[
-            "visibility",
-            "--scene",
-            &scene,
-            "--points",
-            &points,
-            "--method",
-            method,
-        ])
-    };
+    let run = |method: &str| visibility(&scene, &points, method, &[]);
     refused(
         &run("exact:tolerance=1e-15"),
         300,

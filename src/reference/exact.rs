@@ -146,24 +146,26 @@ pub(crate) enum Domain {
 /// The largest magnitude the predicates are exact for.
 const DOMAIN: f64 = 1e90;
 
-/// The largest coordinate magnitude of the emitter's points (centre plus
-/// extent, per coordinate).
-pub(crate) fn light_extent(emitter: &Emitter) -> f64 {
+/// `(T, L)`: the largest coordinate magnitude of the receiver and the
+/// occluders, and of the emitter's points (centre plus extent, per
+/// coordinate).
+pub(crate) fn magnitudes(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> (f64, f64) {
     let m = |v: DVec3| v.abs().max_element();
-    match emitter {
+    let l = match emitter {
         Emitter::Disk(d) => m(d.center()) + d.radius(),
         Emitter::Rect(r) => m(r.center()) + m(r.u()) + m(r.v()),
         Emitter::Segment(s) => m(s.a()).max(m(s.b())),
         Emitter::Point(x) => m(x.position()),
-    }
+    };
+    (bvh.max_coordinate().max(m(p)), l)
 }
 
 /// Where `p` lies against the domain, for the scene of `bvh` and the
 /// light's `emitter`.
 pub(crate) fn domain(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> Domain {
-    let t = bvh.max_coordinate().max(p.abs().max_element());
-    let l = light_extent(emitter);
-    if !(t * t * (t + l) <= f64::MAX / 1024.0) {
+    let (t, l) = magnitudes(bvh, emitter, p);
+    let weight = t * t * (t + l);
+    if weight.is_nan() || weight > f64::MAX / 1024.0 {
         Domain::Overflow
     } else if t.max(l) > DOMAIN {
         Domain::Uncertified

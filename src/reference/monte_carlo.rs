@@ -202,9 +202,8 @@ pub fn visibility(
 /// away) the rays' answers are not exact, and [`visibility`] refuses the
 /// receiver ([`ReceiverError::OutOfRange`]).
 pub(crate) fn out_of_range(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> bool {
-    let t = bvh.max_coordinate().max(p.abs().max_element());
-    let l = super::exact::light_extent(emitter);
-    !(t.max(l) <= 1e90)
+    let (t, l) = super::exact::magnitudes(bvh, emitter, p);
+    t.is_nan() || l.is_nan() || t.max(l) > 1e90
 }
 
 /// [`visibility`] for a receiver whose view of the light is already known:
