@@ -116,8 +116,8 @@ pub enum ReceiverError {
     /// The scene around the receiver is beyond a reference's range: the
     /// exact reference's determinants (products of three coordinate
     /// differences) would overflow, or, for Monte Carlo, a coordinate
-    /// exceeds its segment test's domain (`10⁹⁰`). See
-    /// [`reference::exact`](crate::reference)'s and Monte Carlo's domains.
+    /// exceeds its segment test's domain (`10⁹⁰`). See the domains in the
+    /// documentation of `reference::exact` and `reference::monte_carlo`.
     OutOfRange,
 }
 
