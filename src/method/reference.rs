@@ -22,7 +22,7 @@ pub struct Exact {
 }
 
 /// The exact reference with its default options (the value of the type
-/// [`Exact`], so that `&Exact` reads as the method).
+/// [`Exact`](struct@Exact), so that `&Exact` reads as the method).
 #[allow(non_upper_case_globals)]
 pub const Exact: Exact = Exact { tolerance: 1.0 };
 

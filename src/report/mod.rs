@@ -21,7 +21,7 @@
 //!   BVH and primary rays not; those are in [`SceneRecord`]), the median of
 //!   [`Config::runs`] runs — fewer when a run takes more than
 //!   [`SLOW_RUN`] seconds, the count kept per cell.
-//! - **Error** of `V` against [`Exact`]: mean absolute, RMSE,
+//! - **Error** of `V` against [`Exact`](struct@Exact): mean absolute, RMSE,
 //!   99th percentile, maximum, mean signed, share over 0.05
 //!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
 //!   exact penumbra ([`in_penumbra`](crate::definitions::in_penumbra)), the ground (object 0, the floor of
