@@ -72,6 +72,16 @@ fn a_cell_s_rmse_is_the_buffers_rmse() {
     assert!((e[0].rmse - all).abs() < 1e-12, "{} vs {all}", e[0].rmse);
     assert!((e[1].rmse - pen).abs() < 1e-12, "{} vs {pen}", e[1].rmse);
     assert!(all > 0.0 && pen > all);
+    // The scene's largest certified bound is the largest of the exact
+    // reference's bounds over the frame's receivers, asked directly.
+    let bounds = softshadow::reference::exact::visibility_many_bounded(
+        stages.bvh(),
+        scene.light(),
+        &frame.positions(),
+    );
+    let largest = bounds.iter().map(|b| b.unwrap().bound).fold(0.0, f64::max);
+    assert!(largest > 0.0 && largest < 1.0, "{largest}");
+    assert_eq!(results.scenes[0].exact_bound, Some(largest));
 }
 
 /// The results with everything that depends on the clock or the machine
@@ -401,6 +411,12 @@ fn scenes_whose_names_flatten_alike_keep_their_own_files() {
         plots.iter().map(|p| p.to_lowercase()).collect();
     assert!(plots.len() >= 3 * 2, "{plots:?}");
     assert_eq!(distinct.len(), plots.len(), "{plots:?}");
+    // Each scene's paragraph states its exact answers' largest bound.
+    for s in &results.scenes {
+        let b = s.exact_bound.expect("recorded");
+        let said = format!("the exact answers' largest certified bound {b:.1e}");
+        assert_eq!(index.matches(&said).count(), 3, "{said}");
+    }
 }
 
 /// A 245-character scene name (a long path) used to make a picture name

@@ -145,6 +145,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         MethodError::NeedsObject { index, .. } => {
             format!("{file}: {}: {e}", place(index, "object"))
         }
+        MethodError::Tolerance { index, .. } => format!("{file}: {}: {e}", place(index, "p")),
         e => format!("{file}: {e}"),
     })?;
     // The BVH is built inside the run: the time a user waits for the answer.
@@ -154,6 +155,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         .visibility
         .iter()
         .chain(out.stderr.iter().flatten())
+        .chain(out.bound.iter().flatten().filter(|b| b.is_nan()))
         .position(|v| !v.is_finite())
     {
         // Never reached: methods are total. A NaN must not be printed as if
@@ -183,6 +185,13 @@ pub fn run(args: &Args) -> Result<(), String> {
     });
     if let Some(stderr) = &out.stderr {
         json["stderr"] = serde_json::json!(stderr);
+    }
+    if let Some(bound) = &out.bound {
+        // The exact reference's certified bounds, finite in its domain;
+        // beyond it a bound may be infinite, which JSON cannot hold: the
+        // largest double stands for it (still a true bound).
+        let finite: Vec<f64> = bound.iter().map(|b| b.min(f64::MAX)).collect();
+        json["bound"] = serde_json::json!(finite);
     }
     say!("{json}");
     Ok(())

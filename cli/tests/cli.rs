@@ -11,7 +11,7 @@ use std::path::PathBuf;
 #[path = "support/cli.rs"]
 mod cli_support;
 
-use cli_support::{softshadow, visibility, write};
+use cli_support::{refused, softshadow, visibility, write};
 
 fn dir(name: &str) -> PathBuf {
     cli_support::dir("cli", name)
@@ -179,6 +179,7 @@ fn visibility_prints_the_json_of_the_design() {
             method.starts_with("mc:"),
             "{json}"
         );
+        assert_eq!(json.get("bound").is_some(), method == "exact", "{json}");
     }
 }
 
@@ -243,12 +244,63 @@ fn visibility_answers_match_the_library() {
     use softshadow::glam::DVec3;
     use softshadow::reference::exact;
     let (light, bvh) = card_under_sphere();
+    // The bounds as printed, read with Rust's correctly rounded parser
+    // (serde_json's default reader may be an ulp off).
+    let text = String::from_utf8_lossy(&out.stdout);
+    let list = text.split("\"bound\":[").nth(1).unwrap();
+    let bounds: Vec<f64> = list[..list.find(']').unwrap()]
+        .split(',')
+        .map(|x| x.trim().parse().unwrap())
+        .collect();
     for (k, p) in [DVec3::ZERO, DVec3::new(0.1, 0.0, -0.2)]
         .into_iter()
         .enumerate()
     {
         assert_eq!(got[k], exact::visibility(&bvh, &light, p).unwrap());
+        // The bound printed is the library's, for the same value.
+        let b = exact::visibility_bounded(&bvh, &light, p).unwrap();
+        assert_eq!((got[k], bounds[k]), (b.visibility, b.bound));
     }
+}
+
+/// `exact:tolerance=X` refuses, in one line with exit 2, a receiver whose
+/// certified bound exceeds `X` (naming the point), and answers when every
+/// bound is within it.
+#[test]
+fn exact_tolerance_refuses_weak_answers() {
+    let d = dir("tolerance");
+    let scene = write(
+        &d,
+        "scene.json",
+        &scene_with_light(r#"{"type": "sphere", "center": [0, 3, 0], "radius": 0.5}"#),
+    );
+    // The first point sees no occluder (its bound a few ulps); the second
+    // sees the card's edge cross the light (its bound above 1e-15, far
+    // below 1e-6).
+    let points = write(
+        &d,
+        "points.json",
+        r#"{"points": [{"p": [5, 0, 5]}, {"p": [0.3, 0, 0.9]}]}"#,
+    );
+    let run = |method: &str| visibility(&scene, &points, method, &[]);
+    refused(
+        &run("exact:tolerance=1e-15"),
+        300,
+        &["points.json", "points[1]", "certified bound", "tolerance"],
+    );
+    let out = run("exact:tolerance=1e-6");
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let json: serde_json::Value = serde_json::from_slice(&out.stdout).unwrap();
+    let bound = json["bound"].as_array().unwrap();
+    assert!(bound[0].as_f64().unwrap() <= 1e-15, "{json}");
+    assert!(bound[1].as_f64().unwrap() > 1e-15, "{json}");
+    assert!(bound.iter().all(|b| b.as_f64().unwrap() <= 1e-6), "{json}");
+    refused(&run("exact:tolerance=0"), 300, &["tolerance"]);
+    refused(&run("exact:tolerance=2"), 300, &["tolerance"]);
 }
 
 /// Numbers cross the program exactly both ways: points given as random

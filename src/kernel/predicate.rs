@@ -145,6 +145,32 @@ pub(crate) fn orient2d_value_finite(a: DVec2, b: DVec2, c: DVec2) -> f64 {
     orient2d_expansion(a, b, c).approximate()
 }
 
+/// [`orient2d_value_finite`] (the same value, bit for bit) and a bound on
+/// its error: the filter's where the rounded determinant is taken, else
+/// the expansion's rounding.
+pub(crate) fn orient2d_value_bounded(a: DVec2, b: DVec2, c: DVec2) -> Bounded {
+    let (det, detleft, detright, exact_zero) = orient2d_rounded(a, b, c);
+    if value_is_rounded(det, detleft, detright) {
+        return Bounded {
+            value: det,
+            bound: CCW_ERR_BOUND_A * (detleft.abs() + detright.abs()) + 1e-300,
+        };
+    }
+    if exact_zero {
+        return Bounded {
+            value: 0.0,
+            bound: 0.0,
+        };
+    }
+    let sum = orient2d_expansion(a, b, c);
+    let terms = &sum.terms[..sum.len];
+    let magnitude: f64 = terms.iter().map(|t| t.abs()).sum();
+    Bounded {
+        value: sum.approximate(),
+        bound: terms.len() as f64 * EPS * 1.01 * magnitude + 1e-300,
+    }
+}
+
 /// Whether the rounded determinant is within `2⁻⁴⁰` of the exact one,
 /// relatively: its error is at most the filter's bound, and the bound is
 /// `2⁻⁴⁰` of it.
@@ -233,9 +259,102 @@ pub fn orient3d_value(a: DVec3, b: DVec3, c: DVec3, d: DVec3) -> f64 {
     orient3d_expansion(a, b, c, d).approximate()
 }
 
+/// A row of a 3×3 determinant taken on the inputs as given: the exact
+/// difference `a − b` of two points (a vector `v` is the row
+/// [`Row::vector`], the difference `v − 0`), kept with its rounded value
+/// for the rounded evaluations, and its two points for the exact one
+/// ([`det3_exact`]).
+#[derive(Clone, Copy, Debug)]
+pub(crate) struct Row {
+    a: DVec3,
+    b: DVec3,
+    /// `a − b` rounded.
+    pub(crate) r: DVec3,
+}
+
+impl Row {
+    /// The row `a − b`.
+    #[inline(always)]
+    pub(crate) fn diff(a: DVec3, b: DVec3) -> Row {
+        Row { a, b, r: a - b }
+    }
+
+    /// The row `v` (exact).
+    #[inline(always)]
+    pub(crate) fn vector(v: DVec3) -> Row {
+        Row {
+            a: v,
+            b: DVec3::ZERO,
+            r: v,
+        }
+    }
+
+    /// The exact row, each coordinate a `(hi, lo)` pair (`hi` the rounded
+    /// row [`Row::r`]).
+    pub(crate) fn exact(&self) -> [[f64; 2]; 3] {
+        let (a, b) = (self.a, self.b);
+        [diff(a.x, b.x), diff(a.y, b.y), diff(a.z, b.z)]
+    }
+}
+
+/// A value and a bound on its distance from the exact value it stands
+/// for: `|value − exact| ≤ bound`.
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub(crate) struct Bounded {
+    pub(crate) value: f64,
+    pub(crate) bound: f64,
+}
+
+impl Bounded {
+    /// The value times `s = ±1` (exactly).
+    #[inline(always)]
+    pub(crate) fn signed(self, s: f64) -> Bounded {
+        Bounded {
+            value: s * self.value,
+            bound: self.bound,
+        }
+    }
+
+    /// The exact value's sign, when the bound settles it (an exact zero
+    /// is certain).
+    #[inline(always)]
+    pub(crate) fn sign(self) -> Option<Sign> {
+        if self.value > self.bound {
+            Some(Sign::Positive)
+        } else if -self.value > self.bound {
+            Some(Sign::Negative)
+        } else if self.value == 0.0 && self.bound == 0.0 {
+            Some(Sign::Zero)
+        } else {
+            None
+        }
+    }
+}
+
+/// `det[r0; r1; r2]` of the exact rows, as the exact expansion rounded to
+/// a double: the value and a bound on its rounding (the components summed
+/// smallest first, each addition rounded at most once: `len·u` of the sum
+/// of their magnitudes, the non-overlapping components adding at most a
+/// part in `2⁵²` to the largest). An exact zero comes back as `(0, 0)`.
+/// Same domain as [`orient3d`]; the caller guarantees finite rows.
+#[cold]
+pub(crate) fn det3_exact(r0: &Row, r1: &Row, r2: &Row) -> Bounded {
+    let sum = triple_products(&r0.exact(), &r1.exact(), &r2.exact(), true);
+    let terms = &sum.terms[..sum.len];
+    let value = sum.approximate();
+    let magnitude: f64 = terms.iter().map(|t| t.abs()).sum();
+    Bounded {
+        value,
+        // `len` roundings of at most `u` of the running sum, each below
+        // the magnitude (with a floor for gradual underflow).
+        bound: terms.len() as f64 * EPS * 1.01 * magnitude
+            + if terms.is_empty() { 0.0 } else { 1e-300 },
+    }
+}
+
 /// `a + b = s + e` exactly (Knuth's branch-free TwoSum).
 #[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bv = s - a;
     let av = s - bv;

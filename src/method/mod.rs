@@ -306,6 +306,9 @@ pub struct Output {
     /// The standard error of each value, for the estimators that have one
     /// (Monte Carlo).
     pub stderr: Option<Vec<f64>>,
+    /// A certified bound on each value's error, `|V − V_true| ≤ bound`, for
+    /// the methods that have one (the exact reference).
+    pub bound: Option<Vec<f64>>,
     /// For a segment light, the weights of its two end samples `[w_L, w_R]`
     /// (`w_L + w_R = V`) under linear emission, for the methods that shade
     /// with them (OESS); the shaded picture uses them.
@@ -319,6 +322,7 @@ impl Output {
         Output {
             visibility,
             stderr: None,
+            bound: None,
             end_weights: None,
         }
     }
@@ -369,6 +373,16 @@ pub enum MethodError {
         /// What was wrong.
         message: String,
     },
+    /// The exact reference's certified bound at receiver `index` exceeds
+    /// the tolerance asked for (`exact:tolerance=X`).
+    Tolerance {
+        /// The receiver's index in the frame.
+        index: usize,
+        /// Its bound.
+        bound: f64,
+        /// The tolerance.
+        tolerance: f64,
+    },
     /// An option of the method is out of its range.
     InvalidOption {
         /// The method.
@@ -406,6 +420,14 @@ impl fmt::Display for MethodError {
                 "method {method} needs receiver object ids; receiver {index} has none"
             ),
             MethodError::LightView(e) => write!(f, "light view: {e}"),
+            MethodError::Tolerance {
+                index,
+                bound,
+                tolerance,
+            } => write!(
+                f,
+                "receiver {index}: the exact answer's certified bound {bound:.3e} exceeds the tolerance {tolerance:e}"
+            ),
             MethodError::InvalidOption { method, message } => write!(f, "{method}: {message}"),
             MethodError::Contract { method, message } => {
                 write!(f, "{method} broke the method contract: {message}")
@@ -497,6 +519,12 @@ pub fn run(method: &dyn Method, stages: &Stages, frame: &Frame) -> Result<Run, M
         .position(|v| !(0.0..=1.0).contains(v))
     {
         Some(format!("receiver {i} got {}", output.visibility[i]))
+    } else if output
+        .bound
+        .as_ref()
+        .is_some_and(|b| b.len() != n || b.iter().any(|x| x.is_nan() || *x < 0.0))
+    {
+        Some("a bound is missing, negative or NaN".to_owned())
     } else {
         output
             .stderr

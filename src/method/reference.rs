@@ -1,24 +1,51 @@
 //! The two references as methods: [`Exact`] and [`MonteCarlo`].
 
-use super::options::{int, positional, Configurable, Field};
+use super::options::{int, positional, real, Configurable, Field};
 use super::{per_receiver, Input, Method, MethodError, Output};
 use crate::reference::{exact, monte_carlo};
 use crate::render::Needs;
 use crate::scene::LightKind;
 
 /// The exact reference ([`crate::reference::exact`]): the answer every
-/// other method is measured against. Any light.
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-pub struct Exact;
+/// other method is measured against, each value with its certified bound
+/// ([`Output::bound`]: `|V − V_true| ≤ bound`). Any light.
+///
+/// `exact:tolerance=X` refuses any receiver whose bound exceeds `X`
+/// ([`MethodError::Tolerance`]), so that a validation run cannot rest on a
+/// weak answer unawares; the default, 1, refuses nothing (`V` is a
+/// fraction).
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct Exact {
+    /// The largest certified bound accepted, in `(0, 1]`; 1 accepts every
+    /// answer. Default 1.
+    pub tolerance: f64,
+}
+
+/// The exact reference with its default options (the value of the type
+/// [`Exact`](struct@Exact), so that `&Exact` reads as the method).
+#[allow(non_upper_case_globals)]
+pub const Exact: Exact = Exact { tolerance: 1.0 };
+
+impl Default for Exact {
+    fn default() -> Exact {
+        Exact
+    }
+}
 
 impl Configurable for Exact {
     const NAME: &'static str = "exact";
     const SUMMARY: &'static str =
-        "the exact reference: the union of the occluders' images on the light";
+        "the exact reference: the union of the occluders' images on the light, with a certified bound";
     const LIGHTS: &'static [LightKind] = LightKind::ALL;
     const DEFAULT_RUN: &'static [&'static str] = &["exact"];
     const COMPARE: &'static [&'static str] = &[];
-    const FIELDS: &'static [Field<Exact>] = &[];
+    const FIELDS: &'static [Field<Exact>] = &[real(
+        "tolerance",
+        "refuse any receiver whose certified bound on |V - V_true| exceeds X; 1 refuses nothing (ours)",
+        (f64::MIN_POSITIVE, 1.0),
+        |m| m.tolerance,
+        |m, v| m.tolerance = v,
+    )];
 }
 
 impl Method for Exact {
@@ -31,17 +58,32 @@ impl Method for Exact {
     }
 
     fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
+        super::check_options(self)?;
         let bvh = input.stages().bvh();
         let emitters = input.emitters();
-        let visibility = per_receiver(input, exact::Scratch::default, |s, index, r| {
-            Ok(exact::emitter_visibility(
-                bvh,
-                &emitters[index],
-                r.position,
-                s,
-            ))
+        let answers = per_receiver(input, exact::Scratch::default, |s, index, r| {
+            if exact::domain(bvh, &emitters[index], r.position) == exact::Domain::Overflow {
+                return Err(MethodError::Receiver {
+                    index,
+                    error: crate::scene::ReceiverError::OutOfRange,
+                });
+            }
+            let b = exact::emitter_visibility_bounded(bvh, &emitters[index], r.position, s);
+            if self.tolerance < 1.0 && (b.bound > self.tolerance || b.bound.is_nan()) {
+                return Err(MethodError::Tolerance {
+                    index,
+                    bound: b.bound,
+                    tolerance: self.tolerance,
+                });
+            }
+            Ok(b)
         })?;
-        Ok(Output::values(visibility))
+        Ok(Output {
+            visibility: answers.iter().map(|b| b.visibility).collect(),
+            stderr: None,
+            bound: Some(answers.iter().map(|b| b.bound).collect()),
+            end_weights: None,
+        })
     }
 }
 
@@ -129,6 +171,12 @@ impl Method for MonteCarlo {
             input,
             || (),
             |(), index, r| {
+                if monte_carlo::out_of_range(bvh, &emitters[index], r.position) {
+                    return Err(MethodError::Receiver {
+                        index,
+                        error: crate::scene::ReceiverError::OutOfRange,
+                    });
+                }
                 Ok(monte_carlo::emitter_visibility(
                     bvh,
                     &emitters[index],
@@ -140,6 +188,7 @@ impl Method for MonteCarlo {
         Ok(Output {
             visibility: estimates.iter().map(|e| e.visibility).collect(),
             stderr: Some(estimates.iter().map(|e| e.stderr).collect()),
+            bound: None,
             end_weights: None,
         })
     }

@@ -13,7 +13,7 @@
 //! | `ssoc`, `backprojected-ssoc` | sphere, disk | [`Ssoc`], [`BackprojectedSsoc`]: the soft shadow occlusion camera (Mo, Popescu & Wyman 2007) and its backprojected variant (Mo & Wyman 2007) |
 //! | `oess` | segment | [`Oess`]: occluding edges soft shadows (Reimann & Dreier 2016) |
 //! | `mc:N` | every light | [`MonteCarlo`]: Monte Carlo light sampling, `N` samples |
-//! | `exact` | every light | [`Exact`]: the exact reference |
+//! | `exact` | every light | [`Exact`](struct@Exact): the exact reference |
 
 use super::options::{self, Configurable, ParseError, TableError};
 use super::{

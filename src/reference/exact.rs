@@ -14,25 +14,43 @@
 //!
 //! ## Accuracy
 //!
-//! The answer is exact up to the rounding of the half-planes, the crossing
-//! parameters and the documented accuracy of [`segment_disk_area`]: about
-//! `1e-15` absolute in `V` on ordinary scenes (so a fully covered light may
-//! give `1e-16` rather than `0`), held within `1e-9` of closed forms by
-//! the tests (`docs/accuracy/references.md`). Seen at a grazing elevation
-//! `θ` (the light nearly in the occluder's plane as seen from `p`) the
-//! error grows about as `ε/θ`: `4·10⁻¹⁰` at `θ = 10⁻⁶`
-//! (`softshadow stability`, `docs/stability.md`).
+//! Every combinatorial decision is an exact predicate: which side of each
+//! triangle's plane the receiver lies on (however close: a receiver on a
+//! triangle is hidden nothing by it, one a hair behind it everything it
+//! covers; [definitions](crate::definitions#receivers-on-an-occluder)),
+//! which side of each image edge the light's points lie on. The images are
+//! built from determinants of the inputs taken relative to the receiver,
+//! each evaluated exactly where its rounding could move an image edge or
+//! corner by more than `2⁻⁴³` of the light's radius (segment lights: an
+//! interval's end by `2⁻⁵⁰` of the light), so a receiver `10⁻¹⁷` from an
+//! edge, a light `10⁻¹⁶` long or a corner `10²⁰` away costs no accuracy.
+//! What is left is rounding: a few units in the last place of `V` (so a
+//! fully covered light may give `1e-16` rather than `0`), the same far
+//! from the origin as at it, held to a 256-bit evaluation on stiff
+//! families by the tests (`tests/certified.rs`, `tests/contact.rs`;
+//! `docs/accuracy/references.md`).
 //!
-//! **Domain**: the predicates are exact for coordinates within `±1e30`
-//! (every orientation determinant, a product of three coordinate
-//! differences, stays within [`orient3d`]'s exact domain), and the
-//! constructed points — crossings of edges with planes — are accurate when
-//! the triangles' corners lie within about `10⁶` times the light's distance
-//! from `p`. A corner `10²⁰` away whose long edge crosses the light's view
-//! near the scene is located to only about `10⁻¹⁶ · 10²⁰` (found by the
-//! `exact` fuzz target: a segment light answered 0.30 where Monte Carlo
-//! says 0.73). Beyond the domain the answer is still in `[0, 1]` and never
-//! NaN. Split or clip such triangles before asking.
+//! **Certified bound**: [`visibility_bounded`] (and `visibility_many_bounded`,
+//! `emitter_visibility_bounded`) returns `V` with a bound `|V − V_true| ≤
+//! bound` guaranteed in the domain below ([`Bounded`]; the analysis is in
+//! the [receiver view's documentation](crate::kernel::receiver_view#the-certified-bound)).
+//! The value is bit for bit [`visibility`]'s. The bound is typically
+//! `10⁻¹⁴`–`10⁻¹²` where some edge crosses the light, `≈ 10⁻¹⁶` where
+//! none does, 0 for a point light.
+//!
+//! **Domain**: the predicates are exact for coordinates `0` or of
+//! magnitude within `[1e-90, 1e90]` (every orientation determinant, a
+//! product of three coordinate differences, stays within [`orient3d`]'s
+//! exact domain), and the bound is certified there. With `T` the largest
+//! coordinate magnitude of the receiver and the occluders and `L` the
+//! light's (its centre's plus its extent), a receiver where `T²(T + L)`
+//! exceeds `f64::MAX / 2¹⁰` (a scene of size `~10¹⁰²`, or `10¹⁵³` around
+//! the origin with the light as far) would overflow the determinants: the
+//! functions that return a `Result` refuse it
+//! ([`ReceiverError::OutOfRange`]), and [`emitter_visibility_bounded`]
+//! answers it with `bound = 1` (no information). Between the two (a light
+//! `10²⁰⁰` away over ordinary occluders) the answer is computed, in
+//! `[0, 1]` and never NaN, but its bound is 1: not certified.
 //!
 //! ## Cost
 //!
@@ -43,10 +61,9 @@
 //! measured costs against the number of occluders).
 //!
 //! [`orient3d`]: crate::kernel::predicate::orient3d
-//! [`segment_disk_area`]: crate::kernel::disk::f64::segment_disk_area
 
 use crate::bvh::Bvh;
-use crate::kernel::receiver_view::{self, AreaView, SegmentView};
+use crate::kernel::receiver_view::{self, AreaView, Fraction, SegmentView};
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::DVec3;
 
@@ -56,6 +73,16 @@ use glam::DVec3;
 pub struct Scratch {
     candidates: Vec<u32>,
     view: receiver_view::Scratch,
+}
+
+/// An exact answer with its certified bound: `|visibility − V(p)| ≤ bound`
+/// for inputs in the documented domain (module documentation).
+#[derive(Clone, Copy, Debug, Default, PartialEq)]
+pub struct Bounded {
+    /// `V(p)`, in `[0, 1]`.
+    pub visibility: f64,
+    /// The bound, `≥ 0` (0 for a point light, whose answer is exact).
+    pub bound: f64,
 }
 
 /// The exact `V(p)` for the scene `bvh` was built over.
@@ -95,7 +122,56 @@ pub fn visibility_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<f64, ReceiverError> {
-    Ok(emitter_visibility(bvh, &light.emitter(p)?, p, scratch))
+    let emitter = light.emitter(p)?;
+    if domain(bvh, &emitter, p) == Domain::Overflow {
+        return Err(ReceiverError::OutOfRange);
+    }
+    Ok(emitter_visibility(bvh, &emitter, p, scratch))
+}
+
+/// Where a receiver lies against the exact reference's domain (module
+/// documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Domain {
+    /// Every coordinate within `10⁹⁰`: the bound is certified.
+    Inside,
+    /// No determinant overflows, but some coordinate is beyond `10⁹⁰`.
+    Uncertified,
+    /// `T²(T + L) > f64::MAX / 2¹⁰` (or not finite): the determinants
+    /// (each below `24 T²(T + L)` in magnitude, its running bounds a few
+    /// times more) could overflow.
+    Overflow,
+}
+
+/// The largest magnitude the predicates are exact for.
+const DOMAIN: f64 = 1e90;
+
+/// `(T, L)`: the largest coordinate magnitude of the receiver and the
+/// occluders, and of the emitter's points (centre plus extent, per
+/// coordinate).
+pub(crate) fn magnitudes(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> (f64, f64) {
+    let m = |v: DVec3| v.abs().max_element();
+    let l = match emitter {
+        Emitter::Disk(d) => m(d.center()) + d.radius(),
+        Emitter::Rect(r) => m(r.center()) + m(r.u()) + m(r.v()),
+        Emitter::Segment(s) => m(s.a()).max(m(s.b())),
+        Emitter::Point(x) => m(x.position()),
+    };
+    (bvh.max_coordinate().max(m(p)), l)
+}
+
+/// Where `p` lies against the domain, for the scene of `bvh` and the
+/// light's `emitter`.
+pub(crate) fn domain(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> Domain {
+    let (t, l) = magnitudes(bvh, emitter, p);
+    let weight = t * t * (t + l);
+    if weight.is_nan() || weight > f64::MAX / 1024.0 {
+        Domain::Overflow
+    } else if t.max(l) > DOMAIN {
+        Domain::Uncertified
+    } else {
+        Domain::Inside
+    }
 }
 
 /// [`visibility_with`] for a receiver whose view of the light is already
@@ -127,6 +203,93 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, scratch: &mut 
         }),
     };
     (1.0 - hidden).clamp(0.0, 1.0)
+}
+
+/// [`visibility`] with its certified bound ([`Bounded`]).
+///
+/// # Errors
+/// As [`visibility`].
+pub fn visibility_bounded(bvh: &Bvh, light: &Light, p: DVec3) -> Result<Bounded, ReceiverError> {
+    visibility_bounded_with(bvh, light, p, &mut Scratch::default())
+}
+
+/// [`visibility_bounded`] for every point, in parallel over the points
+/// (as [`visibility_many`]).
+#[must_use]
+pub fn visibility_many_bounded(
+    bvh: &Bvh,
+    light: &Light,
+    points: &[DVec3],
+) -> Vec<Result<Bounded, ReceiverError>> {
+    use rayon::prelude::*;
+    points
+        .par_iter()
+        .map_init(Scratch::default, |scratch, &p| {
+            visibility_bounded_with(bvh, light, p, scratch)
+        })
+        .collect()
+}
+
+/// [`visibility_bounded`] with caller-provided buffers.
+///
+/// # Errors
+/// As [`visibility`].
+pub fn visibility_bounded_with(
+    bvh: &Bvh,
+    light: &Light,
+    p: DVec3,
+    scratch: &mut Scratch,
+) -> Result<Bounded, ReceiverError> {
+    let emitter = light.emitter(p)?;
+    if domain(bvh, &emitter, p) == Domain::Overflow {
+        return Err(ReceiverError::OutOfRange);
+    }
+    Ok(emitter_visibility_bounded(bvh, &emitter, p, scratch))
+}
+
+/// [`emitter_visibility`] with its certified bound ([`Bounded`]); outside
+/// the domain where the bound is certified (module documentation), the
+/// bound is 1.
+#[must_use]
+pub fn emitter_visibility_bounded(
+    bvh: &Bvh,
+    emitter: &Emitter,
+    p: DVec3,
+    scratch: &mut Scratch,
+) -> Bounded {
+    let Scratch { candidates, view } = scratch;
+    let hidden = match *emitter {
+        Emitter::Point(x) => Fraction {
+            value: if bvh.segment_unoccluded(p, x.position()) {
+                0.0
+            } else {
+                1.0
+            },
+            bound: 0.0,
+        },
+        Emitter::Segment(s) => SegmentView::new(p, s.a(), s.b()).map_or(Fraction::default(), |v| {
+            v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
+        }),
+        Emitter::Disk(d) => AreaView::disk(p, d.center(), d.normal(), d.radius())
+            .map_or(Fraction::default(), |v| {
+                v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
+            }),
+        Emitter::Rect(r) => AreaView::rect(p, r.center(), r.u(), r.v())
+            .map_or(Fraction::default(), |v| {
+                v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
+            }),
+    };
+    // 1 − hidden rounds once; clamping to [0, 1] only moves toward V.
+    Bounded {
+        visibility: (1.0 - hidden.value).clamp(0.0, 1.0),
+        bound: if domain(bvh, emitter, p) != Domain::Inside {
+            1.0
+        } else if hidden.bound > 0.0 {
+            hidden.bound + f64::EPSILON / 2.0
+        } else {
+            0.0
+        },
+    }
 }
 
 /// The triangles whose bounds meet the hull of `points`.

@@ -351,7 +351,7 @@ fn num(x: f64) -> String {
 
 /// Scores `image` (the frame's size, row-major from the top-left) on the
 /// receivers of `frame`: computes the exact `V` at each receiver
-/// ([`Exact`]) and the [`Score`].
+/// ([`Exact`](struct@Exact)) and the [`Score`].
 ///
 /// # Errors
 /// A receiver the light cannot be seen from ([`MethodError::Receiver`],

@@ -350,6 +350,9 @@ fn scene(at: &str, s: &SceneRecord, side: u32, machines: usize) -> Result<(), St
     for (k, &v) in s.profile_exact.iter().enumerate() {
         within(&format!("{at}.profile_exact[{k}]"), v, 0.0, 1.0)?;
     }
+    if let Some(b) = s.exact_bound {
+        within(&format!("{at}.exact_bound"), b, 0.0, 1.0)?;
+    }
     Ok(())
 }
 
@@ -522,4 +525,5 @@ pub(crate) fn same_scene(a: &SceneRecord, b: &SceneRecord) -> bool {
         && a.profile_row == b.profile_row
         && a.profile_columns == b.profile_columns
         && a.profile_exact == b.profile_exact
+        && a.exact_bound == b.exact_bound
 }

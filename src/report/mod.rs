@@ -21,7 +21,7 @@
 //!   BVH and primary rays not; those are in [`SceneRecord`]), the median of
 //!   [`Config::runs`] runs — fewer when a run takes more than
 //!   [`SLOW_RUN`] seconds, the count kept per cell.
-//! - **Error** of `V` against [`Exact`]: mean absolute, RMSE,
+//! - **Error** of `V` against [`Exact`](struct@Exact): mean absolute, RMSE,
 //!   99th percentile, maximum, mean signed, share over 0.05
 //!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
 //!   exact penumbra ([`in_penumbra`](crate::definitions::in_penumbra)), the ground (object 0, the floor of
@@ -241,6 +241,12 @@ pub struct SceneRecord {
     pub profile_columns: Vec<u32>,
     /// The exact `V` along the profile.
     pub profile_exact: Vec<f64>,
+    /// The largest certified bound of the exact answers over the frame's
+    /// receivers (`|V − V_true| ≤ bound` for each:
+    /// [`exact::visibility_bounded`](crate::reference::exact::visibility_bounded));
+    /// `None` in parts written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exact_bound: Option<f64>,
     /// The machine (index into [`Results::machines`]) that built this
     /// record.
     pub machine: usize,
@@ -530,8 +536,12 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
     });
     let exact = method::run(&Exact, &stages, &frame)
         .map_err(|e| format!("exact: {e}"))?
-        .output
-        .visibility;
+        .output;
+    let exact_bound = exact
+        .bound
+        .as_ref()
+        .map(|b| b.iter().copied().fold(0.0, f64::max));
+    let exact = exact.visibility;
     let receivers = frame.receivers();
     let groups = group_masks(receivers, &exact);
     let penumbra = groups[1].clone();
@@ -570,6 +580,7 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
         profile_row,
         profile_columns,
         profile_exact: profile.iter().map(|&k| exact[k]).collect(),
+        exact_bound,
         machine: 0,
     };
     Ok(Prepared {

@@ -264,7 +264,7 @@ fn scene_section(
     let _ = writeln!(
         s,
         "{} light; {}×{}, {} receivers ({} in the exact penumbra, {} on the ground, {} on \
-         occluders). Shared, not in the times: BVH {:.1} ms, primary rays {:.1} ms.\n",
+         occluders){}. Shared, not in the times: BVH {:.1} ms, primary rays {:.1} ms.\n",
         scene.light,
         scene.width,
         scene.height,
@@ -272,6 +272,9 @@ fn scene_section(
         scene.penumbra,
         scene.groups[2],
         scene.groups[3],
+        scene.exact_bound.map_or(String::new(), |b| format!(
+            "; the exact answers' largest certified bound {b:.1e}"
+        )),
         scene.shared[0] * 1e3,
         scene.shared[1] * 1e3
     );

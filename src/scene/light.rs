@@ -113,6 +113,12 @@ pub enum ReceiverError {
     /// The receiver is at the point light's position, or on a segment
     /// light.
     OnLight,
+    /// The scene around the receiver is beyond a reference's range: the
+    /// exact reference's determinants (products of three coordinate
+    /// differences) would overflow, or, for Monte Carlo, a coordinate
+    /// exceeds its segment test's domain (`10⁹⁰`). See the domains in the
+    /// documentation of `reference::exact` and `reference::monte_carlo`.
+    OutOfRange,
 }
 
 impl fmt::Display for ReceiverError {
@@ -122,6 +128,10 @@ impl fmt::Display for ReceiverError {
             ReceiverError::InsideSphere => write!(f, "receiver is inside the sphere light"),
             ReceiverError::InLightPlane => write!(f, "receiver lies in the light's plane"),
             ReceiverError::OnLight => write!(f, "receiver lies on the light"),
+            ReceiverError::OutOfRange => write!(
+                f,
+                "the scene's coordinates around the receiver are beyond the reference's range"
+            ),
         }
     }
 }

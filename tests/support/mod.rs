@@ -6,6 +6,7 @@
 #![allow(dead_code)]
 
 pub mod dd;
+pub mod view;
 
 use astro_float::{BigFloat, Consts, RoundingMode, Sign};
 

@@ -1,57 +1,38 @@
-//! The receiver view of a segment light ([`SegmentView`]): the plane
-//! through the receiver and the segment cuts each triangle in a segment,
-//! which blocks one interval of the light's parameter; the occluded
-//! fraction is the length of their union.
+//! The receiver view of a segment light ([`SegmentView`]): each triangle
+//! hides one interval of the light's parameter, bounded by the four planes
+//! of its shadow (the three through the receiver and an edge, and its own);
+//! the occluded fraction is the length of their union.
 
-use super::area::crossing;
-use super::Scratch;
-use crate::kernel::predicate::{orient2d, orient3d, orient3d_value, Sign};
-use crate::kernel::segment::segment_blocked;
+use super::bounded::{det3_exact, max_abs, Bounded, Cross, Row};
+use super::{Fraction, Scratch};
+use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use glam::{DVec2, DVec3};
 
 /// The receiver view of the segment light `a b` from `p`: what each
 /// triangle hides is an interval of the light's parameter `s ∈ [0, 1]`
-/// (the point `a + s (b − a)`).
+/// (the point `x(s) = a + s (b − a)`).
+///
+/// A light point `x` is hidden by a triangle `q₀q₁q₂` exactly when the
+/// direction `x − p` lies in the cone the triangle spans from `p` and `x`
+/// lies strictly beyond the triangle's plane (the open segment of
+/// [visibility](crate::definitions#visibility)): four conditions, each the
+/// sign of a determinant that is affine in `x`, so along the light
+/// `(1 − s) F(a) + s F(b)` with `F(a)`, `F(b)` determinants of the inputs
+/// as given (`det[qⱼ − p, qₖ − p, x − p]` for the cone's three planes,
+/// `det[q₁ − q₀, q₂ − q₀, x − q₀]` for the triangle's). Their signs are
+/// exact and their values accurate ([`SegmentView::blocked`]); no point is
+/// constructed, so a triangle `10⁻¹⁷` from the receiver, a light `10⁻¹⁶`
+/// long or a corner `10²⁰` away costs no accuracy.
 #[derive(Clone, Copy, Debug)]
 pub struct SegmentView {
     p: DVec3,
     a: DVec3,
     b: DVec3,
-    /// The plane through `p`, `a`, `b`; `None` when `p` lies on the
-    /// light's line.
-    plane: Option<Plane>,
 }
 
-/// The plane through the receiver and the light, with the three lines that
-/// bound the triangle `(p, a, b)` in it as dot products: with `p` at the
-/// origin and `n` the plane's unit normal, a point `q` of the plane has
-/// `f = n · (ra × q) = q · (n × ra) ≥ 0` on `b`'s side of the ray to `a`,
-/// `g = n · (q × rb) = q · (rb × n) ≥ 0` on `a`'s side of the ray to `b`,
-/// and `h = n · ((rb − ra) × (q − ra)) = (q − ra) · (n × (rb − ra)) ≥ 0` on
-/// `p`'s side of the light — one product per receiver, not per triangle.
-#[derive(Clone, Copy, Debug)]
-struct Plane {
-    ra: DVec3,
-    f: DVec3,
-    g: DVec3,
-    h: DVec3,
-}
-
-impl Plane {
-    fn new(ra: DVec3, rb: DVec3, n: DVec3) -> Plane {
-        Plane {
-            ra,
-            f: n.cross(ra),
-            g: rb.cross(n),
-            h: n.cross(rb - ra),
-        }
-    }
-
-    /// `[f, g, h]` at `q` (relative to `p`).
-    fn sides(&self, q: DVec3) -> [f64; 3] {
-        [q.dot(self.f), q.dot(self.g), (q - self.ra).dot(self.h)]
-    }
-}
+/// The largest error of a blocked interval's end, as a fraction of the
+/// light, above which its two determinants are evaluated exactly.
+const TOLERANCE: f64 = 1.0 / (1u64 << 50) as f64;
 
 impl SegmentView {
     /// The view of the segment `a b` from `p`.
@@ -71,30 +52,11 @@ impl SegmentView {
             let q = |v: DVec3| DVec2::new(v[i], v[j]);
             orient2d(q(a), q(b), q(p)) == Sign::Zero
         });
-        let n = (a - p).cross(b - p);
-        if collinear || n == DVec3::ZERO || !n.is_finite() {
-            // On the light's line (or so nearly that the plane's normal
-            // rounds to nothing): refused between the ends, inclusive
-            // (every coordinate of p between the ends').
-            let between = |u: f64, v: f64, w: f64| (u <= w && w <= v) || (v <= w && w <= u);
-            let on = collinear && (0..3).all(|k| between(a[k], b[k], p[k]));
-            return (!on).then_some(SegmentView {
-                p,
-                a,
-                b,
-                plane: None,
-            });
-        }
-        // The plane's unit normal (scaled to its largest component first, so
-        // that neither a light of size 1e-77 nor one of 1e77 under- or
-        // overflows the products below).
-        let n = (n / n.abs().max_element()).normalize();
-        Some(SegmentView {
-            p,
-            a,
-            b,
-            plane: Some(Plane::new(a - p, b - p, n)),
-        })
+        // On the light's line: refused between the ends, inclusive (every
+        // coordinate of p between the ends').
+        let between = |u: f64, v: f64, w: f64| (u <= w && w <= v) || (v <= w && w <= u);
+        let on = collinear && (0..3).all(|k| between(a[k], b[k], p[k]));
+        (!on).then_some(SegmentView { p, a, b })
     }
 
     /// The triangle `(p, a, b)`: every triangle that hides some light
@@ -108,12 +70,78 @@ impl SegmentView {
     /// The interval `(s₀, s₁)`, `0 ≤ s₀ < s₁ ≤ 1`, of the light's
     /// parameter the triangle hides from `p`; `None` when it hides nothing
     /// of positive length (or has a non-finite corner).
+    ///
+    /// Each of the four conditions of [`SegmentView`] is an affine function
+    /// `(1 − s) F(a) + s F(b)` of `s`, oriented to be positive inside: the
+    /// cone's planes by `σ`, the exact sign of `det[q₀ − p, q₁ − p, q₂ −
+    /// p]` (zero: the triangle's plane holds `p`, and every open segment
+    /// `(p, x)` meets that plane at most at `p` or lies in it — nothing is
+    /// hidden, as [`segment_blocked`] has it), and the triangle's plane
+    /// strictly. Both values have exact signs (the determinants' rounded
+    /// values where their error bounds settle the signs, else the exact
+    /// ones), so which conditions cut the light, and on which side, is
+    /// decided exactly; a cut lies at `F(a) / (F(a) − F(b))`, two values of
+    /// opposite signs with errors below `2⁻⁵⁰` of their difference. The
+    /// cone is closed (a light lying wholly in a plane through `p` and an
+    /// edge is hidden where the segments cross the edge, as
+    /// [`segment_blocked`] blocks a segment through an edge), the plane
+    /// open.
+    ///
+    /// [`segment_blocked`]: crate::kernel::segment::segment_blocked
     #[must_use]
     pub fn blocked(&self, tri: &[DVec3; 3]) -> Option<(f64, f64)> {
-        match self.plane {
-            Some(plane) => blocked_interval(self.p, self.a, self.b, &plane, tri),
-            None => self.blocked_on_line(tri),
+        self.blocked_bounded(tri).map(|(span, _)| span)
+    }
+
+    /// [`SegmentView::blocked`] with a bound on the error of either end
+    /// of the interval.
+    pub(super) fn blocked_bounded(&self, tri: &[DVec3; 3]) -> Option<((f64, f64), f64)> {
+        if !tri.iter().all(|v| v.is_finite()) {
+            return None;
         }
+        let (p, a, b) = (self.p, self.a, self.b);
+        let sigma = match orient3d(tri[0], tri[1], tri[2], p) {
+            Sign::Positive => 1.0,
+            Sign::Negative => -1.0,
+            Sign::Zero => return None,
+        };
+        let (ra, rb) = (Row::diff(a, p), Row::diff(b, p));
+        let mut span = Span {
+            lo: 0.0,
+            hi: 1.0,
+            err: 0.0,
+        };
+        // The cone: for the edge (j, k) opposite corner i, the plane
+        // through p and the edge, oriented toward corner i: σ · det[qⱼ − p,
+        // qₖ − p, x − p] ≥ 0 (at x = qᵢ it is σ², the rows a cyclic
+        // shift). The edge's ends in a canonical order, so that two
+        // triangles sharing it cut the light at the same bits.
+        for (j, k) in [(1, 2), (2, 0), (0, 1)] {
+            let (u, v, s) = if lexicographic(tri[j], tri[k]) {
+                (tri[j], tri[k], sigma)
+            } else {
+                (tri[k], tri[j], -sigma)
+            };
+            // det[u − p, v − p, ·] = det[u − p, v − u, ·]: the edge's own
+            // direction cancels far less.
+            let (ru, e) = (Row::diff(u, p), Row::diff(v, u));
+            let cross = Cross::of(ru.r, e.r);
+            let (fa, fb) = values(&cross, (&ru, &e), &ra, &rb);
+            span.cut(fa.signed(s), fb.signed(s), true)?;
+        }
+        // Strictly beyond the triangle's plane: σ · det[q₁ − q₀, q₂ − q₀,
+        // x − q₀] > 0 (at x = p it is −σ: det[q₀ − p, q₁ − p, q₂ − p] =
+        // −det[q₁ − q₀, q₂ − q₀, p − q₀]).
+        let (e1, e2) = (Row::diff(tri[1], tri[0]), Row::diff(tri[2], tri[0]));
+        let cross = Cross::of(e1.r, e2.r);
+        let (fa, fb) = values(
+            &cross,
+            (&e1, &e2),
+            &Row::diff(a, tri[0]),
+            &Row::diff(b, tri[0]),
+        );
+        span.cut(fa.signed(sigma), fb.signed(sigma), false)?;
+        (span.lo < span.hi).then_some(((span.lo, span.hi), span.err))
     }
 
     /// The fraction of the light the triangles hide from `p`, in `[0, 1]`:
@@ -124,118 +152,108 @@ impl SegmentView {
         triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
         scratch: &mut Scratch,
     ) -> f64 {
-        scratch.intervals.clear();
-        for tri in triangles {
-            if let Some(span) = self.blocked(tri) {
-                scratch.intervals.push(span);
-            }
-        }
-        union_length(&mut scratch.intervals)
+        self.occluded_fraction_bounded(triangles, scratch).value
     }
 
-    /// A receiver on the light's line (but not on the light): every open
-    /// segment `(p, x)` lies on that line, so a triangle blocking the
-    /// segment to the nearer end hides the whole light, and one crossing
-    /// the line farther hides what lies beyond its crossing.
-    fn blocked_on_line(&self, tri: &[DVec3; 3]) -> Option<(f64, f64)> {
-        let (p, a, b) = (self.p, self.a, self.b);
-        if !tri.iter().all(|v| v.is_finite()) {
-            return None;
+    /// [`SegmentView::occluded_fraction`] and a certified bound on its
+    /// error: each interval's ends within their bounds, the union's length
+    /// moves by at most the sum of those bounds, and its sum by one
+    /// rounding of the unit interval a term.
+    #[must_use]
+    pub fn occluded_fraction_bounded<'t>(
+        &self,
+        triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
+        scratch: &mut Scratch,
+    ) -> Fraction {
+        scratch.intervals.clear();
+        let mut bound = 0.0;
+        for tri in triangles {
+            if let Some((span, err)) = self.blocked_bounded(tri) {
+                scratch.intervals.push(span);
+                bound += 2.0 * err;
+            }
         }
-        let a_nearer = (a - p).length_squared() <= (b - p).length_squared();
-        let (near, far) = if a_nearer { (a, b) } else { (b, a) };
-        if segment_blocked(p, near, tri) {
-            return Some((0.0, 1.0));
+        let n = scratch.intervals.len() as f64;
+        Fraction {
+            value: union_length(&mut scratch.intervals),
+            bound: bound + 2.0 * n * f64::EPSILON,
         }
-        if !segment_blocked(p, far, tri) {
-            return None;
-        }
-        // The crossing as a fraction of the light from its nearer end:
-        // what lies before it is visible.
-        let n = (tri[1] - tri[0]).cross(tri[2] - tri[0]);
-        let s = n.dot(tri[0] - near) / n.dot(far - near);
-        let s = if s.is_nan() { 0.0 } else { s.clamp(0.0, 1.0) };
-        let span = if a_nearer { (s, 1.0) } else { (0.0, 1.0 - s) };
-        (span.0 < span.1).then_some(span)
     }
 }
 
-/// The interval of the segment light's parameter `s ∈ [0, 1]` (the point
-/// `a + s (b − a)`) that the triangle blocks from `p`, in the `plane`
-/// through `p`, `a`, `b`.
-fn blocked_interval(
-    p: DVec3,
-    a: DVec3,
-    b: DVec3,
-    plane: &Plane,
-    tri: &[DVec3; 3],
-) -> Option<(f64, f64)> {
-    if !tri.iter().all(|v| v.is_finite()) {
-        return None;
+/// `F(a)` and `F(b)` for the plane `det[u, v, x − o] = 0` (the rows `u`,
+/// `v` relative to `o`, their cross product `cross`; `ra`, `rb` the rows
+/// `a − o`, `b − o`): rounded where the bounds settle both signs and keep
+/// a cut between them within [`TOLERANCE`] of the light, else exact.
+#[inline(always)]
+fn values(cross: &Cross, (u, v): (&Row, &Row), ra: &Row, rb: &Row) -> (Bounded, Bounded) {
+    let (fa, fb) = (
+        cross.dot(ra.r, max_abs(ra.r)),
+        cross.dot(rb.r, max_abs(rb.r)),
+    );
+    let certain = fa.sign().is_some() && fb.sign().is_some();
+    // A cut lies at fa / (fa − fb), its error below (δa + δb) / |fa − fb|.
+    let accurate = fa.bound + fb.bound <= TOLERANCE * (fa.value - fb.value).abs();
+    if certain && (accurate || fa.value * fb.value > 0.0) {
+        // Decided on the cheap bounds; the closer ones are reported.
+        (
+            Bounded {
+                bound: cross.precise(ra.r),
+                ..fa
+            },
+            Bounded {
+                bound: cross.precise(rb.r),
+                ..fb
+            },
+        )
+    } else {
+        (det3_exact(u, v, ra), det3_exact(u, v, rb))
     }
-    // A triangle whose plane holds p (a receiver on it), or holds the
-    // light: every open segment (p, x) meets its plane at most at an end.
-    let [t0, t1, t2] = *tri;
-    if orient3d(t0, t1, t2, p) == Sign::Zero
-        || (orient3d(t0, t1, t2, a) == Sign::Zero && orient3d(t0, t1, t2, b) == Sign::Zero)
-    {
-        return None;
-    }
-    // Each corner's side of the plane (p, a, b): exact signs, and values
-    // accurate enough that an edge crossing the plane is cut on it even
-    // when the edge is within ulps of the plane.
-    let dist = tri.map(|v| orient3d_value(p, a, b, v));
-    let side = dist.map(Sign::of);
-    if side.iter().all(|&s| s == Sign::Zero) {
-        // In the plane: the open segments graze it and are not blocked.
-        return None;
-    }
-    let rel = tri.map(|v| v - p);
-    // The triangle's trace on the plane: corners on it and edge crossings.
-    let mut pts = [DVec3::ZERO; 3];
-    let mut m = 0;
-    for k in 0..3 {
-        let j = (k + 1) % 3;
-        if side[k] == Sign::Zero {
-            pts[m] = rel[k];
-            m += 1;
-        } else if side[j] != Sign::Zero && side[k] != side[j] && m < 3 {
-            pts[m] = crossing(rel[k], dist[k], rel[j], dist[j]);
-            m += 1;
+}
+
+/// An interval of the light's parameter being narrowed by the conditions,
+/// with a bound on the error of its ends.
+struct Span {
+    lo: f64,
+    hi: f64,
+    err: f64,
+}
+
+impl Span {
+    /// Narrows the span to where `(1 − s) fa + s fb` is positive (or zero,
+    /// if `closed`); `None` when nothing of positive length is left. The
+    /// signs of `fa` and `fb` are exact.
+    #[inline(always)]
+    fn cut(&mut self, fa: Bounded, fb: Bounded, closed: bool) -> Option<()> {
+        let (a, b) = (fa.value, fb.value);
+        let inside = |f: f64| f > 0.0 || (closed && f == 0.0);
+        match (inside(a), inside(b)) {
+            (true, true) => Some(()),
+            (false, false) => None,
+            (a_in, _) => {
+                // Opposite signs (a zero end is outside here, and the
+                // other end strictly inside): no cancellation.
+                let s = a / (a - b);
+                // The quotient's error: the values' bounds over the
+                // difference, and two roundings.
+                let err = (fa.bound + fb.bound) / (a - b).abs() + f64::EPSILON;
+                if a_in {
+                    if s < self.hi {
+                        self.hi = s;
+                    }
+                } else if s > self.lo {
+                    self.lo = s;
+                }
+                self.err = self.err.max(err);
+                (self.lo < self.hi).then_some(())
+            }
         }
     }
-    if m < 2 {
-        return None;
-    }
-    let (mut e0, mut e1) = (pts[0], pts[1]);
-    // Clip the trace to the triangle (p, a, b); each cut measured from the
-    // end nearer the cutting line (a trace end 10²⁰ away must not set the
-    // rounding of a cut near the light).
-    for k in 0..3 {
-        let (v0, v1) = (plane.sides(e0)[k], plane.sides(e1)[k]);
-        if v0.is_nan() || v1.is_nan() || (v0 < 0.0 && v1 < 0.0) || (v0 <= 0.0 && v1 <= 0.0) {
-            // Outside, or on the line: nothing of positive length is left.
-            return None;
-        }
-        if v0 < 0.0 {
-            e0 = crossing(e0, v0, e1, v1);
-        } else if v1 < 0.0 {
-            e1 = crossing(e0, v0, e1, v1);
-        }
-    }
-    // Project both ends from p onto the light: s = f / (f + g).
-    let param = |q: DVec3| {
-        let [fq, gq, _] = plane.sides(q);
-        let den = fq + gq;
-        (den > 0.0).then(|| (fq / den).clamp(0.0, 1.0))
-    };
-    let (s0, s1) = match (param(e0), param(e1)) {
-        (Some(x), Some(y)) => (x, y),
-        // An end at p itself: the trace runs along a ray from p, one point.
-        _ => return None,
-    };
-    let (lo, hi) = (s0.min(s1), s0.max(s1));
-    (lo < hi).then_some((lo, hi))
+}
+
+/// Whether `a` precedes `b` in lexicographic order of coordinates.
+fn lexicographic(a: DVec3, b: DVec3) -> bool {
+    (a.x, a.y, a.z) <= (b.x, b.y, b.z)
 }
 
 /// The total length of a union of intervals of `[0, 1]`.

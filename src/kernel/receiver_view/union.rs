@@ -4,7 +4,7 @@
 //! the [parent module's documentation](super)).
 
 use crate::kernel::disk::f64::segment_disk_area;
-use crate::kernel::predicate::{orient2d, orient2d_values_finite, Sign};
+use crate::kernel::predicate::{orient2d, orient2d_value_bounded, orient2d_values_finite, Sign};
 use glam::DVec2;
 
 /// A projected triangle, counter-clockwise, with its bounds; its corners
@@ -33,6 +33,12 @@ impl Tri {
         })
     }
 
+    /// Whether the triangle's first edge runs `a → b` (it was given
+    /// counter-clockwise, not reversed).
+    pub(super) fn first_edge_is(&self, a: DVec2, b: DVec2) -> bool {
+        self.v[0] == a && self.v[1] == b
+    }
+
     fn edge(&self, k: usize) -> (DVec2, DVec2) {
         (self.v[k], self.v[(k + 1) % 3])
     }
@@ -54,6 +60,14 @@ pub(super) enum Measure {
 }
 
 impl Measure {
+    /// The half-width of the measure's box.
+    pub(super) fn radius(self) -> f64 {
+        match self {
+            Measure::Disk(r) => r,
+            Measure::Square => 1.0,
+        }
+    }
+
     /// The signed area the directed boundary piece `a → b` contributes.
     fn piece(self, a: DVec2, b: DVec2) -> f64 {
         match self {
@@ -152,13 +166,14 @@ impl Measure {
 /// from a set of merged intervals, cut at the earlier edges' own corners
 /// (exact) rather than at parameters computed along the edge (rounded):
 /// the same set, its pieces' ends differing in the last bits.
-pub(super) fn union_area(
+pub(super) fn union_area<const B: bool>(
     tris: &[Tri],
+    weights: &[[f64; 3]],
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
-) -> f64 {
-    union_area_sweeping_from(tris, measure, half, scratch, SWEEP_FROM)
+) -> (f64, f64) {
+    union_area_sweeping_from::<B>(tris, weights, measure, half, scratch, SWEEP_FROM)
 }
 
 /// Sides holding at least this many edges are swept ([`union_area`]; ours:
@@ -166,20 +181,24 @@ pub(super) fn union_area(
 pub(super) const SWEEP_FROM: usize = 64;
 
 /// [`union_area`], sweeping the sides that hold `sweep_from` edges or more.
-pub(super) fn union_area_sweeping_from(
+/// With `B`, also a bound on the area's error (else 0): `weights` holds
+/// each triangle's edges' area allowances (how far the exact images may
+/// differ from these along each edge; see [`union_area_in`]).
+pub(super) fn union_area_sweeping_from<const B: bool>(
     tris: &[Tri],
+    weights: &[[f64; 3]],
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
     sweep_from: usize,
-) -> f64 {
+) -> (f64, f64) {
     // Two copies of the loop: the test of [`Interior`] left out of the
     // one most receivers run (in it, the choice cost 1 % of the built-in
     // scenes' instructions).
     if scratch.interior.build(tris, half) {
-        union_area_in::<true>(tris, measure, half, scratch, sweep_from)
+        union_area_in::<true, B>(tris, weights, measure, half, scratch, sweep_from)
     } else {
-        union_area_in::<false>(tris, measure, half, scratch, sweep_from)
+        union_area_in::<false, B>(tris, weights, measure, half, scratch, sweep_from)
     }
 }
 
@@ -188,13 +207,26 @@ pub(super) fn union_area_sweeping_from(
 /// edge, per candidate and per triangle are `#[inline(always)]`: with two
 /// copies of this loop the compiler kept them out of line, and the
 /// built-in scenes' exact frames took up to 4 % more instructions.
-fn union_area_in<const DEEP: bool>(
+///
+/// The bound (`B`) sums: each edge's allowance unless it is shared (an
+/// edge and its exact reverse move together, both sides covered) or
+/// covered whole by the raster with a margin far above its width — the
+/// exact union's boundary lies within those bands of the computed one;
+/// for each piece kept on the boundary, the error of its ends where they
+/// are cuts by other edges (`|e| Δt`: the pieces' areas move by at most
+/// the distance their ends move, the disk's and the square's pieces being
+/// 1-Lipschitz in their ends in the view's coordinates) and the area
+/// kernel's (`3 ε` a piece for the unit disk; the square's `½ a × b`
+/// likewise); and the compensated sum's (`2 ε` of the sum and `4 n ε²` of
+/// the terms' magnitudes).
+fn union_area_in<const DEEP: bool, const B: bool>(
     tris: &[Tri],
+    weights: &[[f64; 3]],
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
     sweep_from: usize,
-) -> f64 {
+) -> (f64, f64) {
     let grid = &mut scratch.grid;
     grid.build::<DEEP>(tris, half);
     scratch.edges.build(tris, half);
@@ -214,13 +246,32 @@ fn union_area_in<const DEEP: bool>(
         set.active = count >= sweep_from;
     }
     let mut sum = Sum::default();
+    let mut bound = 0.0;
+    // The widest band of any edge (each allowance is at least twice its
+    // width times its length): the raster's margin covers an edge's exact
+    // position only if the covering triangle's and its own are within it.
+    let widest = if B && DEEP {
+        tris.iter()
+            .zip(weights)
+            .flat_map(|(t, w)| {
+                (0..3).map(move |k| {
+                    let (a, b) = t.edge(k);
+                    w[k] / (2.0 * (b - a).length())
+                })
+            })
+            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
+    } else {
+        0.0
+    };
     let mut edge_id = 0_u32;
     for (i, ti) in tris.iter().enumerate() {
+        #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.
         for k in 0..3 {
             let (a, b) = ti.edge(k);
             if let Some(side) = Side::of(a, b, half) {
                 let set = &mut scratch.sides[side as usize];
                 if set.active {
+                    // On a side of the square exactly: no allowance.
                     set.add_uncovered(side, a, b, half, measure, &mut sum);
                     continue;
                 }
@@ -230,18 +281,33 @@ fn union_area_in<const DEEP: bool>(
             }
             if DEEP && scratch.interior.covers(a, b) {
                 // Covered whole, as the search would find (see
-                // [`Interior`]).
+                // [`Interior`]), with a margin: if the edge's band is far
+                // narrower, the exact edge is covered too.
+                if B && (widest >= 0.25 * scratch.interior.margin() || widest.is_nan()) {
+                    bound += weights[i][k];
+                }
                 continue;
+            }
+            if B {
+                bound += weights[i][k];
             }
             let (lo, hi) = (a.min(b), a.max(b));
             scratch.intervals.clear();
+            if B {
+                scratch.bounded.clear();
+            }
             let mut cover = Cover::default();
             let mut whole = false;
             let (fx0, fy0, fx1, fy1) = grid.fine.range(lo, hi, half);
             if DEEP {
                 let cells = (fx0, fy0, fx1, fy1);
                 let (interior, searched) = (&scratch.interior, &mut scratch.searched);
+                let bounded = &mut scratch.bounded;
                 whole = searched_cells(&grid.fine, interior, (a, b), cells, half, searched, |u| {
+                    if B {
+                        // A covered passage: its ends are never a piece's.
+                        bounded.push([u.0, u.1, 0.0, 0.0]);
+                    }
                     cover.add(u, &mut scratch.intervals)
                 });
             }
@@ -264,6 +330,12 @@ fn union_area_in<const DEEP: bool>(
                     // whole, and their search ends at the span that
                     // completes the cover (see [`Cover`]).
                     whole = cover.add(span, &mut scratch.intervals);
+                    if B {
+                        // The same span again, with its ends' errors.
+                        if let Some(bounded) = covered_span_bounded(a, b, tj, j < i) {
+                            scratch.bounded.push(bounded);
+                        }
+                    }
                 }
                 !whole
             });
@@ -274,10 +346,49 @@ fn union_area_in<const DEEP: bool>(
                     scratch.intervals.push((0.0, cover.reach));
                 }
                 add_uncovered(a, b, &mut scratch.intervals, measure, &mut sum);
+                if B {
+                    bound += cut_errors(a, b, &mut scratch.bounded);
+                }
             }
         }
     }
-    sum.value()
+    if B {
+        bound += sum.bound();
+    }
+    (sum.value(), bound)
+}
+
+/// For an edge `a → b` with pieces on the boundary, the sum of `|b − a|
+/// Δt` over the pieces' ends that are cuts by other edges, `Δt` a bound on
+/// each cut's error, from every span its search found (each computed
+/// again with its ends' errors: the pieces are the complement of their
+/// union, whatever the order; the raster's covered passages, whose ends
+/// are never a piece's, with none).
+#[inline(never)]
+fn cut_errors(a: DVec2, b: DVec2, spans: &mut [[f64; 4]]) -> f64 {
+    // The complement of the union of the spans, in order: its interior
+    // ends are span ends, each with its error (the larger where ends
+    // coincide).
+    spans.sort_unstable_by(|x, y| x[0].total_cmp(&y[0]));
+    let mut total = 0.0;
+    let (mut reach, mut reach_err) = (0.0_f64, 0.0_f64);
+    for &[s, e, es, ee] in spans.iter() {
+        if s > reach {
+            // A piece (reach, s): its start a cut unless at 0, its end a cut.
+            total += reach_err + es;
+            reach = e;
+            reach_err = ee;
+        } else if e > reach {
+            reach = e;
+            reach_err = ee;
+        } else if e == reach {
+            reach_err = reach_err.max(ee);
+        }
+    }
+    if reach < 1.0 {
+        total += reach_err;
+    }
+    total * (b - a).length() * (1.0 + 4.0 * f64::EPSILON)
 }
 
 /// Under a deep pile ([`Interior`]), which fine cells of the range
@@ -340,6 +451,8 @@ pub(super) struct UnionScratch {
     /// Under [`Interior`], per fine cell of the searched edge's range,
     /// whether the search looks in it ([`searched_cells`]).
     searched: Vec<bool>,
+    /// The spans with their ends' errors ([`cut_errors`]).
+    bounded: Vec<[f64; 4]>,
 }
 
 /// The triangles' distinct directed edges, hashed by their ends, to find
@@ -1038,11 +1151,41 @@ fn cut_by_edge(
     Some(())
 }
 
-/// Neumaier's compensated sum.
+/// [`covered_span`] computed one signed area at a time (the same values,
+/// so the same span) with bounds, and a bound on each end's error: `[s₀,
+/// s₁, Δs₀, Δs₁]`.
+fn covered_span_bounded(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<[f64; 4]> {
+    let mut span = [0.0, 1.0, 0.0, 0.0];
+    let [v0, v1, v2] = t.v;
+    for (f0, f1) in [(v0, v1), (v1, v2), (v2, v0)] {
+        let (va, vb) = (
+            orient2d_value_bounded(f0, f1, a),
+            orient2d_value_bounded(f0, f1, b),
+        );
+        let mut narrowed = (span[0], span[1]);
+        cut_by_edge(&mut narrowed, va.value, vb.value, a, b, (f0, f1), t_first)?;
+        // The cut's error: the values' bounds over their difference (no
+        // cancellation: opposite signs), and the quotient's rounding.
+        let err = (va.bound + vb.bound) / (va.value - vb.value).abs() + f64::EPSILON;
+        if narrowed.0 != span[0] {
+            span[2] = err;
+        }
+        if narrowed.1 != span[1] {
+            span[3] = err;
+        }
+        (span[0], span[1]) = narrowed;
+    }
+    (span[0] < span[1]).then_some(span)
+}
+
+/// Neumaier's compensated sum, with the count and the magnitudes of its
+/// terms for its error bound.
 #[derive(Default)]
 struct Sum {
     sum: f64,
     c: f64,
+    magnitude: f64,
+    n: u32,
 }
 
 impl Sum {
@@ -1054,10 +1197,23 @@ impl Sum {
             self.c += (x - t) + self.sum;
         }
         self.sum = t;
+        self.magnitude += x.abs();
+        self.n += 1;
     }
 
     fn value(&self) -> f64 {
         self.sum + self.c
+    }
+
+    /// A bound on the sum's error, and the terms' own (each piece of the
+    /// area kernel within `3 ε`, the unit disk's and the square's): the
+    /// compensated sum is within `2 ε |s| + 4 n ε² Σ|tᵢ|` of the exact sum
+    /// of its terms (Neumaier; Higham, *Accuracy and Stability*, §4.3).
+    fn bound(&self) -> f64 {
+        let eps = f64::EPSILON;
+        let n = f64::from(self.n);
+        (2.0 * eps * self.value().abs() + 4.0 * n * eps * eps * self.magnitude + 3.0 * n * eps)
+            * (1.0 + 4.0 * eps)
     }
 }
 
@@ -1263,6 +1419,12 @@ impl Interior {
         }
         self.find_full_blocks();
         true
+    }
+
+    /// How far inside some triangle every point of a marked cell lies:
+    /// `2⁻²⁰ w / √2` (see [`Interior`]).
+    fn margin(&self) -> f64 {
+        self.w / f64::from(1_u32 << 20) * std::f64::consts::FRAC_1_SQRT_2
     }
 
     /// Fills [`Interior::full`] from the marks.
@@ -1620,8 +1782,11 @@ mod tests {
                 (Measure::Square, 1.0)
             };
             let tris = clipped_like(&mut rng, n, h);
-            let searched = union_area_sweeping_from(&tris, measure, h, &mut scratch, usize::MAX);
-            let swept = union_area_sweeping_from(&tris, measure, h, &mut scratch, 1);
+            let searched =
+                union_area_sweeping_from::<false>(&tris, &[], measure, h, &mut scratch, usize::MAX)
+                    .0;
+            let swept =
+                union_area_sweeping_from::<false>(&tris, &[], measure, h, &mut scratch, 1).0;
             assert!(
                 (searched - swept).abs() <= 1e-13,
                 "case {case}: {n} triangles, searched {searched}, swept {swept}"
@@ -1873,7 +2038,7 @@ mod tests {
                 let d = corner[n][n] - corner[0][0];
                 (Measure::Square, 1.5, d.x * d.y)
             };
-            let area = union_area(&tris, measure, half, &mut scratch);
+            let area = union_area::<false>(&tris, &[], measure, half, &mut scratch).0;
             assert!(
                 (area - expected).abs() <= 1e-14,
                 "case {case}: {n}² squares, {area} against {expected}"
@@ -1904,7 +2069,7 @@ mod tests {
                 .collect();
             let l = (n - 1) as f64 * delta;
             let expected = 0.5 + l - (n - 1) as f64 * delta * delta / 2.0;
-            let area = union_area(&tris, Measure::Square, 1.0, &mut scratch);
+            let area = union_area::<false>(&tris, &[], Measure::Square, 1.0, &mut scratch).0;
             assert!(
                 (area - expected).abs() <= 1e-12,
                 "{n} translates {delta} apart: {area} against {expected}"
@@ -1936,8 +2101,8 @@ mod tests {
             .max_by(|a, b| (a.hi.x - a.lo.x).total_cmp(&(b.hi.x - b.lo.x)))
             .expect("some");
         let mut scratch = UnionScratch::default();
-        let all = union_area(&tris, Measure::Disk(1.0), h, &mut scratch);
-        let one = union_area(&[largest], Measure::Disk(1.0), h, &mut scratch);
+        let all = union_area::<false>(&tris, &[], Measure::Disk(1.0), h, &mut scratch).0;
+        let one = union_area::<false>(&[largest], &[], Measure::Disk(1.0), h, &mut scratch).0;
         assert!(one > 0.1);
         assert!((all - one).abs() <= 1e-14, "{all} against {one}");
     }
@@ -2203,7 +2368,7 @@ mod tests {
             } else {
                 Measure::Square
             };
-            let with = union_area(&tris, measure, h, &mut scratch);
+            let with = union_area::<false>(&tris, &[], measure, h, &mut scratch).0;
             assert!(scratch.interior.n > 0, "case {case}: not deep");
             edges += 3 * n;
             dropped += tris
@@ -2223,7 +2388,8 @@ mod tests {
                     });
                 }
             }
-            let without = union_area_in::<false>(&tris, measure, h, &mut scratch, SWEEP_FROM);
+            let without =
+                union_area_in::<false, false>(&tris, &[], measure, h, &mut scratch, SWEEP_FROM).0;
             assert_eq!(
                 with.to_bits(),
                 without.to_bits(),

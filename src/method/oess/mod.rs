@@ -208,6 +208,7 @@ impl Method for Oess {
         Ok(Output {
             visibility: p.visibility,
             stderr: None,
+            bound: None,
             end_weights: Some(p.end_weights),
         })
     }
