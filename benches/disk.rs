@@ -7,9 +7,9 @@
 //! `cargo bench --bench disk`; figures in `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use glam::{DVec2, DVec3, Vec2, Vec3};
 use softshadow::arbitrary::disk::{clipped_edge, disk_edge};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3, Vec2, Vec3};
 use softshadow::kernel::disk::{f32 as k32, f64 as k64};
 use std::hint::black_box;
 use std::time::Duration;

@@ -5,12 +5,12 @@
 //! reported throughput is per element.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::Vec2;
 use softshadow::arbitrary::light::{
     distortion_case, embed_3d, falloff_t, linear_light_case, linear_light_well_conditioned,
     LinearLightCase,
 };
 use softshadow::arbitrary::Rng;
+use softshadow::glam::Vec2;
 use softshadow::kernel::distortion;
 use softshadow::kernel::falloff::{self, Falloff};
 use softshadow::kernel::linear_light::{self, OccluderSide};

@@ -25,7 +25,6 @@
 //! `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, Criterion, Throughput};
-use glam::{DVec3, Vec3A};
 use obvhs::aabb::Aabb;
 use obvhs::bvh2::builder::build_bvh2;
 use obvhs::cwbvh::builder::build_cwbvh;
@@ -34,6 +33,7 @@ use obvhs::BvhBuildParams;
 use rayon::prelude::*;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::{DVec3, Vec3A};
 use softshadow::kernel::segment::segment_blocked;
 use softshadow::scene::Camera;
 use std::hint::black_box;

@@ -4,7 +4,7 @@
 //! references parallelise over receivers, so ratios carry over).
 //!
 //! - `default_scene`: the default scene's floor receivers in the bunny's
-//!   penumbra (where `1e-9 < V < 1 − 1e-9`), and the whole floor grid (a
+//!   penumbra (`definitions::in_penumbra`), and the whole floor grid (a
 //!   frame).
 //! - `occluders`: a receiver under a sphere light behind `n` random small
 //!   triangles, every one of which projects onto the light.
@@ -12,9 +12,10 @@
 //! `cargo bench --bench references`; figures in `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::definitions::in_penumbra;
+use softshadow::glam::DVec3;
 use softshadow::reference::exact::{self, Scratch};
 use softshadow::reference::monte_carlo::{self, Options};
 use softshadow::scene::builtin::{builtin, floor_receivers};
@@ -30,9 +31,7 @@ fn default_scene(c: &mut Criterion) {
     let penumbra: Vec<DVec3> = grid
         .iter()
         .copied()
-        .filter(
-            |&p| matches!(exact::visibility(&bvh, &light, p), Ok(v) if v > 1e-9 && v < 1.0 - 1e-9),
-        )
+        .filter(|&p| matches!(exact::visibility(&bvh, &light, p), Ok(v) if in_penumbra(v)))
         .collect();
     let mut g = c.benchmark_group("default_scene");
     g.sample_size(10).measurement_time(Duration::from_secs(4));

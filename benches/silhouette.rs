@@ -7,8 +7,8 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use glam::{DVec3, Vec3};
 use softshadow::arbitrary::mesh::icosphere;
+use softshadow::glam::{DVec3, Vec3};
 use softshadow::kernel::silhouette::MeshTopology;
 
 fn silhouette(c: &mut Criterion) {

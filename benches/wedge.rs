@@ -6,9 +6,9 @@ use std::hint::black_box;
 use std::time::Duration;
 
 use criterion::{criterion_group, criterion_main, Criterion};
-use glam::DVec3;
 use softshadow::arbitrary::mesh::{light_frame_edge, unit_vector, wedge_case, WedgeCase};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::DVec3;
 use softshadow::kernel::wedge::{f32 as w32, f64 as w64};
 
 const CASES: usize = 1024;

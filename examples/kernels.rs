@@ -3,7 +3,7 @@
 //!
 //! `cargo run --example kernels`
 
-use glam::{DVec2, DVec3};
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::kernel::disk::f64::{circle_segment_occlusion, polygon_disk_area};
 use softshadow::kernel::predicate::{orient2d, Sign};
 use softshadow::kernel::silhouette::MeshTopology;

@@ -17,7 +17,7 @@
 //! triangle corner rounded to `f32` (so that an `f32` engine sees the very
 //! same triangles); the receivers are floor points of a 64 × 64 grid around
 //! the bunny's shadow (`scene::builtin::floor_receivers`, rounded to `f32`)
-//! that lie in the exact penumbra (`1e-9 < V < 1 − 1e-9` on the rounded
+//! that lie in the exact penumbra (`definitions::in_penumbra` on the rounded
 //! triangles), evenly spaced among them. The rays are the segments from
 //! each receiver to the light points `monte_carlo::sample_points` lists
 //! for it — the rays `monte_carlo::visibility` casts, in its order — their
@@ -36,8 +36,9 @@
 //!   receivers (sample generation, the light's point mapping and the
 //!   estimate included): the reference as users run it, per ray cast.
 
-use glam::DVec3;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::definitions::in_penumbra;
+use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options};
 use softshadow::scene::builtin::{builtin, floor_receivers};
@@ -80,9 +81,7 @@ fn main() {
     let penumbra: Vec<DVec3> = floor_receivers(&scene, GRID)
         .into_iter()
         .map(to_f32)
-        .filter(
-            |&p| matches!(exact::visibility(&bvh, &light, p), Ok(v) if v > 1e-9 && v < 1.0 - 1e-9),
-        )
+        .filter(|&p| matches!(exact::visibility(&bvh, &light, p), Ok(v) if in_penumbra(v)))
         .collect();
     let step = (penumbra.len() as f64 / wanted as f64).max(1.0);
     let receivers: Vec<DVec3> = (0..wanted.min(penumbra.len()))

@@ -10,7 +10,7 @@
 //! The arguments are the side of the camera image (default 256) and the
 //! number of random scenes (default 24).
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact};
 use softshadow::render::image::ErrorRow;
 use softshadow::render::{Frame, Stages};

@@ -52,9 +52,9 @@
 //! rays per CPU-second. One line starting with `RESULT` is meant for
 //! scripts.
 
-use glam::DVec3;
 use rayon::prelude::*;
 use softshadow::bvh::{Bvh, Hit, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::scene::Camera;
 use std::fs::{self, File};
 use std::io::{BufWriter, Write};

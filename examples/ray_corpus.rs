@@ -57,10 +57,10 @@
 //! noisy measure of per-ray cost when other work competes for the cores.
 //! One line per scene starting with `RESULT` is meant for scripts.
 
-use glam::DVec3;
 use softshadow::arbitrary::mesh::icosphere;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use std::fs;
 use std::path::PathBuf;
 

@@ -4,7 +4,7 @@
 //!
 //! `cargo run --release --example render`
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact, Pcss};
 use softshadow::render::image::{error_heat_map, shaded, ErrorSummary};
 use softshadow::render::{Frame, Stages, BACKGROUND};

@@ -55,7 +55,7 @@
 //! view of [`definitions`]): `V = 1 − area(triangle ∩ disk) / πr²`.
 //!
 //! ```
-//! use glam::DVec2;
+//! use softshadow::glam::DVec2;
 //! use softshadow::kernel::disk::f64::polygon_disk_area;
 //!
 //! let r = 0.5;
@@ -101,17 +101,65 @@
 //!   inputs, shared by the property tests, the fuzz targets and the
 //!   benchmarks.
 
+// Links to the items of a feature that is off lead to the list above, so
+// that the page documents every feature set without a broken link (each
+// `doc = ""` ends the paragraph before the link definitions).
+#![cfg_attr(
+    not(feature = "bvh"),
+    doc = "",
+    doc = "[`Occluders`]: #feature-flags",
+    doc = "[`Bvh`]: #feature-flags"
+)]
+#![cfg_attr(
+    not(feature = "reference"),
+    doc = "",
+    doc = "[`reference::agree`]: #feature-flags"
+)]
+#![cfg_attr(
+    not(feature = "render"),
+    doc = "",
+    doc = "[`Frame`]: #feature-flags",
+    doc = "[`Stages`]: #feature-flags",
+    doc = "[`ErrorSummary`]: #feature-flags",
+    doc = "[`Method`]: #feature-flags",
+    doc = "[`method::run`]: #feature-flags"
+)]
+#![cfg_attr(not(feature = "report"), doc = "", doc = "[`report`]: #feature-flags")]
 #![cfg_attr(docsrs, feature(doc_cfg))]
 
-pub use glam;
+// Under its own name for dependants (and for the crate's own modules: an
+// `extern crate` at the root is in every module's scope); see `glam_dep`
+// in Cargo.toml.
+pub extern crate glam_dep as glam;
 
 #[doc = include_str!("../docs/definitions.md")]
-pub mod definitions {}
+pub mod definitions {
+    /// How far the exact `V` must be from 0 and from 1 for a receiver to
+    /// be in the [penumbra group](self#receiver-groups): `10⁻⁹`, above the
+    /// exact reference's error (at most `3.4·10⁻¹²` against every closed
+    /// form of `docs/accuracy/references.md`; a light covered by several
+    /// triangles may leave `~10⁻¹⁶` instead of 0), far below any visible
+    /// shade. Without it the group would move with the exact answer's
+    /// last bits.
+    pub const PENUMBRA_MARGIN: f64 = 1e-9;
+
+    /// Whether a receiver whose exact visibility is `v_exact` is in the
+    /// [penumbra group](self#receiver-groups):
+    /// `PENUMBRA_MARGIN < v_exact < 1 − PENUMBRA_MARGIN` (false for NaN).
+    /// The report, the renderer's error table and the benches all decide
+    /// the group here.
+    #[must_use]
+    pub fn in_penumbra(v_exact: f64) -> bool {
+        v_exact > PENUMBRA_MARGIN && v_exact < 1.0 - PENUMBRA_MARGIN
+    }
+}
 
 #[cfg(any(test, feature = "arbitrary"))]
 pub mod arbitrary;
 #[cfg(feature = "bvh")]
 pub mod bvh;
+#[cfg(feature = "float-io")]
+pub mod float_io;
 pub mod kernel;
 #[cfg(feature = "render")]
 pub mod method;

@@ -18,6 +18,7 @@ mod support;
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::definitions::in_penumbra;
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
@@ -50,7 +51,7 @@ fn exact_agrees_with_monte_carlo_on_random_scenes() {
             &Options::new(SAMPLES).with_seed(case_index as u64),
         )
         .expect("the exact reference accepted this receiver");
-        penumbra += usize::from(e > 0.0 && e < 1.0);
+        penumbra += usize::from(in_penumbra(e));
         let allowed = agreement_tolerance(&m, SAMPLES, q);
         assert!(
             (m.visibility - e).abs() <= allowed,

@@ -10,8 +10,8 @@
 
 mod support;
 
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
+use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::scene::Light;
 use softshadow::{Bvh, Occluders};
@@ -99,6 +99,8 @@ pub const FAMILIES: &[&str] = &[
     "light of radius 1e-6",
     "grazing near the light's plane",
     "grazing at elevation 1e-6",
+    "long edge seen end-on",
+    "tiny light at 1e9, rim",
 ];
 
 /// A case of `family` with light `kind`, or `None` where the generator
@@ -265,6 +267,83 @@ pub fn case(family: &str, kind: usize, rng: &mut Rng) -> Option<Case> {
             let tris = vec![crossing_triangle(rng, p, at)];
             Case { p, light, tris }
         }
+        "long edge seen end-on" => {
+            // A plate-like triangle reaching 30–300 distances both ways
+            // along its edge that crosses the light (a floor or a wall
+            // seen from near it): the plane through p and that edge is a
+            // cross product of two nearly parallel rows.
+            let light = light_of(kind, rng, c, r, p)?;
+            let at = aim(rng, &light, r);
+            let d = (at - p).normalize();
+            let along = (d.any_orthonormal_vector() + v3(rng, 0.2)).normalize();
+            let side = d.cross(along).normalize();
+            let through = p + (at - p) * rng.uniform(0.2, 0.8);
+            let reach = dist * rng.uniform(30.0, 300.0);
+            let a = through - along * reach * rng.uniform(0.5, 1.5);
+            let b = through + along * reach * rng.uniform(0.5, 1.5);
+            let e = through + side * reach + d * reach * rng.uniform(-0.01, 0.01);
+            Case {
+                p,
+                light,
+                tris: vec![[a, b, e]],
+            }
+        }
+        "tiny light at 1e9, rim" => {
+            // A light of radius 1e-6 about 1e9 from the origin, and an
+            // edge whose image passes within 1e-9 … 1e-3 of its rim (a
+            // rect's: of a corner), a small triangle beyond: only a sliver
+            // at the rim is hidden, which culling must not lose to the
+            // rounding of the pyramid's corners (ulp(1e9) ≈ 1e-7).
+            let tiny = 1e-6 * rng.uniform(1.0, 3.0);
+            let light = light_of(kind, rng, c, tiny, p)?;
+            let (rim, outward) = match light {
+                Light::Rect(q) => {
+                    let (su, sv) = (
+                        if rng.chance(0.5) { 1.0 } else { -1.0 },
+                        if rng.chance(0.5) { 1.0 } else { -1.0 },
+                    );
+                    let corner = q.center() + q.u() * su + q.v() * sv;
+                    (corner, (corner - q.center()).normalize())
+                }
+                _ => {
+                    let normal = match light {
+                        Light::Disk(k) => k.normal(),
+                        _ => (p - c).normalize(),
+                    };
+                    let e1 = normal.any_orthonormal_vector();
+                    (c + e1 * tiny, e1)
+                }
+            };
+            let gap = 10f64.powf(rng.uniform(-9.0, -3.0)) * tiny;
+            let mark = rim - outward * gap;
+            let d = (mark - p).normalize();
+            let across = d.cross(outward).normalize();
+            let out =
+                d.cross(across).normalize() * -outward.dot(d.cross(across).normalize()).signum();
+            // Small (its image a few hundredths of the light wide), so
+            // that its box is culled if the pyramid loses the rim.
+            let t = rng.uniform(0.3, 0.7);
+            let through = p + (mark - p) * t;
+            let size = tiny * t * rng.uniform(0.01, 0.05) * (mark - p).length() / dist;
+            let tri = [
+                through + across * size,
+                through - across * size,
+                through + out * size,
+            ];
+            let o = DVec3::new(
+                rng.uniform(0.3, 1.0),
+                rng.uniform(-1.0, -0.3),
+                rng.uniform(0.3, 1.0),
+            ) * 1e9;
+            moved(
+                Case {
+                    p,
+                    light,
+                    tris: vec![tri],
+                },
+                o,
+            )?
+        }
         _ => panic!("unknown family {family}"),
     };
     case.light.emitter(case.p).ok()?;
@@ -398,7 +477,7 @@ proptest::proptest! {
     #[test]
     fn the_bound_contains_the_error(
         family in 0..FAMILIES.len(),
-        kind in 0usize..4,
+        kind in 0usize..5,
         seed in proptest::prelude::any::<u64>(),
     ) {
         let mut rng = Rng::new(seed);

@@ -4,11 +4,11 @@
 //! a tree, determinism across thread counts, and the batch forms
 //! (`closest_hits`, `closest_hit_many`) against one call per ray.
 
-use glam::DVec3;
 use softshadow::arbitrary::mesh::{closed_mesh, icosphere, Mesh as IndexedMesh};
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Hit, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::kernel::segment::segment_crossing;
 use softshadow::scene::primitive::{cuboid, sphere};
 use softshadow::scene::Mesh;

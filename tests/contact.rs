@@ -20,9 +20,9 @@
 
 mod support;
 
-use glam::DVec3;
 use proptest::prelude::*;
 use softshadow::arbitrary::{step_ulps, Rng};
+use softshadow::glam::DVec3;
 use softshadow::reference::stats::{agreement_tolerance, sidak, student_t_two_sided_quantile};
 use softshadow::reference::{exact, monte_carlo};
 use softshadow::scene::Light;

@@ -10,10 +10,10 @@
 mod support;
 use support::{normal_two_sided_quantile, printing, samples, sidak, Big, Ctx};
 
-use glam::{DVec2, Vec2};
 use proptest::prelude::*;
 use softshadow::arbitrary::disk::{clipped_edge, disk_edge, edge, polygon, radius, DiskEdge};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, Vec2};
 use softshadow::kernel::disk::{f32 as k32, f64 as k64};
 use softshadow::kernel::predicate::{orient2d, Sign};
 use std::f64::consts::PI;

@@ -5,8 +5,8 @@
 //! stay within `1e-9` of each closed form.
 #![cfg(feature = "reference")]
 
-use glam::DVec3;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::reference::exact::visibility;
 use softshadow::scene::{Light, ReceiverError};
 use std::f64::consts::PI;

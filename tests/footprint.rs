@@ -3,7 +3,7 @@
 //! SSOC's distortion, the reach depth against the radius, the clips, and a
 //! mapped edge against the light point it hides, built by hand.
 
-use glam::{DVec2, DVec3};
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::kernel::footprint::f64::*;
 
 #[test]

@@ -3,8 +3,8 @@
 //! exact answer exceeds it on any camera receiver of any built-in scene,
 //! and `run` applies it as `min(V, V_h)`.
 
-use glam::{DVec2, DVec3};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::method::{self, Exact, HardShadow, Method, Pcss, Sism};
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::{builtin, Light, BUILTIN_NAMES};

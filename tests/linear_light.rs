@@ -20,12 +20,12 @@
 mod support;
 use support::{exhaustive, printing};
 
-use glam::{DVec2, DVec3, Vec2, Vec3};
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{
     embed_3d, linear_light_case, linear_light_well_conditioned, LinearLightCase,
 };
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3, Vec2, Vec3};
 use softshadow::kernel::linear_light::{self, OccluderSide};
 
 const U64: f64 = f64::EPSILON / 2.0;
@@ -34,7 +34,7 @@ const U32: f64 = f32::EPSILON as f64 / 2.0;
 /// Exact arithmetic on floating-point expansions, and a double-double
 /// rounding of the result.
 mod exact {
-    use glam::DVec2;
+    use softshadow::glam::DVec2;
 
     pub fn two_sum(a: f64, b: f64) -> (f64, f64) {
         let s = a + b;

@@ -17,10 +17,10 @@
 //! - Every estimate is its rays counted, bit for bit, whatever samples it
 //!   decides on the light's plane (proptest).
 
-use glam::DVec3;
 use proptest::prelude::*;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::kernel::segment::segment_blocked;
 use softshadow::reference::monte_carlo::{
     visibility, visibility_many, Error, Estimate, Options, REPLICATES,

@@ -3,10 +3,10 @@
 //! allocation. The silhouette queries append to the caller's `Vec`: given
 //! room, they allocate nothing either.
 
-use glam::{DVec2, DVec3, Vec2};
 use softshadow::arbitrary::disk::{clipped_edge, disk_edge, polygon, radius};
 use softshadow::arbitrary::mesh::{icosphere, wedge_case};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3, Vec2};
 use softshadow::kernel::falloff::Falloff;
 use softshadow::kernel::linear_light::OccluderSide;
 use softshadow::kernel::silhouette::MeshTopology;

@@ -5,7 +5,7 @@
 //! changes; the paper's eq. 1 agrees with the stable construction; and the
 //! paper's three artifacts show where the paper says they appear.
 
-use glam::{DVec2, DVec3};
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::method::{self, Exact, Oess};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::primitive::{cuboid, quad, sphere};
@@ -470,4 +470,62 @@ fn end_weights_shade_on_the_plain_picture_s_scale() {
         }
     }
     assert!(compared > 50, "{compared} receivers brighter from L's half");
+}
+
+/// A segment light of any length is OESS's to answer (issue 39: a length of
+/// 1e-300 was refused, "no light frame", where the loader accepts it): down
+/// to the least difference of doubles it gives the point light's answer,
+/// the limit of a shrinking segment — 0 where the ray from the receiver to
+/// the light crosses the card, 1 where it passes well clear. Lengths below
+/// an ulp of ordinary coordinates need ends near 0: the segment runs from
+/// `(0, 3, 0)` along a slanted direction of the xz-plane.
+#[test]
+fn a_segment_of_any_length_is_answered() {
+    // The card: a triangle at y = 1, not symmetric about the light.
+    let card = [
+        DVec3::new(-1.1, 1.0, -0.9),
+        DVec3::new(1.3, 1.0, -1.2),
+        DVec3::new(0.1, 1.0, 1.4),
+    ];
+    let c = DVec3::new(0.0, 3.0, 0.0);
+    let mesh = softshadow::scene::Mesh::new(card.to_vec(), vec![[0, 1, 2]]).unwrap();
+    let floor = quad(DVec3::ZERO, DVec3::X * 4.0, DVec3::Z * 4.0).unwrap();
+    // How far inside the card (negative: outside) the ray from the floor
+    // point p to c crosses y = 1, by the edge functions (the card is
+    // counter-clockwise in (x, z): inside is to the left of each edge).
+    let inside = |p: DVec3| {
+        let q = p + (c - p) * ((1.0 - p.y) / (c.y - p.y));
+        let q = DVec2::new(q.x, q.z);
+        (0..3)
+            .map(|k| {
+                let (a, b) = (card[k], card[(k + 1) % 3]);
+                let (a, b) = (DVec2::new(a.x, a.z), DVec2::new(b.x, b.z));
+                (b - a).normalize().perp_dot(q - a)
+            })
+            .fold(f64::INFINITY, f64::min)
+    };
+    let frame = floor_frame(grid((-2.7, 2.7), (-2.7, 2.7), 41).into_iter());
+    for length in [1e-6, 1e-40, 1e-160, 1e-300, 4.9e-324] {
+        let b = c + DVec3::new(0.8 * length, 0.0, -0.6 * length);
+        assert_ne!(b, c, "{length:e}");
+        let light = Light::segment(c, b).unwrap();
+        let scene = Scene::new(light)
+            .with_mesh("floor", floor.clone())
+            .with_mesh("card", mesh.clone());
+        let stages = Stages::new(&scene);
+        let run = method::run(&Oess::default(), &stages, &frame)
+            .unwrap_or_else(|e| panic!("length {length:e}: {e}"));
+        let mut checked = [0, 0];
+        for (r, &v) in frame.receivers().iter().zip(&run.output.visibility) {
+            let d = inside(r.position);
+            // Five texels of the 800² maps over the floor's window and
+            // more from the shadow's edge: the point light's answer.
+            if d.abs() > 0.05 {
+                let want = if d > 0.0 { 0.0 } else { 1.0 };
+                assert_eq!(v, want, "length {length:e}, receiver {}", r.position);
+                checked[usize::from(d > 0.0)] += 1;
+            }
+        }
+        assert!(checked[0] > 500 && checked[1] > 200, "{checked:?}");
+    }
 }

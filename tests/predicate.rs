@@ -4,10 +4,10 @@
 
 mod support;
 
-use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use robust::{Coord, Coord3D};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::kernel::predicate::{orient2d, orient2d_value, orient3d, Sign};
 use support::Big;
 

@@ -4,9 +4,9 @@
 //! `LightView::new` and `LightView::fit`.
 #![cfg(feature = "render")]
 
-use glam::{DVec2, DVec3};
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::Occluders;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::render::raster::{
     rasterize, rasterize_occluders, LightMaps, LightView, RasterError,
 };

@@ -4,8 +4,8 @@
 //! soups, and exact depth for a plane parallel to the image plane.
 #![cfg(feature = "render")]
 
-use glam::{DVec2, DVec3};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::render::raster::{rasterize, LightView};
 
 #[path = "support/raster.rs"]

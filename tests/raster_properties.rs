@@ -5,9 +5,9 @@
 //! matching `rasterize` while reusing its maps.
 #![cfg(feature = "render")]
 
-use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::render::raster::{
     rasterize, rasterize_into, rasterize_triangle, LightMaps, LightView, RasterError,
 };

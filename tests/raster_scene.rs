@@ -5,8 +5,8 @@
 //! cast through every pixel centre.
 #![cfg(all(feature = "render", feature = "scene-file"))]
 
-use glam::{DVec2, DVec3};
 use softshadow::bvh::Occluders;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::render::raster::{rasterize_occluders, LightView};
 use softshadow::scene::LightFrame;
 

@@ -9,8 +9,8 @@
 //! most once on its outer boundary.
 #![cfg(feature = "render")]
 
-use glam::{DVec2, DVec3};
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::render::raster::LightView;
 use softshadow::scene::LightFrame;
 

@@ -8,10 +8,10 @@
 
 mod support;
 
-use glam::{DVec2, DVec3};
 use proptest::prelude::*;
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::kernel::disk::f64::polygon_disk_area;
 use softshadow::kernel::receiver_view::{AreaView, Scratch, SegmentView};
 use softshadow::reference::exact;

@@ -1,7 +1,7 @@
 //! The renderer and the first methods, end to end: receivers from the
 //! camera, the methods on them, against the references.
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact, HardShadow, Method, MonteCarlo, Pcss, PcssBias};
 use softshadow::render::image::{error_heat_map, shaded, visibility_image, ErrorSummary};
 use softshadow::render::{Frame, Receiver, Stages, BACKGROUND};

@@ -164,3 +164,405 @@ fn a_method_of_ones_own_is_swept_like_the_registrys() {
     assert_eq!(mine.shaded, hard.shaded);
     assert!(mine.mc_equal.is_some());
 }
+
+// ---------------------------------------------------------------------
+// Hostile and inconsistent parts (issue 39): each refused whole, before
+// anything is written; names that flatten alike kept apart; a scene that
+// cannot be prepared said.
+
+fn tmp(name: &str) -> std::path::PathBuf {
+    let d = std::env::temp_dir().join(format!("softshadow-report-{}-{name}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&d);
+    std::fs::create_dir_all(&d).unwrap();
+    d
+}
+
+fn as_json(r: &Results) -> serde_json::Value {
+    serde_json::to_value(r).unwrap()
+}
+
+fn from_json(v: serde_json::Value) -> Results {
+    serde_json::from_value(v).unwrap()
+}
+
+/// The error of a merge that must be refused (no dump of the results
+/// when it is not).
+fn refusal(merged: Result<Results, String>) -> String {
+    match merged {
+        Ok(_) => panic!("merged what must be refused"),
+        Err(e) => e,
+    }
+}
+
+/// A part's profile longer than its columns used to pass the merge and
+/// panic in the plots with `--out` half-written.
+#[test]
+fn a_part_whose_profile_outruns_its_columns_is_refused_before_anything_is_written() {
+    let part = report::run(&cases(&["contact"]), &small(&["hard"]), None, &quiet).unwrap();
+    let mut v = as_json(&part);
+    v["scenes"][0]["profile_exact"]
+        .as_array_mut()
+        .unwrap()
+        .push(0.5.into());
+    let bad = from_json(v);
+    let err = refusal(report::merge(vec![bad.clone()]));
+    assert!(err.contains("profile"), "{err}");
+    let dir = tmp("profile");
+    assert!(report::write(&bad, &dir).is_err());
+    assert_eq!(std::fs::read_dir(&dir).unwrap().count(), 0);
+}
+
+/// Monte Carlo's RMSE falling from 1 at N = 2 to the smallest positive
+/// double at N = 4: the fitted power law's factor, `e^744`, is beyond
+/// `f64`; it used to be written as `null`, which the merge could not read
+/// back.
+#[test]
+fn every_number_written_reads_back() {
+    let config = Config {
+        mc: vec![2, 4],
+        ..small(&["hard"])
+    };
+    let part = report::run(&cases(&["contact"]), &config, None, &quiet).unwrap();
+    let mut v = as_json(&part);
+    for c in v["cells"].as_array_mut().unwrap() {
+        let rmse = match c["method"].as_str().unwrap() {
+            "mc:2" => 1.0,
+            "mc:4" => f64::from_bits(1),
+            _ => continue,
+        };
+        c["errors"][0]["rmse"] = rmse.into();
+    }
+    let merged = report::merge(vec![from_json(v)]).unwrap();
+    let text = serde_json::to_string(&merged).unwrap();
+    let back: Results = serde_json::from_str(&text).unwrap();
+    assert_eq!(back, merged);
+    // And the merge takes its own output.
+    assert_eq!(report::merge(vec![back]).unwrap(), merged);
+}
+
+fn shard_of(index: u32, names: &[&str], methods: &[&str]) -> Results {
+    let config = Config {
+        shard: Some(Shard { index, count: 2 }),
+        ..small(methods)
+    };
+    report::run(&cases(names), &config, None, &quiet).unwrap()
+}
+
+/// Parts of another scene list, another method list (the same number of
+/// cells either way), a foreign format, a cell beyond the sweep, a
+/// miscounted sweep: each used to merge into a report that looked whole.
+#[test]
+fn parts_of_different_sweeps_are_refused() {
+    let a = shard_of(1, &["contact", "comb"], &["hard"]);
+    let refused = |parts: Vec<Results>, needle: &str| {
+        let err = refusal(report::merge(parts));
+        assert!(err.contains(needle), "{err:?} lacks {needle:?}");
+        assert!(!err.contains('\n'), "{err:?}");
+    };
+    refused(
+        vec![
+            a.clone(),
+            shard_of(2, &["contact", "linear-light"], &["hard"]),
+        ],
+        "scenes",
+    );
+    refused(
+        vec![a.clone(), shard_of(2, &["contact", "comb"], &["pcss"])],
+        "settings",
+    );
+    let mut v = as_json(&a);
+    v["format"] = "softshadow-report/0".into();
+    refused(vec![from_json(v)], "format");
+    let mut v = as_json(&a);
+    v["cells"][0]["index"] = 10_000.into();
+    refused(vec![from_json(v)], "beyond");
+    let mut v = as_json(&a);
+    v["config"]["cells"] = 1.into();
+    refused(vec![from_json(v)], "cells");
+}
+
+/// Two parts of 100,000 cells each: the merge used to check each cell
+/// against every cell before it (minutes); now linear. The limit only
+/// stops a quadratic merge from hanging the suite: it is about a hundred
+/// times what the merge takes.
+#[test]
+fn a_large_merge_is_linear() {
+    let scenes: Vec<String> = (0..1000).map(|k| format!("scene-{k}")).collect();
+    let mut settings = vec!["exact".to_owned()];
+    settings.extend((0..198).map(|k| format!("own-{k}")));
+    settings.extend(["mc:2".to_owned(), "mc:4".to_owned()]);
+    let total = scenes.len() * settings.len();
+    let empty = serde_json::json!({
+        "format": report::FORMAT,
+        "config": {"side": 16, "runs": 1, "mc": [2, 4], "pictures": 0,
+                   "scenes": scenes, "settings": settings, "cells": total},
+        "machines": ["a machine"],
+        "scenes": [],
+        "cells": [],
+        "yardsticks": {},
+    });
+    let parts: Vec<Results> = (0..2)
+        .map(|p| {
+            let mut part = from_json(empty.clone());
+            part.cells = (p..total)
+                .step_by(2)
+                .map(|k| report::CellRecord {
+                    index: k,
+                    scene: scenes[k / settings.len()].clone(),
+                    method: settings[k % settings.len()].clone(),
+                    base: settings[k % settings.len()]
+                        .split(':')
+                        .next()
+                        .unwrap()
+                        .to_owned(),
+                    status: "error: the scene has no camera".to_owned(),
+                    machine: 0,
+                    runs: Vec::new(),
+                    seconds: None,
+                    errors: None,
+                    shaded: None,
+                    profile: Vec::new(),
+                    picture: None,
+                    mc_equal: None,
+                    mc_equal_penumbra: None,
+                    speedup: None,
+                })
+                .collect();
+            part
+        })
+        .collect();
+    let (tx, rx) = std::sync::mpsc::channel();
+    std::thread::spawn(move || {
+        let _ = tx.send(report::merge(parts).map(|r| r.cells.len()));
+    });
+    let merged = rx
+        .recv_timeout(std::time::Duration::from_secs(60))
+        .expect("the merge of 2 × 100,000 cells ends within a minute");
+    assert_eq!(merged.unwrap(), total);
+}
+
+/// `con tact` and `con-tact` flatten to the same file name: their
+/// pictures and plots used to overwrite each other.
+#[test]
+fn scenes_whose_names_flatten_alike_keep_their_own_files() {
+    let config = Config {
+        side: 16,
+        picture_side: 8,
+        ..small(&["hard"])
+    };
+    let cases: Vec<Case> = ["con tact", "con-tact", "CON-TACT"]
+        .iter()
+        .map(|n| Case {
+            name: (*n).to_owned(),
+            scene: builtin("contact").unwrap(),
+        })
+        .collect();
+    let dir = tmp("alike");
+    let results = report::finish(report::run(&cases, &config, Some(&dir), &quiet).unwrap());
+    report::write(&results, &dir).unwrap();
+    let pictures: Vec<&str> = results
+        .cells
+        .iter()
+        .filter_map(|c| c.picture.as_deref())
+        .collect();
+    // `exact` and `hard` on each scene, each its own file (compared
+    // without case: some file systems do).
+    assert_eq!(pictures.len(), 6, "{pictures:?}");
+    let distinct: std::collections::HashSet<String> =
+        pictures.iter().map(|p| p.to_lowercase()).collect();
+    assert_eq!(distinct.len(), 6, "{pictures:?}");
+    for p in &pictures {
+        assert!(dir.join(p).is_file(), "{p}");
+    }
+    // Each scene's section of the index links plots of its own.
+    let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    let plots: Vec<&str> = index
+        .lines()
+        .filter(|l| l.starts_with("![plots/"))
+        .collect();
+    let distinct: std::collections::HashSet<String> =
+        plots.iter().map(|p| p.to_lowercase()).collect();
+    assert!(plots.len() >= 3 * 2, "{plots:?}");
+    assert_eq!(distinct.len(), plots.len(), "{plots:?}");
+}
+
+/// A 245-character scene name (a long path) used to make a picture name
+/// longer than a file name may be.
+#[test]
+fn a_long_scene_name_makes_file_names_within_limits() {
+    let config = Config {
+        side: 16,
+        picture_side: 8,
+        ..small(&["hard"])
+    };
+    let case = Case {
+        name: format!("/{}/scene.json", "d".repeat(232)),
+        scene: builtin("contact").unwrap(),
+    };
+    let dir = tmp("long");
+    let results = report::finish(report::run(&[case], &config, Some(&dir), &quiet).unwrap());
+    report::write(&results, &dir).unwrap();
+    let mut files = 0;
+    let mut stack = vec![dir.clone()];
+    while let Some(d) = stack.pop() {
+        for e in std::fs::read_dir(&d).unwrap() {
+            let path = e.unwrap().path();
+            assert!(path.file_name().unwrap().len() <= 100, "{}", path.display());
+            if path.is_dir() {
+                stack.push(path);
+            } else {
+                files += 1;
+            }
+        }
+    }
+    // results.json, index.md, two pictures, at least two plots.
+    assert!(files >= 6, "{files}");
+}
+
+/// A scene whose receivers are inside its light cannot be prepared: the
+/// index used to be silent about it.
+#[test]
+fn a_scene_that_cannot_be_prepared_is_said_in_the_index() {
+    let scene = softshadow::scene::file::scene_from_str(
+        "inside.json",
+        r#"{"light": {"type": "sphere", "center": [0, 0.2, 0], "radius": 0.5},
+            "camera": {"eye": [0, 2, 6], "target": [0, 0, 0], "fov_y_deg": 40, "width": 24, "height": 18},
+            "meshes": [{"name": "floor", "primitive": {"type": "quad", "center": [0, 0, 0], "u": [4, 0, 0], "v": [0, 0, 4]}}]}"#,
+        std::path::Path::new("."),
+    )
+    .unwrap();
+    let mut all = cases(&["contact"]);
+    all.push(Case {
+        name: "inside".to_owned(),
+        scene,
+    });
+    let results = report::finish(report::run(&all, &small(&["hard"]), None, &quiet).unwrap());
+    let dir = tmp("unprepared");
+    report::write(&results, &dir).unwrap();
+    let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    let line = index
+        .lines()
+        .find(|l| l.contains("could not be prepared"))
+        .unwrap_or_else(|| panic!("{index}"));
+    let _ = line;
+    assert!(
+        index
+            .lines()
+            .any(|l| l.contains("`inside`") && l.contains("inside the sphere light")),
+        "{index}"
+    );
+}
+
+/// A picture side of 2³¹ used to overflow (twice it, for the scene named
+/// `default`) to a picture of 9 × 2; a side beyond the frame is the
+/// frame's: the same picture as at the frame's side.
+#[test]
+fn a_picture_side_beyond_the_frame_is_the_frame() {
+    let picture = |picture_side: u32| {
+        let config = Config {
+            side: 16,
+            picture_side,
+            ..small(&["hard"])
+        };
+        let case = Case {
+            name: "default".to_owned(),
+            scene: builtin("contact").unwrap(),
+        };
+        let dir = tmp(&format!("picture-side-{picture_side}"));
+        let results = report::run(&[case], &config, Some(&dir), &quiet).unwrap();
+        let name = results.cells[1].picture.clone().unwrap();
+        let file = std::io::BufReader::new(std::fs::File::open(dir.join(&name)).unwrap());
+        let mut reader = png::Decoder::new(file).read_info().unwrap();
+        let mut pixels = vec![0; reader.output_buffer_size().unwrap()];
+        let info = reader.next_frame(&mut pixels).unwrap();
+        (info.width, info.height, pixels)
+    };
+    let (w, h, pixels) = picture(1 << 31);
+    // The shaded frame (16 wide) beside the heat-map, 4 apart.
+    assert!(w > 2 * 16 + 4 && h >= 16, "{w} × {h}");
+    assert_eq!((w, h, pixels), picture(16));
+}
+
+#[test]
+fn the_error_plots_show_exact_on_the_floor_and_every_setting_labelled_apart() {
+    let settings = [
+        "pcss",
+        "pcss:map=256",
+        "sism",
+        "sism:horizon",
+        "hard",
+        "hard:horizon",
+    ];
+    let config = small(&settings);
+    let results = report::finish(report::run(&cases(&["contact"]), &config, None, &quiet).unwrap());
+    let dir = std::env::temp_dir().join(format!("softshadow-report-plots-{}", std::process::id()));
+    let _ = std::fs::remove_dir_all(&dir);
+    report::write(&results, &dir).unwrap();
+    let svg = std::fs::read_to_string(dir.join("plots/contact/all.svg")).unwrap();
+    let exact_ms = results
+        .cells
+        .iter()
+        .find(|c| c.method == "exact")
+        .and_then(|c| c.seconds)
+        .unwrap()
+        * 1e3;
+    // The texts drawn, with their positions.
+    let texts: Vec<(f64, f64, String)> = svg
+        .split("<text")
+        .skip(1)
+        .filter_map(|t| {
+            let attr = |name: &str| -> Option<f64> {
+                let at = t.find(&format!(" {name}=\""))? + name.len() + 3;
+                t[at..].split('"').next()?.parse().ok()
+            };
+            let body = t
+                .split_once('>')?
+                .1
+                .split("</text>")
+                .next()?
+                .trim()
+                .to_owned();
+            Some((attr("x")?, attr("y")?, body))
+        })
+        .collect();
+    let exact: Vec<_> = texts
+        .iter()
+        .filter(|t| t.2.starts_with("exact: RMSE 0"))
+        .collect();
+    assert_eq!(exact.len(), 1, "{texts:?}");
+    let shown: f64 = exact[0]
+        .2
+        .split(", ")
+        .nth(1)
+        .unwrap()
+        .trim_end_matches(" ms")
+        .parse()
+        .unwrap();
+    assert!(
+        (shown - exact_ms).abs() <= 0.01 * exact_ms,
+        "{shown} vs {exact_ms}"
+    );
+    let labels: Vec<_> = texts
+        .iter()
+        .filter(|t| settings.contains(&t.2.as_str()))
+        .collect();
+    for s in settings {
+        assert_eq!(
+            labels.iter().filter(|t| t.2 == s).count(),
+            1,
+            "{s}: {texts:?}"
+        );
+    }
+    // Estimated boxes (11 px text, at most 6 px a character) apart.
+    let boxes: Vec<(f64, f64, f64, f64)> = labels
+        .iter()
+        .map(|(x, y, s)| (*x, *y, x + 6.0 * s.len() as f64, y + 11.0))
+        .collect();
+    for (i, a) in boxes.iter().enumerate() {
+        for b in &boxes[i + 1..] {
+            let apart = a.2 <= b.0 || b.2 <= a.0 || a.3 <= b.1 || b.3 <= a.1;
+            assert!(apart, "labels overlap: {a:?} {b:?}");
+        }
+    }
+    std::fs::remove_dir_all(&dir).unwrap();
+}

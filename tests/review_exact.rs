@@ -12,9 +12,9 @@
 
 mod support;
 
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::kernel::predicate::{orient3d, Sign};
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, REPLICATES};

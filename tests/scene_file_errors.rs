@@ -5,7 +5,7 @@
 
 #![cfg(feature = "scene-file")]
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::scene::file::{
     load_points, load_scene, mesh_from_obj, points_from_str, scene_from_str,
 };
@@ -62,13 +62,76 @@ fn missing_file_is_an_error() {
     assert!(msg.starts_with(&expect), "{msg}");
 }
 
+/// A byte that is not UTF-8 is reported at its line and column, with its
+/// value, in a scene or a points file, large or small.
 #[test]
 fn non_utf8_file_is_an_error() {
     let path = scratch("utf8").join("bad.json");
     std::fs::write(&path, b"{\"light\": \xff}").unwrap();
+    let latin1 = "(byte 0xFF; the file must be UTF-8, not Latin-1 or another encoding)";
     assert_eq!(
         load_scene(&path).unwrap_err().to_string(),
-        format!("{}: not valid UTF-8 (byte 10)", path.display())
+        format!("{}:1:11: not valid UTF-8 {latin1}", path.display())
+    );
+    // A Latin-1 "é" in a mesh name on line 3, past 100 kB of points.
+    let many = vec!["[0, 0, 0]"; 12_000].join(", ");
+    let text = format!(
+        "{{{LIGHT},\n\"meshes\": [{{\"positions\": [{many}],\n  \"name\": \"caf\u{1}\"}}]}}"
+    );
+    let mut bytes = text.into_bytes();
+    let at = bytes.iter().position(|&b| b == 1).unwrap();
+    bytes[at] = 0xe9;
+    std::fs::write(&path, &bytes).unwrap();
+    let msg = load_scene(&path).unwrap_err().to_string();
+    assert_eq!(
+        msg,
+        format!("{}:3:15: not valid UTF-8 (byte 0xE9; the file must be UTF-8, not Latin-1 or another encoding)", path.display())
+    );
+    std::fs::write(&path, b"{\"points\": [{\"p\": [0, 0, 0]}]}\n\x80").unwrap();
+    assert_eq!(
+        load_points(&path, 1).unwrap_err().to_string(),
+        format!(
+            "{}:2:1: not valid UTF-8 {}",
+            path.display(),
+            latin1.replace("0xFF", "0x80")
+        )
+    );
+}
+
+/// A UTF-8 byte-order mark (which some editors write) is skipped, in files
+/// and in text; a UTF-16 one is refused by name, not as "expected value".
+#[test]
+fn a_byte_order_mark_is_skipped_and_utf16_named() {
+    let dir = scratch("bom");
+    let text = with_meshes("");
+    let path = dir.join("bom.json");
+    std::fs::write(&path, format!("\u{feff}{text}")).unwrap();
+    assert!(load_scene(&path).is_ok());
+    assert!(scene_from_str("s.json", &format!("\u{feff}{text}"), manifest()).is_ok());
+    let points = dir.join("points.json");
+    std::fs::write(&points, "\u{feff}{\"points\": [{\"p\": [0, 1, 0]}]}").unwrap();
+    assert_eq!(load_points(&points, 0).unwrap().len(), 1);
+    assert_eq!(
+        points_from_str("p.json", "\u{feff}{\"points\": []}", 0).unwrap(),
+        vec![]
+    );
+    // A mark then nothing is an empty file.
+    std::fs::write(&path, "\u{feff}").unwrap();
+    assert_eq!(
+        load_scene(&path).unwrap_err().to_string(),
+        format!("{}: file is empty", path.display())
+    );
+    let utf16: Vec<u8> = std::iter::once(0xfeff_u16)
+        .chain(text.encode_utf16())
+        .flat_map(u16::to_le_bytes)
+        .collect();
+    std::fs::write(&path, utf16).unwrap();
+    assert_eq!(
+        load_scene(&path).unwrap_err().to_string(),
+        format!(
+            "{}: is UTF-16 (it starts with a UTF-16 byte-order mark); save it as UTF-8",
+            path.display()
+        )
     );
 }
 
@@ -253,6 +316,21 @@ fn unknown_and_duplicate_keys_are_rejected() {
         scene_err(r#"{"meshes": [], "meshes": []}"#),
         "scene.json:1:23: duplicate key \"meshes\""
     );
+    // In a streamed mesh, a small part, the points file.
+    let text = with_meshes(r#"{"name": "a", "name": "b"}"#);
+    let column = text.find(r#""name": "b""#).unwrap() + 6; // after the key
+    assert_eq!(
+        scene_err(&text),
+        format!("scene.json:1:{column}: duplicate key \"name\"")
+    );
+    assert!(scene_err(&with_light(
+        r#"{"type": "point", "position": [0, 5, 0], "position": [0, 6, 0]}"#
+    ))
+    .ends_with(": duplicate key \"position\""));
+    assert_eq!(
+        points_err(r#"{"points": [], "points": []}"#, 1),
+        "points.json:1:23: duplicate key \"points\""
+    );
 }
 
 #[test]
@@ -391,7 +469,7 @@ fn obj_problems_are_reported_at_the_obj_field() {
     std::fs::write(&bad, "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 7\n").unwrap();
     assert_eq!(
         scene_err_in(&with_meshes(r#"{"obj": "bad.obj"}"#), &dir),
-        format!("scene.json: meshes[0].obj: {bad:?}: OBJ: face vertex index out of bounds")
+        format!("scene.json: meshes[0].obj: {bad:?}: line 4: a face (f) names a vertex that does not exist")
     );
     let inf = dir.join("inf.obj");
     std::fs::write(&inf, "v 0 0 0\nv 1e400 0 0\nv 0 1 0\nf 1 2 3\n").unwrap();
@@ -405,6 +483,50 @@ fn obj_problems_are_reported_at_the_obj_field() {
         scene_err_in(&with_meshes(r#"{"obj": 3}"#), &dir),
         "scene.json: meshes[0].obj: expected a string, got a number"
     );
+}
+
+/// OBJ errors name their line; bytes that are not UTF-8 (Latin-1 in a
+/// comment, as old exporters write) are no error where they are harmless,
+/// and one at its line where they are not.
+#[test]
+fn obj_errors_name_their_line() {
+    let tri = "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\n";
+    let mut latin1 = b"# cr\xe9\xe9 par Blender\n".to_vec();
+    latin1.extend_from_slice(tri.as_bytes());
+    assert_eq!(
+        mesh_from_obj("l.obj", &latin1).unwrap().triangles().len(),
+        1
+    );
+    let mut bad_vertex = tri.as_bytes().to_vec();
+    bad_vertex.extend_from_slice(b"v 1 \xe9 0\nf 1 2 4\n");
+    assert_eq!(
+        mesh_from_obj("b.obj", &bad_vertex).unwrap_err().to_string(),
+        "b.obj: line 5: a vertex (v) that is not 3 or 4 numbers"
+    );
+    let cases = [
+        ("v 0 0\n", "line 1: a vertex (v) that is not 3 or 4 numbers"),
+        (
+            "v 0 0 0\nvn 0 x 1\n",
+            "line 2: a normal (vn) that is not 3 numbers",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\n\nf 1 2 x\n",
+            "line 5: a face (f) that cannot be read",
+        ),
+        (
+            "v 0 0 0\nv 1 0 0\nv 0 1 0\nf 1 2 3\nf 1 -4 2\no next\nf 1 2 3",
+            "line 5: a face (f) names a vertex that does not exist",
+        ),
+    ];
+    for (text, want) in cases {
+        assert_eq!(
+            mesh_from_obj("c.obj", text.as_bytes())
+                .unwrap_err()
+                .to_string(),
+            format!("c.obj: {want}"),
+            "{text:?}"
+        );
+    }
 }
 
 #[test]

@@ -4,7 +4,7 @@
 
 #![cfg(feature = "scene-file")]
 
-use glam::{DMat3, DVec3};
+use softshadow::glam::{DMat3, DVec3};
 use softshadow::scene::file::scene_from_str;
 use softshadow::scene::primitive::{
     cuboid, merge, quad, sphere, sphere_bands, Transform, MAX_SEGMENTS, MIN_SEGMENTS,

@@ -14,7 +14,6 @@ use support::{printing, samples};
 
 use std::collections::{BTreeMap, HashMap};
 
-use glam::{DMat3, DVec3, Vec3};
 use proptest::prelude::*;
 use robust::Coord3D;
 use softshadow::arbitrary::mesh::{
@@ -22,6 +21,7 @@ use softshadow::arbitrary::mesh::{
     tetrahedron, unit_vector, Mesh, SphereLight,
 };
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DMat3, DVec3, Vec3};
 use softshadow::kernel::silhouette::{
     EdgeKind, MeshTopology, SilhouetteEdge, SilhouetteError, TopologyError, MAX_VERTICES,
 };
@@ -375,7 +375,8 @@ fn projected_left(x: DVec3, from: DVec3, to: DVec3, w: DVec3) -> Option<bool> {
     let project = |p: DVec3| {
         let v = p - x;
         let depth = v.dot(forward);
-        (depth > 1e-6 * v.length()).then(|| glam::DVec2::new(v.dot(right), v.dot(up)) / depth)
+        (depth > 1e-6 * v.length())
+            .then(|| softshadow::glam::DVec2::new(v.dot(right), v.dot(up)) / depth)
     };
     let (a, b, c) = (project(from)?, project(to)?, project(w)?);
     let cross = (b - a).perp_dot(c - a);

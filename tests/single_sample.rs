@@ -3,7 +3,7 @@
 //! test against a concave receiver, the interpolation against searching
 //! every pixel, and its errors against the exact reference.
 
-use glam::{DVec2, DVec3};
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::method::single_sample::SingleSamplePasses;
 use softshadow::method::{self, Exact, Method, SingleSample};
 use softshadow::render::image::ErrorSummary;

@@ -3,8 +3,9 @@
 //! within the paper's approximations), the chain identities of the
 //! composition, and the overdraw optimisations' bookkeeping.
 
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
+use softshadow::definitions::in_penumbra;
+use softshadow::glam::DVec3;
 use softshadow::kernel::silhouette::MeshTopology;
 use softshadow::kernel::wedge::f64::PenumbraWedge;
 use softshadow::method::sism::{Bound, Composition, EdgeSource, SismPasses};
@@ -90,7 +91,7 @@ fn one_plate_under_a_disk_light_is_exact() {
     let scene = plates(&[(1.0, 0.0)]);
     let frame = floor_frame(&scene, 48);
     let reference = exact(&scene, &frame);
-    let penumbra = reference.iter().filter(|&&v| v > 0.0 && v < 1.0).count();
+    let penumbra = reference.iter().filter(|&&v| in_penumbra(v)).count();
     assert!(penumbra > 300, "the grid covers the penumbra ({penumbra})");
     for composition in [Composition::Independent, Composition::ExactUnion] {
         let m = Sism::default().with_composition(composition);

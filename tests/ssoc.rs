@@ -5,7 +5,7 @@
 //! the backprojected variant are the exact reference; where two edges'
 //! penumbrae overlap, more lookups bring the answer closer.
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::kernel::falloff::f64::{bernstein, disk_edge_falloff};
 use softshadow::method::{self, BackprojectedSsoc, Exact, Method, Ssoc};
 use softshadow::render::image::ErrorSummary;

@@ -12,12 +12,12 @@
 mod support;
 use support::{printing, samples, Big};
 
-use glam::{DVec2, DVec3, Vec3};
 use proptest::prelude::*;
 use softshadow::arbitrary::mesh::{
     light_frame_edge, sphere_light, unit_vector, wedge_case, WedgeCase,
 };
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3, Vec3};
 use softshadow::kernel::wedge::{f32 as w32, f64 as w64, WedgeError};
 
 /// Budget for the angle between an `f32` wedge plane and the `f64` plane of

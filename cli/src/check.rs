@@ -5,6 +5,7 @@
 
 use crate::selfcheck;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::definitions::in_penumbra;
 use softshadow::glam::DVec3;
 use softshadow::reference::exact;
 use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
@@ -18,8 +19,6 @@ use std::time::Instant;
 const GRID: usize = 32;
 /// Monte Carlo samples per receiver.
 const SAMPLES: u32 = 4096;
-/// How far from 0 and 1 a receiver's `V` must be to count as penumbra.
-const PENUMBRA: f64 = 1e-9;
 /// Family-wise false-failure rate of the agreement check.
 const ALPHA: f64 = 1e-3;
 
@@ -47,14 +46,13 @@ fn references(scene: &Scene) -> bool {
     let t = Instant::now();
     let exact_all = exact::visibility_many(&bvh, light, &grid);
     let exact_seconds = t.elapsed().as_secs_f64();
-    // The penumbra: where the exact answer is between 0 and 1 by more than
-    // its accuracy (1e-9 by its tests; sums of boundary pieces that cancel
-    // leave ~1e-16 where the light is fully covered by several triangles).
+    // The penumbra group: where the exact answer is between 0 and 1 by more
+    // than its accuracy.
     let (points, exact): (Vec<DVec3>, Vec<f64>) = grid
         .iter()
         .zip(&exact_all)
         .filter_map(|(&p, v)| match v {
-            Ok(v) if *v > PENUMBRA && *v < 1.0 - PENUMBRA => Some((p, *v)),
+            Ok(v) if in_penumbra(*v) => Some((p, *v)),
             _ => None,
         })
         .unzip();

@@ -3,10 +3,13 @@
 //! exact answer).
 
 use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_method};
+use softshadow::definitions::in_penumbra;
+use softshadow::float_io::{exr_bytes, npy_bytes_f64};
 use softshadow::method::{self, Exact, Method};
 use softshadow::render::image::{
-    error_heat_map, in_penumbra, shaded, shaded_by_ends, visibility_image, ErrorRow,
+    error_heat_map, irradiance_factor, shaded, shaded_by_ends, visibility_image, ErrorRow,
 };
+use softshadow::render::score::Score;
 use softshadow::render::{Frame, Stages, Stats};
 use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -31,20 +34,41 @@ pub struct Args {
     /// Image height (default: the scene camera's).
     #[arg(long, value_parser = clap::value_parser!(u32).range(1..=16384))]
     height: Option<u32>,
-    /// Seed of the Monte Carlo samples (the same as the option seed=S of
-    /// mc:N; default the method's own).
+    /// Seed of the Monte Carlo samples: the option seed=S of mc:N (not
+    /// both; refused for a method without a seed); default the method's
+    /// own.
     #[arg(long)]
     seed: Option<u64>,
     /// Print each stage's time and what was built.
     #[arg(long)]
     stats: bool,
+    /// What to write, one or more of png (8-bit pictures), npy (H×W
+    /// float64 arrays: visibility, shaded, error; NaN where no surface) and
+    /// exr (one float32 file with the channels V, shaded and error).
+    #[arg(long, value_delimiter = ',', default_value = "png")]
+    format: Vec<Format>,
+    /// Print the errors as one JSON object (the fields of `softshadow
+    /// score --json`, with the method and its time) instead of the table.
+    #[arg(long)]
+    json: bool,
     /// Refuse a render whose estimated peak memory exceeds this many GiB
     /// (default: half of this machine's memory).
     #[arg(long, value_parser = parse_gib)]
     max_memory: Option<f64>,
 }
 
-fn parse_gib(s: &str) -> Result<f64, String> {
+/// An output format of `render`.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, clap::ValueEnum)]
+pub enum Format {
+    /// 8-bit sRGB pictures.
+    Png,
+    /// NumPy float64 arrays.
+    Npy,
+    /// One OpenEXR file of float32 channels.
+    Exr,
+}
+
+pub(crate) fn parse_gib(s: &str) -> Result<f64, String> {
     match s.parse::<f64>() {
         Ok(g) if g.is_finite() && g > 0.0 => Ok(g),
         _ => Err(format!("expected a positive number of GiB, got {s:?}")),
@@ -53,7 +77,9 @@ fn parse_gib(s: &str) -> Result<f64, String> {
 
 /// Measured peak memory of `render` (`/usr/bin/time -f %M`, 1024² and
 /// 2048², hard, exact, sism, oess): 103–117 bytes per pixel over a fixed
-/// part of at most about 130 MiB (SISM's and OESS's maps).
+/// part (the BVH, the scene, the default maps of SISM and OESS) of at most
+/// about 130 MiB. A method's own maps at other resolutions
+/// ([`Method::map_bytes`]) are counted apart.
 const BYTES_PER_PIXEL: f64 = 120.0;
 const FIXED_BYTES: f64 = 256.0 * MIB;
 const MIB: f64 = (1u64 << 20) as f64;
@@ -71,9 +97,18 @@ fn default_memory_limit() -> f64 {
     total.map_or(8.0 * GIB, |b| 0.5 * b)
 }
 
-/// Refuses a frame of `w × h` whose estimated peak exceeds the limit.
-fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
-    let estimate = BYTES_PER_PIXEL * f64::from(w) * f64::from(h) + FIXED_BYTES;
+/// Refuses, before any allocation, a run of `method` on `receivers`
+/// receivers (`what` names them: `--width W --height H`, a points file)
+/// whose estimated peak — per receiver, fixed, and the method's maps —
+/// exceeds the limit (`--max-memory` GiB, else half the machine's memory).
+pub(crate) fn check_memory(
+    what: &str,
+    receivers: u64,
+    method: &dyn Method,
+    max_gib: Option<f64>,
+) -> Result<(), String> {
+    let maps = method.map_bytes() as f64;
+    let estimate = BYTES_PER_PIXEL * receivers as f64 + FIXED_BYTES + maps;
     let (limit, whence) = match max_gib {
         Some(g) => (g * GIB, "--max-memory"),
         None => (
@@ -82,9 +117,14 @@ fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
         ),
     };
     if estimate > limit {
+        let maps = if maps > 0.0 {
+            format!(", {:.1} GiB of the method's maps", maps / GIB)
+        } else {
+            String::new()
+        };
         return Err(format!(
-            "--width {w} --height {h}: about {:.1} GiB estimated ({BYTES_PER_PIXEL} bytes per pixel \
-             and {:.0} MiB of maps), over the limit of {:.1} GiB ({whence})",
+            "{what}: about {:.1} GiB estimated ({BYTES_PER_PIXEL} bytes per receiver, \
+             {:.0} MiB fixed{maps}), over the limit of {:.1} GiB ({whence})",
             estimate / GIB,
             FIXED_BYTES / MIB,
             limit / GIB
@@ -94,20 +134,23 @@ fn check_memory(w: u32, h: u32, max_gib: Option<f64>) -> Result<(), String> {
 }
 
 /// The scene's camera at the requested size, and the receivers it sees.
-fn camera_frame(
+pub(crate) fn camera_frame(
     scene: &Scene,
     stages: &Stages,
     name: &str,
     width: Option<u32>,
     height: Option<u32>,
-    max_memory: Option<f64>,
+    memory: Option<(&dyn Method, Option<f64>)>,
 ) -> Result<Frame, String> {
     let camera = scene
         .camera()
         .ok_or_else(|| format!("--scene {name}: the scene has no camera; rendering needs one"))?;
     let (w, h) = camera.resolution();
     let (w, h) = (width.unwrap_or(w), height.unwrap_or(h));
-    check_memory(w, h, max_memory)?;
+    if let Some((method, max_gib)) = memory {
+        let what = format!("--width {w} --height {h} --method {}", method.name());
+        check_memory(&what, u64::from(w) * u64::from(h), method, max_gib)?;
+    }
     let camera = camera
         .with_resolution(w, h)
         .map_err(|e| format!("--width/--height: {e}"))?;
@@ -141,7 +184,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         &args.scene,
         args.width,
         args.height,
-        args.max_memory,
+        Some((method.as_ref(), args.max_memory)),
     )?;
     let fail = |e: method::MethodError| format!("--method {}: {e}", args.method);
     let run = run_method(method.as_ref(), &stages, &frame).map_err(fail)?;
@@ -158,27 +201,107 @@ pub fn run(args: &Args) -> Result<(), String> {
         file_part(&run.method)
     );
     let v = &run.output.visibility;
-    let images = [
-        ("visibility", visibility_image(&frame, v)),
-        (
-            "shaded",
-            match &run.output.end_weights {
-                Some(w) => shaded_by_ends(&scene, &frame, w),
-                None => shaded(&scene, &frame, v),
-            },
-        ),
-        ("error", error_heat_map(&frame, v, &exact.output.visibility)),
-    ];
-    for (kind, image) in &images {
-        let path = args.out.join(format!("{stem}-{kind}.png"));
-        image
-            .write_png(&path)
-            .map_err(|e| format!("{}: {e}", path.display()))?;
-        say!("wrote {}", path.display());
+    let exact_v = &exact.output.visibility;
+    if args.format.contains(&Format::Png) {
+        let images = [
+            ("visibility", visibility_image(&frame, v)),
+            (
+                "shaded",
+                match &run.output.end_weights {
+                    Some(w) => shaded_by_ends(&scene, &frame, w),
+                    None => shaded(&scene, &frame, v),
+                },
+            ),
+            ("error", error_heat_map(&frame, v, exact_v)),
+        ];
+        for (kind, image) in &images {
+            let path = args.out.join(format!("{stem}-{kind}.png"));
+            image
+                .write_png(&path)
+                .map_err(|e| format!("{}: {e}", path.display()))?;
+            if !args.json {
+                say!("wrote {}", path.display());
+            }
+        }
     }
-    print_table(&frame, &exact, std::slice::from_ref(&run));
+    // With --json, stdout is the JSON object alone.
+    let quiet = args.json;
+    write_floats(
+        &args.out,
+        &stem,
+        &args.format,
+        &scene,
+        &frame,
+        v,
+        exact_v,
+        quiet,
+    )?;
+    if args.json {
+        let image = frame.to_image(v, f64::NAN);
+        let (score, _) = Score::new(&frame, scene.light(), &image, exact_v);
+        let mut json: serde_json::Value =
+            serde_json::from_str(&score.to_json()).map_err(|e| e.to_string())?;
+        json["method"] = run.method.clone().into();
+        json["seconds"] = run.seconds.into();
+        say!("{json}");
+    } else {
+        print_table(&frame, &exact, std::slice::from_ref(&run));
+    }
     if args.stats {
         say!("\nstages:\n{}", stages.stats());
+    }
+    Ok(())
+}
+
+/// The float outputs of `render`: per pixel `V`, the shaded value
+/// (irradiance factor · `V`, `Φ = 1`) and the error `V − V_exact`, NaN
+/// where no surface; as `.npy` (float64) and/or one `.exr` (float32).
+#[allow(clippy::too_many_arguments)]
+fn write_floats(
+    dir: &Path,
+    stem: &str,
+    formats: &[Format],
+    scene: &Scene,
+    frame: &Frame,
+    v: &[f64],
+    exact: &[f64],
+    quiet: bool,
+) -> Result<(), String> {
+    if !formats.iter().any(|f| *f != Format::Png) {
+        return Ok(());
+    }
+    let light = scene.light();
+    let shaded_v: Vec<f64> = frame
+        .receivers()
+        .iter()
+        .zip(v)
+        .map(|(r, v)| {
+            let n = r
+                .normal
+                .unwrap_or_else(|| (light.center() - r.position).normalize_or_zero());
+            irradiance_factor(light, r.position, n) * v
+        })
+        .collect();
+    let error: Vec<f64> = v.iter().zip(exact).map(|(a, b)| a - b).collect();
+    let channels = [
+        ("visibility", "V", frame.to_image(v, f64::NAN)),
+        ("shaded", "shaded", frame.to_image(&shaded_v, f64::NAN)),
+        ("error", "error", frame.to_image(&error, f64::NAN)),
+    ];
+    let (w, h) = frame.size();
+    let (w, h) = (w as usize, h as usize);
+    let write = |name: String, bytes: Vec<u8>| crate::write_out(&dir.join(name), &bytes, quiet);
+    if formats.contains(&Format::Npy) {
+        for (kind, _, data) in &channels {
+            write(format!("{stem}-{kind}.npy"), npy_bytes_f64(&[h, w], data)?)?;
+        }
+    }
+    if formats.contains(&Format::Exr) {
+        let list: Vec<(&str, Vec<f32>)> = channels
+            .iter()
+            .map(|(_, name, data)| (*name, data.iter().map(|&x| x as f32).collect()))
+            .collect();
+        write(format!("{stem}.exr"), exr_bytes(w, h, &list)?)?;
     }
     Ok(())
 }
@@ -199,6 +322,10 @@ pub fn default_run() -> Result<(), String> {
             "bars, a box and a ball under a segment light of length 2.4",
         ),
     ] {
+        if crate::stdout_lost() {
+            // Nothing more would get through: the exit status says so.
+            return Ok(());
+        }
         scene_table(name, what)?;
     }
     say!("\ntotal run {:.2} s", start.elapsed().as_secs_f64());
@@ -213,7 +340,7 @@ pub fn default_run() -> Result<(), String> {
 fn scene_table(name: &str, what: &str) -> Result<(), String> {
     let scene = resolve_scene(name)?;
     let stages = Stages::new(&scene);
-    let frame = camera_frame(&scene, &stages, name, None, None, None)?;
+    let frame = camera_frame(&scene, &stages, name, None, None, Some((&Exact, None)))?;
     let (w, h) = frame.size();
     say!(
         "softshadow: `{name}` ({what}), {w}×{h}, {} receivers, {} threads",

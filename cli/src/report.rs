@@ -5,12 +5,10 @@
 use crate::visibility::resolve_scene;
 use clap::Args as ClapArgs;
 use indicatif::{ProgressBar, ProgressDrawTarget, ProgressStyle};
-use softshadow::render::image::write_atomically;
-use softshadow::report::{self, Case, Config, Results, Shard};
-use softshadow::scene::file::{read_input, MAX_TEXT_BYTES};
+use softshadow::report::{self, Case, Config, Shard, Staged};
 use softshadow::scene::BUILTIN_NAMES;
 use std::io::IsTerminal;
-use std::path::{Path, PathBuf};
+use std::path::PathBuf;
 
 #[derive(ClapArgs)]
 pub struct Args {
@@ -23,14 +21,17 @@ pub struct Args {
     /// the Monte Carlo yardstick always run.
     #[arg(long = "method")]
     methods: Vec<String>,
-    /// The folder the report is written to (created if missing).
+    /// The folder the report is written to (created if missing): a new or
+    /// empty folder, or an earlier report's, which is replaced whole once
+    /// the new report is complete.
     #[arg(long, default_value = "report")]
     out: PathBuf,
     /// Run the i-th of n disjoint parts of the sweep (1 ≤ i ≤ n).
     #[arg(long)]
     shard: Option<Shard>,
-    /// Join the parts written to these folders (each holds a results.json)
-    /// into --out, instead of running.
+    /// Join the parts written to these folders (each holds a results.json,
+    /// checked whole, and the pictures it names) into --out, instead of
+    /// running.
     #[arg(long, num_args = 1.., conflicts_with_all = ["scenes", "methods", "shard"])]
     merge: Vec<PathBuf>,
     /// The side of every scene's camera frame.
@@ -45,7 +46,7 @@ pub struct Args {
     mc_max: u32,
     /// The side of the pictures (the default scene's: twice this, up to
     /// --side); 0 for none.
-    #[arg(long, default_value_t = 128)]
+    #[arg(long, default_value_t = 128, value_parser = clap::value_parser!(u32).range(0..=4096))]
     pictures: u32,
     /// Also write the accuracy pages (methods.md, one per method) into this
     /// folder, keeping each page's text above its marker line.
@@ -71,35 +72,16 @@ fn bar() -> ProgressBar {
     bar
 }
 
-fn read_part(dir: &Path) -> Result<Results, String> {
-    let path = dir.join("results.json");
-    let bytes =
-        read_input(&path, MAX_TEXT_BYTES).map_err(|e| format!("{}: {e}", path.display()))?;
-    serde_json::from_slice(&bytes).map_err(|e| format!("{}: {e}", path.display()))
-}
-
-/// Copies the parts' pictures into `out`.
-fn copy_pictures(parts: &[PathBuf], results: &Results, out: &Path) -> Result<(), String> {
-    for cell in &results.cells {
-        let Some(p) = &cell.picture else { continue };
-        let to = out.join(p);
-        if to.exists() {
-            continue;
-        }
-        if let Some(from) = parts.iter().map(|d| d.join(p)).find(|f| f.exists()) {
-            if let Some(parent) = to.parent() {
-                std::fs::create_dir_all(parent)
-                    .map_err(|e| format!("{}: {e}", parent.display()))?;
-            }
-            let bytes = std::fs::read(&from).map_err(|e| format!("{}: {e}", from.display()))?;
-            write_atomically(&to, &bytes).map_err(|e| format!("{}: {e}", to.display()))?;
-        }
-    }
-    Ok(())
-}
-
 pub fn run(args: &Args) -> Result<(), String> {
+    // Every input and output is checked before the sweep: --out (written
+    // as a set: staged beside it, renamed into place), --accuracy and its
+    // pages, the scenes (each with a camera) and the methods.
     crate::out_dir(&args.out)?;
+    let staged = Staged::new(&args.out).map_err(|e| format!("--out {e}"))?;
+    if let Some(dir) = &args.accuracy {
+        crate::writable_dir("--accuracy", dir)?;
+        report::check_accuracy(dir).map_err(|e| format!("--accuracy {e}"))?;
+    }
     let results = if args.merge.is_empty() {
         let names: Vec<String> = if args.scenes.is_empty() {
             BUILTIN_NAMES.iter().map(|s| (*s).to_owned()).collect()
@@ -109,9 +91,15 @@ pub fn run(args: &Args) -> Result<(), String> {
         let cases = names
             .iter()
             .map(|n| {
+                let scene = resolve_scene(n)?;
+                if scene.camera().is_none() {
+                    return Err(format!(
+                        "--scene {n}: the scene has no camera (the report renders each scene from its camera)"
+                    ));
+                }
                 Ok(Case {
                     name: n.clone(),
-                    scene: resolve_scene(n)?,
+                    scene,
                 })
             })
             .collect::<Result<Vec<_>, String>>()?;
@@ -136,20 +124,15 @@ pub fn run(args: &Args) -> Result<(), String> {
             bar.set_position(done as u64);
             bar.set_message(what.to_owned());
         };
-        let part = report::run(&cases, &config, Some(&args.out), &progress)?;
+        let part = report::run(&cases, &config, Some(staged.path()), &progress)?;
         bar.finish_and_clear();
-        report::finish(part)
+        let results = report::finish(part);
+        report::write(&results, staged.path())?;
+        results
     } else {
-        let parts = args
-            .merge
-            .iter()
-            .map(|d| read_part(d))
-            .collect::<Result<Vec<_>, String>>()?;
-        let merged = report::merge(parts)?;
-        copy_pictures(&args.merge, &merged, &args.out)?;
-        merged
+        report::merge_into(&args.merge, staged.path())?
     };
-    report::write(&results, &args.out)?;
+    staged.commit().map_err(|e| format!("--out {e}"))?;
     if let Some(dir) = &args.accuracy {
         let command = std::iter::once("softshadow".to_owned())
             .chain(std::env::args().skip(1))
@@ -157,7 +140,7 @@ pub fn run(args: &Args) -> Result<(), String> {
             .join(" ");
         report::write_accuracy(&results, dir, &command)?;
     }
-    let missing = results.config.cells - results.cells.len();
+    let missing = results.config.cells.saturating_sub(results.cells.len());
     say!(
         "wrote {} ({} cells{})",
         args.out.join("index.md").display(),
@@ -168,5 +151,16 @@ pub fn run(args: &Args) -> Result<(), String> {
             String::new()
         }
     );
+    // A scene that could not be prepared is in the index, and fails the
+    // run.
+    let unprepared = results.unprepared();
+    if let Some((scene, why)) = unprepared.first() {
+        return Err(format!(
+            "{} of {} scenes could not be prepared (listed in {}): {scene}: {why}",
+            unprepared.len(),
+            results.config.scenes.len(),
+            args.out.join("index.md").display()
+        ));
+    }
     Ok(())
 }

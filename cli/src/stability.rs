@@ -22,7 +22,7 @@ pub fn run(args: &Args) -> Result<(), String> {
     let terminal = std::io::stderr().is_terminal();
     let rows = stability::run(args.side, &|what| {
         if terminal {
-            eprintln!("stability: {what} …");
+            note!("stability: {what} …");
         }
     });
     let command = std::iter::once("softshadow".to_owned())

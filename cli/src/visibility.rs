@@ -2,9 +2,12 @@
 //! method.
 
 use crate::progress::Progress;
-use softshadow::method::{self, Method, MethodError};
-use softshadow::render::{Frame, Stages};
+use softshadow::float_io::{self, npy_bytes_f64, read_npy_f64, read_npy_i64, ImageKind};
+use softshadow::glam::DVec3;
+use softshadow::method::{self, registry, Method, MethodError, OptionError, ParseError, REGISTRY};
+use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::builtin::{builtin, BUILTIN_NAMES};
+use softshadow::scene::file::DOMAIN;
 use softshadow::scene::file::{load_points, load_scene};
 use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};
@@ -16,33 +19,64 @@ pub struct Args {
     /// A built-in scene name (default, comb, …) or a scene file (JSON).
     #[arg(long)]
     scene: String,
-    /// The points file: {"points": [{"p": [x, y, z], "object": i, "normal": [x, y, z]}, …]}.
+    /// The points file: JSON, {"points": [{"p": [x, y, z], "object": i,
+    /// "normal": [x, y, z]}, …]}; or a NumPy .npy of N×3 positions or N×6
+    /// positions and normals (float32 or float64).
     #[arg(long)]
     points: PathBuf,
+    /// With an .npy points file: the object id of each point, an .npy of N
+    /// integers (int32 or int64).
+    #[arg(long)]
+    objects: Option<PathBuf>,
+    /// Write V (and, for Monte Carlo, its standard error to FILE's stem
+    /// + .stderr.npy) as an .npy of N float64 instead of JSON on stdout.
+    #[arg(long)]
+    out: Option<PathBuf>,
     /// The method, NAME or NAME:OPTION,… (the list is below).
     #[arg(long, value_parser = parse_method)]
     method: String,
-    /// Seed of the Monte Carlo samples (the same as the option seed=S of
-    /// mc:N; default the method's own).
+    /// Seed of the Monte Carlo samples: the option seed=S of mc:N (not
+    /// both; refused for a method without a seed); default the method's
+    /// own.
     #[arg(long)]
     seed: Option<u64>,
+    /// Refuse a run whose estimated peak memory exceeds this many GiB
+    /// (default: half of this machine's memory).
+    #[arg(long, value_parser = crate::render::parse_gib)]
+    max_memory: Option<f64>,
 }
 
 /// Checks a method name (clap's value parser), keeping the name.
-pub fn parse_method(s: &str) -> Result<String, String> {
+pub fn parse_method(s: &str) -> Result<String, ParseError> {
     method::parse(s).map(|_| s.to_owned())
 }
 
-/// The method `name`, with `seed=S` added to a Monte Carlo method's
-/// options when a seed is given.
+/// The method `name`, with `seed=S` added to its options when `--seed S`
+/// is given. Refused, rather than one of them silently dropped: `--seed`
+/// for a method without a seed, and `--seed` beside a `seed=` of the name.
 pub fn method_with_seed(name: &str, seed: Option<u64>) -> Result<Box<dyn Method>, String> {
-    match seed {
-        Some(seed) if name == "mc" || name.starts_with("mc:") => {
-            let sep = if name.contains(':') { ',' } else { ':' };
-            method::parse(&format!("{name}{sep}seed={seed}"))
-        }
-        _ => method::parse(name),
+    let Some(seed) = seed else {
+        return method::parse(name).map_err(|e| e.to_string());
+    };
+    let base = name.split(':').next().unwrap_or(name);
+    if !registry::entry(base).is_some_and(|e| e.accepts("seed")) {
+        let seeded: Vec<String> = REGISTRY
+            .iter()
+            .filter(|e| e.is_built() && e.accepts("seed"))
+            .map(|e| e.usage())
+            .collect();
+        return Err(format!(
+            "--seed {seed}: method {base} has no seed (methods with one: {})",
+            seeded.join(", ")
+        ));
     }
+    let sep = if name.contains(':') { ',' } else { ':' };
+    method::parse(&format!("{name}{sep}seed={seed}")).map_err(|e| match e.option() {
+        Some(OptionError::Repeated { .. }) => {
+            format!("--seed {seed}: --method {name} sets seed= already; give the seed once")
+        }
+        _ => e.to_string(),
+    })
 }
 
 /// A built-in scene by name, else a scene file.
@@ -81,15 +115,35 @@ pub fn run_method(
 pub fn run(args: &Args) -> Result<(), String> {
     let scene = resolve_scene(&args.scene)?;
     let method = method_with_seed(&args.method, args.seed)?;
-    let points = load_points(&args.points, scene.meshes().len()).map_err(|e| e.to_string())?;
+    let points = read_points(&args.points, args.objects.as_deref(), scene.meshes().len())?;
+    let what = format!(
+        "{} ({} point{}) --method {}",
+        args.points.display(),
+        points.len(),
+        if points.len() == 1 { "" } else { "s" },
+        method.name()
+    );
+    crate::render::check_memory(&what, points.len() as u64, method.as_ref(), args.max_memory)?;
     let frame = Frame::from_receivers(points);
     let stages = Stages::new(&scene);
     let file = args.points.display();
+    let npy = args.points.extension().is_some_and(|x| x == "npy");
+    let place = |index: usize, field: &str| {
+        if npy {
+            format!("row {index} ({field})")
+        } else {
+            format!("points[{index}].{field}")
+        }
+    };
     let run = run_method(method.as_ref(), &stages, &frame).map_err(|e| match e {
-        MethodError::Receiver { index, error } => format!("{file}: points[{index}].p: {error}"),
-        MethodError::NeedsNormal { index, .. } => format!("{file}: points[{index}].normal: {e}"),
-        MethodError::NeedsObject { index, .. } => format!("{file}: points[{index}].object: {e}"),
-        MethodError::Tolerance { index, .. } => format!("{file}: points[{index}].p: {e}"),
+        MethodError::Receiver { index, error } => format!("{file}: {}: {error}", place(index, "p")),
+        MethodError::NeedsNormal { index, .. } => {
+            format!("{file}: {}: {e}", place(index, "normal"))
+        }
+        MethodError::NeedsObject { index, .. } => {
+            format!("{file}: {}: {e}", place(index, "object"))
+        }
+        MethodError::Tolerance { index, .. } => format!("{file}: {}: {e}", place(index, "p")),
         e => format!("{file}: {e}"),
     })?;
     // The BVH is built inside the run: the time a user waits for the answer.
@@ -105,6 +159,17 @@ pub fn run(args: &Args) -> Result<(), String> {
         // Never reached: methods are total. A NaN must not be printed as if
         // it were an answer.
         return Err(format!("internal error: a non-finite result at index {i}"));
+    }
+    if let Some(path) = &args.out {
+        let n = out.visibility.len();
+        let write =
+            |path: &Path, data: &[f64]| crate::write_out(path, &npy_bytes_f64(&[n], data)?, false);
+        write(path, &out.visibility)?;
+        if let Some(stderr) = &out.stderr {
+            write(&path.with_extension("stderr.npy"), stderr)?;
+        }
+        say!("{n} receivers, method {}, {:.3} s", run.method, seconds);
+        return Ok(());
     }
     let mut json = serde_json::json!({
         "method": run.method,
@@ -123,4 +188,87 @@ pub fn run(args: &Args) -> Result<(), String> {
     }
     say!("{json}");
     Ok(())
+}
+
+/// The receivers of a points file: JSON, or an `.npy` of N×3 positions or
+/// N×6 positions and normals with object ids from `objects`. Every number
+/// finite and within the scene file's domain (10³⁰), normals non-zero
+/// (normalised), object ids of the scene's meshes.
+fn read_points(
+    path: &Path,
+    objects: Option<&Path>,
+    meshes: usize,
+) -> Result<Vec<Receiver>, String> {
+    let bytes = float_io::read_bytes(path).map_err(|e| e.to_string())?;
+    let file = path.display();
+    if ImageKind::sniff(&bytes) != Some(ImageKind::Npy) {
+        if objects.is_some() {
+            return Err(format!(
+                "--objects goes with an .npy points file; {file} is not one (give \"object\" in the JSON points)"
+            ));
+        }
+        return load_points(path, meshes).map_err(|e| e.to_string());
+    }
+    let a = read_npy_f64(&bytes).map_err(|m| format!("{file}: {m}"))?;
+    let (n, cols) = match a.shape[..] {
+        [n, c @ (3 | 6)] => (n, c),
+        _ => {
+            return Err(format!(
+                "{file}: shape {:?}: points are N×3 (positions) or N×6 (positions, normals)",
+                a.shape
+            ))
+        }
+    };
+    let ids = match objects {
+        Some(o) => {
+            let bytes = float_io::read_bytes(o).map_err(|e| e.to_string())?;
+            let ids = read_npy_i64(&bytes).map_err(|m| format!("{}: {m}", o.display()))?;
+            if ids.shape != [n] {
+                return Err(format!(
+                    "{}: shape {:?}, {file} has {n} points (expected [{n}])",
+                    o.display(),
+                    ids.shape
+                ));
+            }
+            Some(ids.data)
+        }
+        None => None,
+    };
+    (0..n)
+        .map(|i| {
+            let row = &a.data[i * cols..(i + 1) * cols];
+            let bad = |what: String| format!("{file}: row {i}: {what}");
+            if let Some(x) = row.iter().find(|x| !x.is_finite() || x.abs() > DOMAIN) {
+                return Err(bad(format!("{x} is not a finite number within ±1e30")));
+            }
+            let normal = if cols == 6 {
+                let n = DVec3::from_slice(&row[3..6]);
+                Some(
+                    n.try_normalize()
+                        .ok_or_else(|| bad("the normal has zero length".into()))?,
+                )
+            } else {
+                None
+            };
+            let object = match &ids {
+                Some(ids) => {
+                    let id = ids[i];
+                    if id < 0 || id >= meshes as i64 {
+                        return Err(format!(
+                            "{}: row {i}: object id {id}, the scene has meshes 0 to {}",
+                            objects.map_or(String::new(), |o| o.display().to_string()),
+                            meshes as i64 - 1
+                        ));
+                    }
+                    Some(id as u32)
+                }
+                None => None,
+            };
+            Ok(Receiver {
+                position: DVec3::from_slice(&row[..3]),
+                normal,
+                object,
+            })
+        })
+        .collect()
 }

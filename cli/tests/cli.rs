@@ -11,7 +11,7 @@ use std::path::PathBuf;
 #[path = "support/cli.rs"]
 mod cli_support;
 
-use cli_support::{refused, softshadow, write};
+use cli_support::{refused, softshadow, visibility, write};
 
 fn dir(name: &str) -> PathBuf {
     cli_support::dir("cli", name)
@@ -183,6 +183,26 @@ fn visibility_prints_the_json_of_the_design() {
     }
 }
 
+/// The library's side of `scene_with_light` with the sphere light of
+/// radius 0.5 at `(0, 3, 0)`: the light and the BVH over the card.
+fn card_under_sphere() -> (softshadow::scene::Light, softshadow::bvh::Bvh) {
+    use softshadow::bvh::{Bvh, Occluders};
+    use softshadow::glam::DVec3;
+    use softshadow::scene::{Light, Mesh, Scene};
+    let mesh = Mesh::new(
+        vec![
+            DVec3::new(-1.0, 1.0, -1.0),
+            DVec3::new(1.0, 1.0, -1.0),
+            DVec3::new(0.0, 1.0, 1.0),
+        ],
+        vec![[0, 1, 2]],
+    )
+    .unwrap();
+    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).unwrap();
+    let scene = Scene::new(light).with_mesh("card", mesh);
+    (light, Bvh::new(Occluders::from_scene(&scene)))
+}
+
 #[test]
 fn visibility_answers_match_the_library() {
     // A card at height 1 between a sphere light and two receivers: the
@@ -221,22 +241,9 @@ fn visibility_answers_match_the_library() {
         .map(|x| x.as_f64().unwrap())
         .collect();
 
-    use softshadow::bvh::{Bvh, Occluders};
     use softshadow::glam::DVec3;
     use softshadow::reference::exact;
-    use softshadow::scene::{Light, Mesh, Scene};
-    let mesh = Mesh::new(
-        vec![
-            DVec3::new(-1.0, 1.0, -1.0),
-            DVec3::new(1.0, 1.0, -1.0),
-            DVec3::new(0.0, 1.0, 1.0),
-        ],
-        vec![[0, 1, 2]],
-    )
-    .unwrap();
-    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).unwrap();
-    let scene = Scene::new(light).with_mesh("card", mesh);
-    let bvh = Bvh::new(Occluders::from_scene(&scene));
+    let (light, bvh) = card_under_sphere();
     // The bounds as printed, read with Rust's correctly rounded parser
     // (serde_json's default reader may be an ulp off).
     let text = String::from_utf8_lossy(&out.stdout);
@@ -304,6 +311,65 @@ fn exact_tolerance_refuses_weak_answers() {
     assert!(bound.iter().all(|b| b.as_f64().unwrap() <= 1e-6), "{json}");
     refused(&run("exact:tolerance=0"), 300, &["tolerance"]);
     refused(&run("exact:tolerance=2"), 300, &["tolerance"]);
+}
+
+/// Numbers cross the program exactly both ways: points given as random
+/// 17-digit literals are read as the doubles nearest them (Rust's
+/// correctly rounded `str::parse`), and the `V` printed reads back, by the
+/// same `str::parse`, as the library's value bit for bit (penumbra
+/// receivers under the card, where `V` takes every value).
+#[test]
+fn visibility_numbers_cross_the_json_exactly() {
+    use softshadow::glam::DVec3;
+    use softshadow::reference::exact;
+    let d = dir("exact-numbers");
+    let light_json = r#"{"type": "sphere", "center": [0, 3, 0], "radius": 0.5}"#;
+    let scene = write(&d, "scene.json", &scene_with_light(light_json));
+    // splitmix64: random doubles in [lo, hi), printed with 17 digits.
+    let mut state = 17u64;
+    let mut digits = |lo: f64, hi: f64| {
+        state = state.wrapping_add(0x9e37_79b9_7f4a_7c15);
+        let mut z = state;
+        z = (z ^ (z >> 30)).wrapping_mul(0xbf58_476d_1ce4_e5b9);
+        z = (z ^ (z >> 27)).wrapping_mul(0x94d0_49bb_1331_11eb);
+        let u = (z ^ (z >> 31)) as f64 / 2f64.powi(64);
+        format!("{:.16e}", lo + (hi - lo) * u)
+    };
+    let literals: Vec<[String; 3]> = (0..200)
+        .map(|_| [digits(-1.6, 1.6), digits(-0.3, 0.3), digits(-1.6, 1.6)])
+        .collect();
+    let list: Vec<String> = literals
+        .iter()
+        .map(|[x, y, z]| format!(r#"{{"p": [{x}, {y}, {z}]}}"#))
+        .collect();
+    let points = write(
+        &d,
+        "points.json",
+        &format!(r#"{{"points": [{}]}}"#, list.join(", ")),
+    );
+    let out = visibility(&scene, &points, "exact", &[]);
+    let stdout = String::from_utf8_lossy(&out.stdout);
+    assert!(
+        out.status.success(),
+        "{}",
+        String::from_utf8_lossy(&out.stderr)
+    );
+    let (_, rest) = stdout
+        .split_once(r#""visibility":["#)
+        .expect("a visibility list");
+    let (list, _) = rest.split_once(']').unwrap();
+    let got: Vec<f64> = list.split(',').map(|x| x.parse().unwrap()).collect();
+
+    let (light, bvh) = card_under_sphere();
+    assert_eq!(got.len(), literals.len());
+    let mut penumbra = 0;
+    for (k, [x, y, z]) in literals.iter().enumerate() {
+        let p = DVec3::new(x.parse().unwrap(), y.parse().unwrap(), z.parse().unwrap());
+        let want = exact::visibility(&bvh, &light, p).unwrap();
+        assert_eq!(got[k].to_bits(), want.to_bits(), "points[{k}] = {p}");
+        penumbra += usize::from(want > 0.0 && want < 1.0);
+    }
+    assert!(penumbra >= 40, "only {penumbra} receivers in the penumbra");
 }
 
 #[test]

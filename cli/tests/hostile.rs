@@ -1,5 +1,7 @@
-//! Hostile input and a hostile environment, one test per case: a closed
-//! stdout ends the program quietly; files are replaced whole (a symlink is
+//! Hostile input and a hostile environment, one test per case: an answer
+//! that cannot be delivered (stdout closed, full, its reader gone) ends
+//! with status 1 after every file is written, a full stderr panics
+//! nothing; files are replaced whole (a symlink is
 //! replaced, never written through); `--out` is checked before any work;
 //! special and oversized input files are refused without being read; error
 //! messages stay one short line whatever the input quoted; option values
@@ -18,7 +20,7 @@ use std::time::{Duration, Instant};
 #[path = "support/cli.rs"]
 mod cli_support;
 
-use cli_support::{bin, pictures_whole, refused, softshadow, write};
+use cli_support::{pictures_whole, refused, softshadow, visibility, write};
 
 fn dir(name: &str) -> PathBuf {
     cli_support::dir("hostile", name)
@@ -29,17 +31,26 @@ const SCENE: &str = r#"{"light": {"type": "sphere", "center": [0, 3, 0], "radius
  "meshes": [{"name": "floor", "primitive": {"type": "quad", "center": [0, 0, 0], "u": [4, 0, 0], "v": [0, 0, 4]}},
             {"name": "card", "positions": [[-1,1,-1],[1,1,-1],[0,1,1]], "triangles": [[0,1,2]]}]}"#;
 
-/// Starts `softshadow args` with its stdout closed before it writes.
+/// Runs `softshadow args` with the reading end of its stdout closed before
+/// it starts. A shell waits for its stdin to close, then becomes the
+/// program; the test closes the pipe's reading end first, so every write
+/// the program makes fails with a broken pipe however the threads are
+/// scheduled (closing it just after starting the program raced with a
+/// program that wrote first, under load).
 fn with_stdout_closed(args: &[&str]) -> Output {
-    let mut child = bin()
+    let mut child = Command::new("sh")
+        .arg("-c")
+        .arg(r#"read -r _; exec "$0" "$@""#)
+        .arg(env!("CARGO_BIN_EXE_softshadow"))
         .args(args)
+        .stdin(Stdio::piped())
         .stdout(Stdio::piped())
         .stderr(Stdio::piped())
         .spawn()
         .unwrap();
-    // Close the reading end at once: every write the program makes fails
-    // with a broken pipe.
     drop(child.stdout.take());
+    // The end of its stdin lets the shell go on to the program.
+    drop(child.stdin.take());
     let mut stderr = Vec::new();
     child
         .stderr
@@ -55,39 +66,131 @@ fn with_stdout_closed(args: &[&str]) -> Output {
     }
 }
 
+/// Runs `softshadow args` under `sh -c` with `redirect` appended (`>&-`,
+/// `2>/dev/full`, …).
+fn with_redirect(args: &[&str], redirect: &str) -> Output {
+    let quoted: Vec<String> = args.iter().map(|a| format!("'{a}'")).collect();
+    let script = format!(
+        "exec '{}' {} {redirect}",
+        env!("CARGO_BIN_EXE_softshadow"),
+        quoted.join(" ")
+    );
+    Command::new("sh").arg("-c").arg(&script).output().unwrap()
+}
+
+/// The three pictures of `render --method hard` of `scene.json` in `d`,
+/// each present and whole.
+fn three_pictures(d: &std::path::Path) {
+    pictures_whole(d, false);
+    for kind in ["visibility", "shaded", "error"] {
+        let p = d.join(format!("scene-hard-{kind}.png"));
+        assert!(p.exists(), "{} is missing", p.display());
+    }
+}
+
+/// An answer that cannot be delivered ends with exit status 1 and one line
+/// saying so — a pipe whose reader left, a full device, and for a command
+/// whose answer is printed, a stdout closed before the start (`>&-`, which
+/// Rust's runtime turns into a read-write `/dev/null`) — and `render`
+/// writes all three pictures first; a `>/dev/null` chosen by the user is
+/// an answer delivered.
 #[test]
-fn a_closed_stdout_ends_the_program_quietly() {
+fn an_answer_that_cannot_be_delivered_ends_with_status_1() {
     let d = dir("pipe");
     let scene = write(&d, "scene.json", SCENE);
     let points = write(&d, "points.json", r#"{"points": [{"p": [0.2, 0.0, 0.1]}]}"#);
-    for args in [
-        vec![
-            "visibility",
-            "--scene",
-            &scene,
-            "--points",
-            &points,
-            "--method",
-            "hard",
-        ],
-        vec![
+    let visibility = [
+        "visibility",
+        "--scene",
+        &scene,
+        "--points",
+        &points,
+        "--method",
+        "hard",
+    ];
+    let lost = |out: &Output, what: &str| {
+        let stderr = String::from_utf8_lossy(&out.stderr);
+        assert_eq!(out.status.code(), Some(1), "{what}: {stderr}");
+        assert_eq!(stderr.lines().count(), 1, "{what}: {stderr}");
+        assert!(
+            stderr.starts_with("softshadow: stdout: "),
+            "{what}: {stderr}"
+        );
+        assert!(!stderr.contains("panicked"), "{what}: {stderr}");
+    };
+    lost(&with_stdout_closed(&visibility), "broken pipe");
+    lost(&with_redirect(&visibility, ">&-"), ">&-");
+    lost(&with_redirect(&visibility, ">/dev/full"), ">/dev/full");
+    lost(&with_redirect(&["--help"], ">&-"), "--help >&-");
+    let quiet = with_redirect(&visibility, ">/dev/null");
+    assert!(quiet.status.success(), "{quiet:?}");
+    assert!(quiet.stderr.is_empty(), "{quiet:?}");
+    // `render` with its stdout gone still writes every picture.
+    for (k, how) in ["pipe", ">/dev/full"].into_iter().enumerate() {
+        let out = dir(&format!("pipe-render-{k}"));
+        let render = [
             "render",
             "--scene",
             &scene,
             "--method",
             "hard",
             "--out",
-            d.to_str().unwrap(),
-        ],
-    ] {
-        let out = with_stdout_closed(&args);
-        let stderr = String::from_utf8_lossy(&out.stderr);
-        assert_eq!(out.status.code(), Some(0), "{args:?}: {stderr}");
-        assert!(stderr.is_empty(), "{args:?}: {stderr}");
+            out.to_str().unwrap(),
+        ];
+        let run = match how {
+            "pipe" => with_stdout_closed(&render),
+            redirect => with_redirect(&render, redirect),
+        };
+        lost(&run, how);
+        three_pictures(&out);
     }
-    // Whatever `render` wrote before it stopped is whole: every PNG
-    // decodes, and no temporary file is left.
-    pictures_whole(&d, false);
+    // A stdout closed from the start cannot be told from a read-write
+    // /dev/null chosen by the parent (Python's subprocess.DEVNULL): a
+    // command whose answer is files writes them and succeeds.
+    let out = dir("pipe-render-closed");
+    let render = [
+        "render",
+        "--scene",
+        &scene,
+        "--method",
+        "hard",
+        "--out",
+        out.to_str().unwrap(),
+    ];
+    for redirect in [">&-", "1<>/dev/null"] {
+        let run = with_redirect(&render, redirect);
+        assert!(run.status.success(), "{redirect}: {run:?}");
+        three_pictures(&out);
+    }
+    lost(&with_redirect(&visibility, "1<>/dev/null"), "1<>/dev/null");
+}
+
+/// A stderr that cannot be written (`2>/dev/full`) is no reason to panic:
+/// bad input still ends with exit status 2, a good run with 0.
+#[test]
+fn a_full_stderr_changes_nothing_but_the_lines_lost() {
+    let d = dir("full-stderr");
+    let scene = write(&d, "scene.json", SCENE);
+    let points = write(&d, "points.json", r#"{"points": [{"p": [0.2, 0.0, 0.1]}]}"#);
+    let full_stderr = |scene: &str| {
+        let args = [
+            "visibility",
+            "--scene",
+            scene,
+            "--points",
+            &points,
+            "--method",
+            "hard",
+        ];
+        with_redirect(&args, "2>/dev/full")
+    };
+    let bad = full_stderr("nope.json");
+    assert_eq!(bad.status.code(), Some(2), "{bad:?}");
+    let args = with_redirect(&["render", "--width", "0"], "2>/dev/full");
+    assert_eq!(args.status.code(), Some(2), "{args:?}");
+    let good = full_stderr(&scene);
+    assert_eq!(good.status.code(), Some(0), "{good:?}");
+    assert!(String::from_utf8_lossy(&good.stdout).starts_with("{\"method\""));
 }
 
 #[test]
@@ -358,6 +461,44 @@ fn lights_at_the_edge_of_f64() {
             String::from_utf8_lossy(&out.stderr)
         );
     }
+    // A segment light of length 1e-300, which the loader takes, is
+    // answered by every method that handles segments (OESS said "no light
+    // frame"): under the card 0, in the open 1, as the point light.
+    let segment = r#"{"type": "segment", "a": [0, 3, 0], "b": [1e-300, 3, 0]}"#;
+    let light_at = SCENE.find("{\"type\": \"sphere\"").unwrap();
+    let light_end = light_at + SCENE[light_at..].find('}').unwrap() + 1;
+    let scene = write(
+        &d,
+        "short.json",
+        &format!("{}{segment}{}", &SCENE[..light_at], &SCENE[light_end..]),
+    );
+    let points = write(
+        &d,
+        "points.json",
+        r#"{"points": [{"p": [0.05, 0.0, 0.1]}, {"p": [3.5, 0.0, 0.0]}]}"#,
+    );
+    let segment_methods = softshadow::method::REGISTRY
+        .iter()
+        .filter(|m| m.lights.contains(&softshadow::scene::LightKind::Segment))
+        .map(|m| m.name);
+    for method in segment_methods {
+        let method = if method == "pcss" {
+            "pcss:constant"
+        } else {
+            method
+        };
+        let out = visibility(&scene, &points, method, &[]);
+        let stdout = String::from_utf8_lossy(&out.stdout);
+        assert!(
+            out.status.success(),
+            "{method}: {}",
+            String::from_utf8_lossy(&out.stderr)
+        );
+        assert!(
+            stdout.contains(r#""visibility":[0.0,1.0]"#),
+            "{method}: {stdout}"
+        );
+    }
 }
 
 /// Exact copies of one triangle are indexed once (10⁶ of them took the
@@ -566,6 +707,78 @@ fn a_render_beyond_the_memory_limit_is_refused_with_its_estimate() {
         400,
         &["--max-memory"],
     );
+}
+
+/// A method's own maps count toward the memory limit: `oess:map=16384`
+/// (two endpoint maps, about 16 GiB) is refused in one line with the
+/// maps' share, by `render` and `visibility` alike, before any map is
+/// allocated (it aborted with a backtrace); the same method at its default
+/// side runs under the same limit.
+#[test]
+fn a_method_s_maps_count_toward_the_memory_limit() {
+    let d = dir("memory-maps");
+    let out = d.to_str().unwrap();
+    let points = write(
+        &d,
+        "points.json",
+        r#"{"points": [{"p": [0.1, 0.02, 0.3]}]}"#,
+    );
+    let big = "oess:map=16384";
+    let render = |method: &str| {
+        softshadow(&[
+            "render",
+            "--scene",
+            "linear-light",
+            "--method",
+            method,
+            "--width",
+            "32",
+            "--height",
+            "24",
+            "--out",
+            out,
+            "--max-memory",
+            "8",
+        ])
+    };
+    refused(
+        &render(big),
+        400,
+        &["16.0 GiB of the method's maps", "--max-memory", big],
+    );
+    let limited =
+        |method: &str| visibility("linear-light", &points, method, &["--max-memory", "8"]);
+    refused(
+        &limited(big),
+        400,
+        &["points.json (1 point)", "16.0 GiB of the method's maps"],
+    );
+    // 2 × 1024² × 64 bytes: the maps' estimate grows with the side squared.
+    assert!(render("oess").status.success());
+    assert!(limited("oess:map=1024").status.success());
+    let pcss = visibility(
+        "linear-light",
+        &points,
+        "pcss:map=8192",
+        &["--max-memory", "0.4"],
+    );
+    refused(&pcss, 400, &["1.0 GiB of the method's maps"]);
+}
+
+/// A method's message speaks the program's words: the PCSS hint for a
+/// receiver without a normal names the option, not a type of the library.
+#[test]
+fn method_messages_name_options_not_types() {
+    let d = dir("pcss-words");
+    let points = write(&d, "points.json", r#"{"points": [{"p": [0.1, 0.0, 0.3]}]}"#);
+    let out = visibility("default", &points, "pcss", &[]);
+    let needles = [
+        "points[0].normal",
+        "pcss needs receiver normals",
+        "pcss:constant",
+    ];
+    refused(&out, 400, &needles);
+    assert!(!String::from_utf8_lossy(&out.stderr).contains("PcssBias"));
 }
 
 /// A full disk, simulated by a file-size limit of 2 KiB (two of the pictures of a

@@ -4,7 +4,7 @@
 //! runs on the same thread count, and the two report lines the comparison
 //! scripts read.
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use std::io::Write;
 
 /// Threads our side runs on (Embree's side runs as many processes).

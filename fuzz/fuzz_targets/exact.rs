@@ -19,10 +19,10 @@ use glam::DVec3;
 use libfuzzer_sys::fuzz_target;
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
-use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
-use softshadow::reference::stats::{agreement_tolerance, student_t_two_sided_quantile};
 use softshadow::bvh::{Bvh, Occluders};
 use softshadow::reference::exact;
+use softshadow::reference::monte_carlo::{self, Options, REPLICATES};
+use softshadow::reference::stats::{agreement_tolerance, student_t_two_sided_quantile};
 
 fn word(data: &[u8], i: usize) -> Option<u64> {
     let bytes = data.get(8 * i..8 * i + 8)?;

@@ -74,7 +74,10 @@ fn check(scene: &Scene, frame: &Frame) {
                     assert_eq!(w.len(), v.len());
                     for (&[l, r], &x) in w.iter().zip(v) {
                         assert!((0.0..=1.0).contains(&l) && (0.0..=1.0).contains(&r));
-                        assert!((l + r - x).abs() <= 1e-12, "{name}: weights {l} + {r} vs {x}");
+                        assert!(
+                            (l + r - x).abs() <= 1e-12,
+                            "{name}: weights {l} + {r} vs {x}"
+                        );
                     }
                     let _ = shaded_by_ends(scene, frame, w);
                 }

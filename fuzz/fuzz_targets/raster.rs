@@ -69,7 +69,10 @@ fuzz_target!(|data: &[u8]| {
                 assert_eq!(depth, f64::INFINITY);
                 continue;
             }
-            assert!(depth.is_finite() && depth >= near * (1.0 - 1e-12), "{depth} < {near}");
+            assert!(
+                depth.is_finite() && depth >= near * (1.0 - 1e-12),
+                "{depth} < {near}"
+            );
             let t = occluders.triangles()[maps.triangle_at(col, row) as usize];
             let q = t.map(|p| frame.to_light(p));
             // The plane from the corner nearest the light (from a far

@@ -395,6 +395,13 @@ impl Bvh {
         (group * WIDTH * (self.depth - 1)).max(1)
     }
 
+    /// The largest coordinate magnitude of the finite triangles (from the
+    /// exact bounding box; 0 when there are none).
+    pub(crate) fn max_coordinate(&self) -> f64 {
+        self.bounds
+            .map_or(0.0, |(lo, hi)| lo.abs().max(hi.abs()).max_element())
+    }
+
     /// The triangles it was built over.
     #[must_use]
     pub fn occluders(&self) -> &Occluders {

@@ -89,7 +89,7 @@ const O3D_ERR_BOUND_A: f64 = (7.0 + 56.0 * EPS) * EPS;
 /// the module docs); [`Sign::Zero`] for non-finite input.
 ///
 /// ```
-/// use glam::DVec2;
+/// use softshadow::glam::DVec2;
 /// use softshadow::kernel::predicate::{orient2d, Sign};
 ///
 /// // A point a few ulps off the line y = x, where the rounded determinant
@@ -289,8 +289,9 @@ impl Row {
         }
     }
 
-    /// The exact row, each coordinate a `(hi, lo)` pair.
-    fn exact(&self) -> [[f64; 2]; 3] {
+    /// The exact row, each coordinate a `(hi, lo)` pair (`hi` the rounded
+    /// row [`Row::r`]).
+    pub(crate) fn exact(&self) -> [[f64; 2]; 3] {
         let (a, b) = (self.a, self.b);
         [diff(a.x, b.x), diff(a.y, b.y), diff(a.z, b.z)]
     }
@@ -353,7 +354,7 @@ pub(crate) fn det3_exact(r0: &Row, r1: &Row, r2: &Row) -> Bounded {
 
 /// `a + b = s + e` exactly (Knuth's branch-free TwoSum).
 #[inline]
-fn two_sum(a: f64, b: f64) -> (f64, f64) {
+pub(crate) fn two_sum(a: f64, b: f64) -> (f64, f64) {
     let s = a + b;
     let bv = s - a;
     let av = s - bv;

@@ -17,7 +17,7 @@
 //! use softshadow::method::{self, Method};
 //! use softshadow::render::{Frame, Receiver, Stages};
 //! use softshadow::scene::{primitive, Light, Scene};
-//! use glam::DVec3;
+//! use softshadow::glam::DVec3;
 //!
 //! // A unit square 1 above the floor, a sphere light of radius 0.5 above it.
 //! let plate = primitive::quad(DVec3::Y, DVec3::X * 0.5, DVec3::Z * 0.5).unwrap();
@@ -44,7 +44,7 @@ pub mod ssoc;
 
 pub use hard::HardShadow;
 pub use oess::Oess;
-pub use options::Configurable;
+pub use options::{Configurable, OptionError, ParseError};
 pub use pcss::{Pcss, PcssBias};
 pub use reference::{Exact, MonteCarlo};
 pub use registry::{default_set, parse, REGISTRY};
@@ -100,6 +100,16 @@ pub trait Method: Send + Sync + fmt::Debug {
     /// answer ([`Horizon`]). Default: not at all.
     fn horizon(&self) -> Horizon {
         Horizon::Off
+    }
+
+    /// An estimate of the peak bytes of the maps the method builds at its
+    /// settings, whatever the frame — its light-view maps, whose side is
+    /// an option — for a caller that bounds its memory before running it
+    /// (the command line's `--max-memory`). The methods of the crate give
+    /// their measured peak per texel, rounded up. Default: `0`, no such
+    /// maps.
+    fn map_bytes(&self) -> u64 {
+        0
     }
 
     /// The visibility of every receiver of the checked frame `input`.
@@ -526,9 +536,9 @@ pub fn check<'r, 'a>(
 
 /// An [`MethodError::InvalidOption`] for `method` from an options check.
 pub(crate) fn check_options<T: Configurable>(m: &T) -> Result<(), MethodError> {
-    options::check(m).map_err(|message| MethodError::InvalidOption {
+    options::check(m).map_err(|e| MethodError::InvalidOption {
         method: m.name(),
-        message,
+        message: e.to_string(),
     })
 }
 

@@ -15,12 +15,14 @@
 //! [`print()`] writes the positional value first, then the fields that differ
 //! from the default in table order; [`parse()`] reads items in any order. For
 //! every method and every field, `parse(print(m)) == m`: integers print
-//! exactly, reals in Rust's shortest round-trip form. Unknown keys and bad
-//! values are errors that name what the method accepts.
+//! exactly, reals in Rust's shortest round-trip form. Unknown keys, bad
+//! values and an option given twice (`seed=3,seed=4`, as the scene files
+//! refuse a duplicate key) are [`ParseError`]s that name what the method
+//! accepts.
 
 use super::Method;
 use crate::scene::LightKind;
-use std::fmt::Write as _;
+use std::fmt::{self, Write as _};
 
 /// How one field of a method's options is read and written.
 pub enum Kind<T: 'static> {
@@ -99,6 +101,255 @@ pub trait Configurable: Method + Default + Clone + PartialEq + 'static {
     /// The options' fields, in the order names print them.
     const FIELDS: &'static [Field<Self>];
 }
+
+/// What a field accepts.
+#[derive(Clone, Copy, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum Expected {
+    /// An integer in `min..=max`.
+    Int {
+        /// The least value accepted.
+        min: u64,
+        /// The greatest value accepted.
+        max: u64,
+    },
+    /// A finite real number in `min..=max`.
+    Real {
+        /// The least value accepted.
+        min: f64,
+        /// The greatest value accepted.
+        max: f64,
+    },
+    /// One of these words.
+    Choice(&'static [&'static str]),
+}
+
+impl<T> From<&Kind<T>> for Expected {
+    fn from(kind: &Kind<T>) -> Expected {
+        match kind {
+            Kind::Int { min, max, .. } => Expected::Int {
+                min: *min,
+                max: *max,
+            },
+            Kind::Real { min, max, .. } => Expected::Real {
+                min: *min,
+                max: *max,
+            },
+            Kind::Choice { choices, .. } => Expected::Choice(choices),
+            // A flag takes no value; asked what it accepts, it is on or off.
+            Kind::Flag { .. } => Expected::Choice(&[]),
+        }
+    }
+}
+
+impl fmt::Display for Expected {
+    /// `an integer from 1 to 16384`, `a number from 0 to 1`, `one of exact,
+    /// linear`.
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            Expected::Int { min, max } => write!(f, "an integer from {min} to {max}"),
+            Expected::Real { min, max } => write!(
+                f,
+                "a number from {} to {}",
+                real_string(*min),
+                real_string(*max)
+            ),
+            Expected::Choice(choices) => write!(f, "one of {}", choices.join(", ")),
+        }
+    }
+}
+
+/// What is wrong with one option of a method.
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum OptionError {
+    /// An item that names no option of the method.
+    Unknown {
+        /// The item (`sideways`), or its key (`sideways` of `sideways=1`).
+        item: String,
+    },
+    /// An option that takes a value, written alone (`map`).
+    NeedsValue {
+        /// The option's key.
+        key: &'static str,
+        /// What its value may be.
+        expected: Expected,
+    },
+    /// A flag written with a value (`exact-union=1`).
+    FlagWithValue {
+        /// The flag.
+        key: &'static str,
+    },
+    /// A value that does not parse as, or lies outside, what the option
+    /// accepts; from [`parse`] (the text given) or [`check`] (the value a
+    /// method built in code holds).
+    Invalid {
+        /// The option's key (the positional value's word, `N`, for it).
+        key: &'static str,
+        /// The value, as given or as printed.
+        value: String,
+        /// What it may be.
+        expected: Expected,
+    },
+    /// An option given twice (`seed=3,seed=4`; `mc:256,512` for the
+    /// positional value), which the name could only resolve by dropping
+    /// one.
+    Repeated {
+        /// The option's key (`N` for the positional value).
+        key: &'static str,
+    },
+}
+
+impl fmt::Display for OptionError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            OptionError::Unknown { item } => write!(f, "unknown option '{item}'"),
+            OptionError::NeedsValue { key, expected } => {
+                write!(f, "'{key}' needs a value, {expected}")
+            }
+            OptionError::FlagWithValue { key } => {
+                write!(f, "'{key}' is a flag, written alone: {key}")
+            }
+            OptionError::Invalid {
+                key,
+                value,
+                expected,
+            } => write!(f, "{key} must be {expected}, got '{value}'"),
+            OptionError::Repeated { key } => {
+                write!(f, "{key} is given twice (give each option once)")
+            }
+        }
+    }
+}
+
+impl std::error::Error for OptionError {}
+
+/// Why a method name (`base[:item,…]`) could not be read: by
+/// [`registry::parse`](super::registry::parse) and [`parse`].
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum ParseError {
+    /// No registered method has the name's base.
+    UnknownMethod {
+        /// The name given (at most 60 characters of it).
+        name: String,
+        /// The available methods, as [`registry::available`](super::registry::available) lists them.
+        available: String,
+    },
+    /// A method of the design that is not built yet.
+    NotBuilt {
+        /// Its base name.
+        base: &'static str,
+        /// The available methods.
+        available: String,
+    },
+    /// An option of a known method.
+    Option {
+        /// The whole name given.
+        name: String,
+        /// What is wrong.
+        error: OptionError,
+        /// Every option the method accepts, for the message:
+        /// `pcss accepts map=N (1–16384), …`.
+        accepts: String,
+    },
+}
+
+impl ParseError {
+    /// The option error, when the method was known and one of its options
+    /// was not.
+    #[must_use]
+    pub fn option(&self) -> Option<&OptionError> {
+        match self {
+            ParseError::Option { error, .. } => Some(error),
+            _ => None,
+        }
+    }
+}
+
+impl fmt::Display for ParseError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ParseError::UnknownMethod { name, available } => {
+                write!(f, "unknown method '{name}'; available: {available}")
+            }
+            ParseError::NotBuilt { base, available } => write!(
+                f,
+                "method '{base}' is not built yet; available: {available}"
+            ),
+            ParseError::Option {
+                name,
+                error,
+                accepts,
+            } => write!(f, "'{name}': {error}; {accepts}"),
+        }
+    }
+}
+
+impl std::error::Error for ParseError {}
+
+/// Why a method's options table breaks a promise of this module
+/// ([`round_trip`]).
+#[derive(Clone, Debug, PartialEq)]
+#[non_exhaustive]
+pub enum TableError {
+    /// A flag that is on in the default method.
+    FlagOnByDefault {
+        /// The flag.
+        key: &'static str,
+    },
+    /// The default method prints as more than its base name (and has no
+    /// positional value).
+    DefaultNotBare {
+        /// What it prints as.
+        printed: String,
+    },
+    /// A printed name that does not parse.
+    Unparsable {
+        /// The name printed.
+        name: String,
+        /// Why it does not parse.
+        error: Box<ParseError>,
+    },
+    /// A printed name that parses to another method.
+    ParsesDifferently {
+        /// The name printed.
+        name: String,
+        /// The method it parses to, `{:?}`.
+        parsed: String,
+        /// The method printed, `{:?}`.
+        printed: String,
+    },
+    /// A method whose options lie in their ranges fails [`check`].
+    Check {
+        /// The name printed.
+        name: String,
+        /// What [`check`] found.
+        error: OptionError,
+    },
+}
+
+impl fmt::Display for TableError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            TableError::FlagOnByDefault { key } => write!(f, "flag {key} is on by default"),
+            TableError::DefaultNotBare { printed } => {
+                write!(f, "the default prints as '{printed}'")
+            }
+            TableError::Unparsable { name, error } => {
+                write!(f, "'{name}' does not parse back: {error}")
+            }
+            TableError::ParsesDifferently {
+                name,
+                parsed,
+                printed,
+            } => write!(f, "'{name}' parses to {parsed}, not {printed}"),
+            TableError::Check { name, error } => write!(f, "'{name}': {error}"),
+        }
+    }
+}
+
+impl std::error::Error for TableError {}
 
 /// The items of a method name `base[:item,…]`: `None` when `name` is not of
 /// that form for `base`.
@@ -196,46 +447,28 @@ fn accepted<T: Configurable>() -> String {
 }
 
 /// Sets `field` of `m` from the text `value`.
-fn set_from<T>(field: &Field<T>, m: &mut T, value: &str) -> Result<(), String> {
+fn set_from<T>(field: &Field<T>, m: &mut T, value: &str) -> Result<(), OptionError> {
+    let invalid = || OptionError::Invalid {
+        key: field.key,
+        value: value.to_owned(),
+        expected: Expected::from(&field.kind),
+    };
     match &field.kind {
-        Kind::Flag { set, .. } => {
-            set(m, true);
-            Ok(())
-        }
+        Kind::Flag { set, .. } => set(m, true),
         Kind::Int { set, min, max, .. } => match value.parse::<u64>() {
-            Ok(v) if (*min..=*max).contains(&v) => {
-                set(m, v);
-                Ok(())
-            }
-            _ => Err(format!(
-                "{} must be an integer from {min} to {max}",
-                field.key
-            )),
+            Ok(v) if (*min..=*max).contains(&v) => set(m, v),
+            _ => return Err(invalid()),
         },
         Kind::Real { set, min, max, .. } => match value.parse::<f64>() {
-            Ok(v) if v.is_finite() && *min <= v && v <= *max => {
-                set(m, v);
-                Ok(())
-            }
-            _ => Err(format!(
-                "{} must be a number from {} to {}",
-                field.key,
-                real_string(*min),
-                real_string(*max)
-            )),
+            Ok(v) if v.is_finite() && *min <= v && v <= *max => set(m, v),
+            _ => return Err(invalid()),
         },
         Kind::Choice { set, choices, .. } => match choices.iter().position(|c| *c == value) {
-            Some(i) => {
-                set(m, i);
-                Ok(())
-            }
-            None => Err(format!(
-                "{} must be one of {}",
-                field.key,
-                choices.join(", ")
-            )),
+            Some(i) => set(m, i),
+            None => return Err(invalid()),
         },
     }
+    Ok(())
 }
 
 /// The method `T` with the options `items` (the parts of its name after
@@ -243,71 +476,92 @@ fn set_from<T>(field: &Field<T>, m: &mut T, value: &str) -> Result<(), String> {
 /// whole name, for messages.
 ///
 /// # Errors
-/// A one-line message naming the item that is not understood and what the
-/// method accepts.
-pub fn parse<T: Configurable>(name: &str, items: &[&str]) -> Result<T, String> {
+/// [`ParseError::Option`]: an item that is not understood, or an option
+/// given twice (each named, with what the method accepts).
+pub fn parse<T: Configurable>(name: &str, items: &[&str]) -> Result<T, ParseError> {
     let mut m = T::default();
+    let mut given: Vec<&'static str> = Vec::new();
     for &item in items {
-        let bad = |why: String| format!("'{name}': {why}; {}", accepted::<T>());
         let (key, value) = match item.split_once('=') {
             Some((k, v)) => (k, Some(v)),
             None => (item, None),
         };
         let named = T::FIELDS.iter().find(|f| !f.positional && f.key == key);
-        match (named, value) {
-            (Some(f), None) if matches!(f.kind, Kind::Flag { .. }) => set_from(f, &mut m, "")?,
-            (Some(f), Some(v)) if !matches!(f.kind, Kind::Flag { .. }) => {
-                set_from(f, &mut m, v).map_err(bad)?;
+        let field = match (named, value) {
+            (Some(f), None) if matches!(f.kind, Kind::Flag { .. }) => Ok(f),
+            (Some(f), Some(_)) if !matches!(f.kind, Kind::Flag { .. }) => Ok(f),
+            (Some(f), None) => Err(OptionError::NeedsValue {
+                key: f.key,
+                expected: Expected::from(&f.kind),
+            }),
+            (Some(f), Some(_)) => Err(OptionError::FlagWithValue { key: f.key }),
+            (None, None) => {
+                T::FIELDS
+                    .iter()
+                    .find(|f| f.positional)
+                    .ok_or_else(|| OptionError::Unknown {
+                        item: item.to_owned(),
+                    })
             }
-            (Some(f), None) => return Err(bad(format!("'{key}' needs a value, {}", syntax(f)))),
-            (Some(f), Some(_)) => {
-                return Err(bad(format!("'{key}' is a flag, written alone: {}", f.key)))
+            (None, Some(_)) => Err(OptionError::Unknown {
+                item: key.to_owned(),
+            }),
+        };
+        let result = field.and_then(|f| {
+            if given.contains(&f.key) {
+                return Err(OptionError::Repeated { key: f.key });
             }
-            (None, None) => match T::FIELDS.iter().find(|f| f.positional) {
-                Some(f) => set_from(f, &mut m, item).map_err(bad)?,
-                None => return Err(bad(format!("unknown option '{item}'"))),
-            },
-            (None, Some(_)) => return Err(bad(format!("unknown option '{key}'"))),
+            given.push(f.key);
+            set_from(
+                f,
+                &mut m,
+                if f.positional {
+                    item
+                } else {
+                    value.unwrap_or("")
+                },
+            )
+        });
+        if let Err(error) = result {
+            return Err(ParseError::Option {
+                name: name.to_owned(),
+                error,
+                accepts: accepted::<T>(),
+            });
         }
     }
     Ok(m)
 }
 
 /// Checks that every field of `m` is in its documented range (methods
-/// built in code, not parsed, may hold anything); the message names the
+/// built in code, not parsed, may hold anything); the error names the
 /// first that is not.
 ///
 /// # Errors
-/// `"map is 0; it must be an integer from 1 to 16384"`.
-pub fn check<T: Configurable>(m: &T) -> Result<(), String> {
+/// [`OptionError::Invalid`]: `map must be an integer from 1 to 16384, got '0'`.
+pub fn check<T: Configurable>(m: &T) -> Result<(), OptionError> {
     for f in T::FIELDS {
-        match &f.kind {
+        let value = match &f.kind {
             Kind::Int { get, min, max, .. } => {
                 let v = get(m);
-                if !(*min..=*max).contains(&v) {
-                    return Err(format!(
-                        "{} is {v}; it must be an integer from {min} to {max}",
-                        f.key
-                    ));
-                }
+                (!(*min..=*max).contains(&v)).then(|| v.to_string())
             }
             Kind::Real { get, min, max, .. } => {
                 let v = get(m);
-                if !(v.is_finite() && *min <= v && v <= *max) {
-                    return Err(format!(
-                        "{} is {v:?}; it must be a number from {} to {}",
-                        f.key,
-                        real_string(*min),
-                        real_string(*max)
-                    ));
-                }
+                (!(v.is_finite() && *min <= v && v <= *max)).then(|| format!("{v:?}"))
             }
             Kind::Choice { get, choices, .. } => {
-                if get(m) >= choices.len() {
-                    return Err(format!("{} is not one of {}", f.key, choices.join(", ")));
-                }
+                let i = get(m);
+                (i >= choices.len()).then(|| format!("choice {i}"))
             }
-            Kind::Flag { .. } => {}
+            Kind::Flag { .. } => None,
+        };
+        if let Some(value) = value {
+            return Err(OptionError::Invalid {
+                key: f.key,
+                value,
+                expected: Expected::from(&f.kind),
+            });
         }
     }
     Ok(())
@@ -403,19 +657,32 @@ pub const fn positional<T>(field: Field<T>) -> Field<T> {
 ///
 /// # Errors
 /// The first broken promise, named.
-pub fn round_trip<T: Configurable>() -> Result<(), String> {
+pub fn round_trip<T: Configurable>() -> Result<(), TableError> {
     let d = T::default();
-    let back = |m: &T| -> Result<(), String> {
+    let back = |m: &T| -> Result<(), TableError> {
         let name = print(m);
-        let items = items(&name, T::NAME).ok_or_else(|| format!("'{name}' lacks its base"))?;
-        let parsed = parse::<T>(&name, &items)?;
+        let unparsable = |error| TableError::Unparsable {
+            name: name.clone(),
+            error: Box::new(error),
+        };
+        let items = items(&name, T::NAME).ok_or_else(|| {
+            unparsable(ParseError::UnknownMethod {
+                name: name.clone(),
+                available: T::NAME.to_owned(),
+            })
+        })?;
+        let parsed = parse::<T>(&name, &items).map_err(unparsable)?;
         if parsed != *m {
-            return Err(format!("'{name}' parses to {parsed:?}, not {m:?}"));
+            return Err(TableError::ParsesDifferently {
+                name,
+                parsed: format!("{parsed:?}"),
+                printed: format!("{m:?}"),
+            });
         }
-        check(m).map_err(|e| format!("'{name}': {e}"))
+        check(m).map_err(|error| TableError::Check { name, error })
     };
     if print(&d) != T::NAME && !T::FIELDS.iter().any(|f| f.positional) {
-        return Err(format!("the default prints as '{}'", print(&d)));
+        return Err(TableError::DefaultNotBare { printed: print(&d) });
     }
     back(&d)?;
     for f in T::FIELDS {
@@ -423,7 +690,7 @@ pub fn round_trip<T: Configurable>() -> Result<(), String> {
         match &f.kind {
             Kind::Flag { get, set } => {
                 if get(&d) {
-                    return Err(format!("flag {} is on by default", f.key));
+                    return Err(TableError::FlagOnByDefault { key: f.key });
                 }
                 let mut m = d.clone();
                 set(&mut m, true);
@@ -452,7 +719,7 @@ pub fn round_trip<T: Configurable>() -> Result<(), String> {
             }
         }
         for m in &variants {
-            back(m).map_err(|e| format!("{}: {e}", f.key))?;
+            back(m)?;
         }
     }
     Ok(())
@@ -509,3 +776,92 @@ macro_rules! builders {
     };
 }
 pub(crate) use builders;
+
+#[cfg(test)]
+mod tests {
+    use super::*;
+    use crate::method::registry::parse as parse_name;
+    use crate::method::{MonteCarlo, Pcss, Sism};
+
+    fn option_error(name: &str) -> OptionError {
+        match parse_name(name) {
+            Err(ParseError::Option { error, .. }) => error,
+            other => panic!("{name}: {other:?}"),
+        }
+    }
+
+    #[test]
+    fn an_option_given_twice_is_refused_whichever_kind() {
+        // A value, the positional value, a flag: each given twice, equal
+        // or not, is refused (the scene files refuse duplicate keys).
+        for (name, key) in [
+            ("mc:256,seed=3,seed=4", "seed"),
+            ("mc:256,seed=3,seed=3", "seed"),
+            ("mc:256,512", "N"),
+            ("pcss:map=256,filter=9,map=512", "map"),
+            ("sism:exact-union,exact-union", "exact-union"),
+        ] {
+            assert_eq!(option_error(name), OptionError::Repeated { key }, "{name}");
+            let message = parse_name(name).unwrap_err().to_string();
+            assert!(
+                message.contains("given twice") && !message.contains('\n'),
+                "{message}"
+            );
+        }
+        // Given once each, in any order: accepted.
+        let m = parse_name("mc:seed=4,256").unwrap();
+        assert_eq!(m.name(), MonteCarlo::new(256).with_seed(4).name());
+        assert!(parse_name("pcss:filter=9,map=512").is_ok());
+    }
+
+    #[test]
+    fn parse_errors_are_typed_and_name_what_is_wrong() {
+        assert!(matches!(
+            parse_name("no-such-method"),
+            Err(ParseError::UnknownMethod { .. })
+        ));
+        assert_eq!(
+            option_error("pcss:sideways"),
+            OptionError::Unknown {
+                item: "sideways".into()
+            }
+        );
+        assert_eq!(
+            option_error("pcss:sideways=1"),
+            OptionError::Unknown {
+                item: "sideways".into()
+            }
+        );
+        assert!(matches!(
+            option_error("pcss:map"),
+            OptionError::NeedsValue { key: "map", .. }
+        ));
+        assert_eq!(
+            option_error("sism:exact-union=1"),
+            OptionError::FlagWithValue { key: "exact-union" }
+        );
+        let e = option_error("pcss:map=0");
+        assert_eq!(
+            e,
+            OptionError::Invalid {
+                key: "map",
+                value: "0".into(),
+                expected: Expected::Int { min: 1, max: 16384 }
+            }
+        );
+        assert_eq!(
+            e.to_string(),
+            "map must be an integer from 1 to 16384, got '0'"
+        );
+        let full = parse_name("pcss:map=0").unwrap_err();
+        assert!(full.to_string().starts_with("'pcss:map=0': map must be"));
+        assert!(full.to_string().contains("pcss accepts map=N (1–16384)"));
+        // A method built in code with a field out of range.
+        let bad = Sism::default().with_grid(1.0, 16, 0);
+        assert!(matches!(
+            check(&bad),
+            Err(OptionError::Invalid { key: "slices", .. })
+        ));
+        assert_eq!(check(&Pcss::default()), Ok(()));
+    }
+}

@@ -214,6 +214,12 @@ impl Method for Pcss {
         super::options::print(self)
     }
 
+    /// The depth, object and triangle maps (16 bytes a texel: measured
+    /// 16.0 between `map=1024` and `map=4096`, `/usr/bin/time -f %M`).
+    fn map_bytes(&self) -> u64 {
+        16 * u64::from(self.resolution).pow(2)
+    }
+
     fn needs(&self) -> Needs {
         Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS
     }
@@ -221,7 +227,8 @@ impl Method for Pcss {
     fn requires(&self) -> Requires {
         Requires {
             normals: self.bias == PcssBias::ReceiverPlane,
-            normals_hint: "or use PcssBias::Constant (pcss:constant), which needs none",
+            normals_hint:
+                "or pcss:constant, which compares with the receiver's own depth and needs none",
             ..Requires::default()
         }
     }

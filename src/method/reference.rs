@@ -62,6 +62,12 @@ impl Method for Exact {
         let bvh = input.stages().bvh();
         let emitters = input.emitters();
         let answers = per_receiver(input, exact::Scratch::default, |s, index, r| {
+            if exact::domain(bvh, &emitters[index], r.position) == exact::Domain::Overflow {
+                return Err(MethodError::Receiver {
+                    index,
+                    error: crate::scene::ReceiverError::OutOfRange,
+                });
+            }
             let b = exact::emitter_visibility_bounded(bvh, &emitters[index], r.position, s);
             if self.tolerance < 1.0 && (b.bound > self.tolerance || b.bound.is_nan()) {
                 return Err(MethodError::Tolerance {
@@ -165,6 +171,12 @@ impl Method for MonteCarlo {
             input,
             || (),
             |(), index, r| {
+                if monte_carlo::out_of_range(bvh, &emitters[index], r.position) {
+                    return Err(MethodError::Receiver {
+                        index,
+                        error: crate::scene::ReceiverError::OutOfRange,
+                    });
+                }
                 Ok(monte_carlo::emitter_visibility(
                     bvh,
                     &emitters[index],

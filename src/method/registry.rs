@@ -15,14 +15,14 @@
 //! | `mc:N` | every light | [`MonteCarlo`]: Monte Carlo light sampling, `N` samples |
 //! | `exact` | every light | [`Exact`]: the exact reference |
 
-use super::options::{self, Configurable};
+use super::options::{self, Configurable, ParseError, TableError};
 use super::{
     BackprojectedSsoc, Exact, HardShadow, Method, MonteCarlo, Oess, Pcss, SingleSample, Sism, Ssoc,
 };
 use crate::scene::LightKind;
 
 /// Builds a method from the items of its name.
-type Build = fn(&str, &[&str]) -> Result<Box<dyn Method>, String>;
+type Build = fn(&str, &[&str]) -> Result<Box<dyn Method>, ParseError>;
 
 /// One registered method.
 pub struct Entry {
@@ -40,7 +40,8 @@ pub struct Entry {
     build: Option<Build>,
     usage: fn() -> String,
     help: fn() -> Vec<String>,
-    round_trip: fn() -> Result<(), String>,
+    round_trip: fn() -> Result<(), TableError>,
+    accepts: fn(&str) -> bool,
 }
 
 impl std::fmt::Debug for Entry {
@@ -52,7 +53,7 @@ impl std::fmt::Debug for Entry {
     }
 }
 
-fn build<T: Configurable>(name: &str, items: &[&str]) -> Result<Box<dyn Method>, String> {
+fn build<T: Configurable>(name: &str, items: &[&str]) -> Result<Box<dyn Method>, ParseError> {
     options::parse::<T>(name, items).map(|m| Box::new(m) as Box<dyn Method>)
 }
 
@@ -66,6 +67,11 @@ fn usage<T: Configurable>() -> String {
 
 fn no_help() -> Vec<String> {
     Vec::new()
+}
+
+/// Whether `T` has the named (not positional) option `key`.
+fn accepts<T: Configurable>(key: &str) -> bool {
+    T::FIELDS.iter().any(|f| !f.positional && f.key == key)
 }
 
 impl Entry {
@@ -82,6 +88,7 @@ impl Entry {
             usage: usage::<T>,
             help: options::help::<T>,
             round_trip: options::round_trip::<T>,
+            accepts: accepts::<T>,
         }
     }
 
@@ -103,6 +110,7 @@ impl Entry {
             usage: || String::new(),
             help: no_help,
             round_trip: || Ok(()),
+            accepts: |_| false,
         }
     }
 
@@ -133,8 +141,15 @@ impl Entry {
     ///
     /// # Errors
     /// The first broken promise.
-    pub fn check_options_table(&self) -> Result<(), String> {
+    pub fn check_options_table(&self) -> Result<(), TableError> {
         (self.round_trip)()
+    }
+
+    /// Whether the method has the named option `key` (`seed`, `map`; not
+    /// the positional value).
+    #[must_use]
+    pub fn accepts(&self, key: &str) -> bool {
+        (self.accepts)(key)
     }
 
     /// Whether the method handles `kind`.
@@ -180,23 +195,22 @@ pub fn entry(base: &str) -> Option<&'static Entry> {
 /// (`sism:exact-union,slices=4`, `mc:256`).
 ///
 /// # Errors
-/// A one-line message: an unknown method (and the available ones), a
-/// method not built yet, or an option that is not understood (and what the
-/// method accepts).
-pub fn parse(name: &str) -> Result<Box<dyn Method>, String> {
+/// [`ParseError`], one line: an unknown method (and the available ones), a
+/// method not built yet, or an option that is not understood or given
+/// twice (and what the method accepts).
+pub fn parse(name: &str) -> Result<Box<dyn Method>, ParseError> {
     let base = name.split(':').next().unwrap_or(name);
     let Some(entry) = entry(base) else {
-        return Err(format!(
-            "unknown method '{}'; available: {}",
-            short(name),
-            available()
-        ));
+        return Err(ParseError::UnknownMethod {
+            name: short(name),
+            available: available(),
+        });
     };
     let Some(build) = entry.build else {
-        return Err(format!(
-            "method '{base}' is not built yet; available: {}",
-            available()
-        ));
+        return Err(ParseError::NotBuilt {
+            base: entry.name,
+            available: available(),
+        });
     };
     let items = options::items(name, base).unwrap_or_default();
     build(name, &items)

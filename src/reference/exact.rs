@@ -21,8 +21,8 @@
 //! which side of each image edge the light's points lie on. The images are
 //! built from determinants of the inputs taken relative to the receiver,
 //! each evaluated exactly where its rounding could move an image edge or
-//! corner by more than `2⁻⁴⁰` of the light's radius (segment lights: an
-//! interval's end by `2⁻⁴⁰` of the light), so a receiver `10⁻¹⁷` from an
+//! corner by more than `2⁻⁴³` of the light's radius (segment lights: an
+//! interval's end by `2⁻⁵⁰` of the light), so a receiver `10⁻¹⁷` from an
 //! edge, a light `10⁻¹⁶` long or a corner `10²⁰` away costs no accuracy.
 //! What is left is rounding: a few units in the last place of `V` (so a
 //! fully covered light may give `1e-16` rather than `0`), the same far
@@ -41,7 +41,16 @@
 //! **Domain**: the predicates are exact for coordinates `0` or of
 //! magnitude within `[1e-90, 1e90]` (every orientation determinant, a
 //! product of three coordinate differences, stays within [`orient3d`]'s
-//! exact domain). Beyond it the answer is still in `[0, 1]` and never NaN.
+//! exact domain), and the bound is certified there. With `T` the largest
+//! coordinate magnitude of the receiver and the occluders and `L` the
+//! light's (its centre's plus its extent), a receiver where `T²(T + L)`
+//! exceeds `f64::MAX / 2¹⁰` (a scene of size `~10¹⁰²`, or `10¹⁵³` around
+//! the origin with the light as far) would overflow the determinants: the
+//! functions that return a `Result` refuse it
+//! ([`ReceiverError::OutOfRange`]), and [`emitter_visibility_bounded`]
+//! answers it with `bound = 1` (no information). Between the two (a light
+//! `10²⁰⁰` away over ordinary occluders) the answer is computed, in
+//! `[0, 1]` and never NaN, but its bound is 1: not certified.
 //!
 //! ## Cost
 //!
@@ -121,13 +130,60 @@ pub fn visibility_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<f64, ReceiverError> {
-    Ok(emitter_visibility(bvh, &light.emitter(p)?, p, scratch))
+    let emitter = light.emitter(p)?;
+    if domain(bvh, &emitter, p) == Domain::Overflow {
+        return Err(ReceiverError::OutOfRange);
+    }
+    Ok(emitter_visibility(bvh, &emitter, p, scratch))
+}
+
+/// Where a receiver lies against the exact reference's domain (module
+/// documentation).
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(crate) enum Domain {
+    /// Every coordinate within `10⁹⁰`: the bound is certified.
+    Inside,
+    /// No determinant overflows, but some coordinate is beyond `10⁹⁰`.
+    Uncertified,
+    /// `T²(T + L) > f64::MAX / 2¹⁰` (or not finite): the determinants
+    /// (each below `24 T²(T + L)` in magnitude, its running bounds a few
+    /// times more) could overflow.
+    Overflow,
+}
+
+/// The largest magnitude the predicates are exact for.
+const DOMAIN: f64 = 1e90;
+
+/// The largest coordinate magnitude of the emitter's points (centre plus
+/// extent, per coordinate).
+pub(crate) fn light_extent(emitter: &Emitter) -> f64 {
+    let m = |v: DVec3| v.abs().max_element();
+    match emitter {
+        Emitter::Disk(d) => m(d.center()) + d.radius(),
+        Emitter::Rect(r) => m(r.center()) + m(r.u()) + m(r.v()),
+        Emitter::Segment(s) => m(s.a()).max(m(s.b())),
+        Emitter::Point(x) => m(x.position()),
+    }
+}
+
+/// Where `p` lies against the domain, for the scene of `bvh` and the
+/// light's `emitter`.
+pub(crate) fn domain(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> Domain {
+    let t = bvh.max_coordinate().max(p.abs().max_element());
+    let l = light_extent(emitter);
+    if !(t * t * (t + l) <= f64::MAX / 1024.0) {
+        Domain::Overflow
+    } else if t.max(l) > DOMAIN {
+        Domain::Uncertified
+    } else {
+        Domain::Inside
+    }
 }
 
 /// [`visibility_with`] for a receiver whose view of the light is already
 /// known: `emitter` must be `light.emitter(p)` for the scene's light (the
 /// renderer's methods get it once per receiver from
-/// [`method::run`](crate::method::run)).
+/// `method::run`).
 #[must_use]
 pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, scratch: &mut Scratch) -> f64 {
     let Scratch { candidates, view } = scratch;
@@ -190,15 +246,16 @@ pub fn visibility_bounded_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<Bounded, ReceiverError> {
-    Ok(emitter_visibility_bounded(
-        bvh,
-        &light.emitter(p)?,
-        p,
-        scratch,
-    ))
+    let emitter = light.emitter(p)?;
+    if domain(bvh, &emitter, p) == Domain::Overflow {
+        return Err(ReceiverError::OutOfRange);
+    }
+    Ok(emitter_visibility_bounded(bvh, &emitter, p, scratch))
 }
 
-/// [`emitter_visibility`] with its certified bound ([`Bounded`]).
+/// [`emitter_visibility`] with its certified bound ([`Bounded`]); outside
+/// the domain where the bound is certified (module documentation), the
+/// bound is 1.
 #[must_use]
 pub fn emitter_visibility_bounded(
     bvh: &Bvh,
@@ -231,7 +288,9 @@ pub fn emitter_visibility_bounded(
     // 1 − hidden rounds once; clamping to [0, 1] only moves toward V.
     Bounded {
         visibility: (1.0 - hidden.value).clamp(0.0, 1.0),
-        bound: if hidden.bound > 0.0 {
+        bound: if domain(bvh, emitter, p) != Domain::Inside {
+            1.0
+        } else if hidden.bound > 0.0 {
             hidden.bound + f64::EPSILON / 2.0
         } else {
             0.0

@@ -9,7 +9,7 @@
 //! [`Bvh`](crate::bvh::Bvh) built once per scene.
 //!
 //! ```
-//! use glam::DVec3;
+//! use softshadow::glam::DVec3;
 //! use softshadow::bvh::{Bvh, Occluders};
 //! use softshadow::reference::{exact, monte_carlo};
 //! use softshadow::reference::stats::{agreement_tolerance, student_t_two_sided_quantile};

@@ -173,7 +173,11 @@ impl From<ReceiverError> for Error {
 ///
 /// # Errors
 /// [`Error::TooFewSamples`] when `options.samples < MIN_SAMPLES` (checked
-/// first, for every light); [`Error::Receiver`] as [`Light::emitter`].
+/// first, for every light); [`Error::Receiver`] as [`Light::emitter`], and
+/// [`ReceiverError::OutOfRange`] when a coordinate of the receiver, the
+/// occluders or the light exceeds `10⁹⁰` (the exact segment test's
+/// domain: a light `10¹⁵⁰` away would be sampled by rays whose answers
+/// are not exact).
 pub fn visibility(
     bvh: &Bvh,
     light: &Light,
@@ -185,13 +189,28 @@ pub fn visibility(
             samples: options.samples,
         });
     }
-    Ok(emitter_visibility(bvh, &light.emitter(p)?, p, options))
+    let emitter = light.emitter(p)?;
+    if out_of_range(bvh, &emitter, p) {
+        return Err(Error::Receiver(ReceiverError::OutOfRange));
+    }
+    Ok(emitter_visibility(bvh, &emitter, p, options))
+}
+
+/// Whether a coordinate of the receiver, the occluders or the light
+/// (centre plus extent) exceeds `10⁹⁰`, the domain of the exact segment
+/// test every sample's ray is decided by: beyond it (a light `10¹⁵⁰`
+/// away) the rays' answers are not exact, and [`visibility`] refuses the
+/// receiver ([`ReceiverError::OutOfRange`]).
+pub(crate) fn out_of_range(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> bool {
+    let t = bvh.max_coordinate().max(p.abs().max_element());
+    let l = super::exact::light_extent(emitter);
+    !(t.max(l) <= 1e90)
 }
 
 /// [`visibility`] for a receiver whose view of the light is already known:
 /// `emitter` must be `light.emitter(p)` for the scene's light (the
 /// renderer's methods get it once per receiver from
-/// [`method::run`](crate::method::run)). A sample count below
+/// `method::run`). A sample count below
 /// [`MIN_SAMPLES`] is raised to it.
 #[must_use]
 pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, options: &Options) -> Estimate {

@@ -122,6 +122,42 @@ impl Frame {
         }
     }
 
+    /// A camera image given pixel by pixel: `width × height` entries,
+    /// row-major from the top-left, each a receiver or `None` (background).
+    /// Receivers are numbered in pixel order. For receivers found by a
+    /// rasteriser of one's own (a G-buffer read back).
+    ///
+    /// # Panics
+    /// Never; missing entries are background, extra ones are dropped.
+    #[must_use]
+    pub fn from_pixels(
+        width: u32,
+        height: u32,
+        pixels: impl IntoIterator<Item = Option<Receiver>>,
+    ) -> Frame {
+        let n = width as usize * height as usize;
+        let mut index = Vec::with_capacity(n);
+        let mut receivers = Vec::new();
+        for p in pixels.into_iter().take(n) {
+            match p {
+                Some(r) if receivers.len() < BACKGROUND as usize => {
+                    index.push(receivers.len() as u32);
+                    receivers.push(r);
+                }
+                _ => index.push(BACKGROUND),
+            }
+        }
+        index.resize(n, BACKGROUND);
+        Frame {
+            id: NEXT_FRAME.fetch_add(1, Ordering::Relaxed),
+            width,
+            height,
+            pixels: index,
+            receivers,
+            image: true,
+        }
+    }
+
     /// Whether the frame is a camera image ([`Frame::from_camera`]), whose
     /// neighbouring pixels are neighbours on screen — methods may then
     /// interpolate between them — rather than a list of points

@@ -7,6 +7,7 @@
 
 use super::frame::{Frame, BACKGROUND};
 use super::Receiver;
+use crate::definitions::in_penumbra;
 use crate::scene::{Light, Scene};
 use glam::DVec3;
 use std::fmt;
@@ -283,6 +284,13 @@ const LEGEND_ROWS: u32 = 18;
 /// The least image width that holds the legend.
 const LEGEND_WIDTH: u32 = 64;
 
+/// The size of [`error_heat_map`]'s image for a frame of `width × height`:
+/// the legend's rows below, at least the legend's width.
+#[must_use]
+pub(crate) fn heat_map_size(width: u32, height: u32) -> (u32, u32) {
+    (width.max(LEGEND_WIDTH), height + LEGEND_ROWS)
+}
+
 /// The signed error `V − V_ref` per pixel ([`heat_colour`]), with a legend
 /// strip below the picture: the colour bar from `−HEAT_RANGE` to
 /// `+HEAT_RANGE` and its labels (`-.25`, `0`, `+.25`). The image is at least
@@ -294,8 +302,8 @@ pub fn error_heat_map(frame: &Frame, visibility: &[f64], reference: &[f64]) -> R
             visibility.get(i).copied().unwrap_or(0.0) - reference.get(i).copied().unwrap_or(0.0);
         heat_colour(e)
     });
-    let width = picture.width.max(LEGEND_WIDTH);
-    let mut out = Rgb::new(width, picture.height + LEGEND_ROWS, [0, 0, 0]);
+    let (width, height) = heat_map_size(picture.width, picture.height);
+    let mut out = Rgb::new(width, height, [0, 0, 0]);
     for y in 0..picture.height {
         let from = 3 * (y * picture.width) as usize;
         let to = 3 * (y * width) as usize;
@@ -429,14 +437,6 @@ impl ErrorSummary {
     }
 }
 
-/// Whether a receiver with exact visibility `v_exact` is in the exact
-/// penumbra, `0 < V_exact < 1` (the [penumbra
-/// group](crate::definitions#receiver-groups)).
-#[must_use]
-pub fn in_penumbra(v_exact: f64) -> bool {
-    v_exact > 0.0 && v_exact < 1.0
-}
-
 /// One row of the error table the `softshadow` program prints (and the
 /// README shows): a method's errors against the exact values over every
 /// receiver and over the exact penumbra, with its time.
@@ -534,6 +534,32 @@ mod tests {
             ErrorSummary::new(&values, &reference, |_| false),
             ErrorSummary::default()
         );
+    }
+
+    #[test]
+    fn the_penumbra_group_ignores_the_exact_answers_last_bits() {
+        use crate::definitions::PENUMBRA_MARGIN as M;
+        // Rounding residues of a covered or an unobstructed light (as the
+        // exact reference leaves them: 1e-16, 1 − 2⁻⁵³) are not penumbra;
+        // the margin's own ends are not; a hair inside them is.
+        let exact = [
+            0.0,
+            1e-16,
+            M,
+            M.next_up(),
+            0.5,
+            (1.0 - M).next_down(),
+            1.0 - M,
+            1.0 - f64::EPSILON / 2.0,
+            1.0,
+            f64::NAN,
+        ];
+        let inside: Vec<usize> = (0..exact.len())
+            .filter(|&i| in_penumbra(exact[i]))
+            .collect();
+        assert_eq!(inside, [3, 4, 5]);
+        let row = ErrorRow::new("m", 0.0, &[0.25; 10], &exact);
+        assert_eq!(row.penumbra.count, 3);
     }
 
     #[cfg(unix)]

@@ -16,7 +16,7 @@
 //! (`benches/raster.rs`).
 //!
 //! ```
-//! use glam::{DVec2, DVec3};
+//! use softshadow::glam::{DVec2, DVec3};
 //! use softshadow::render::raster::{rasterize, LightView};
 //! use softshadow::scene::LightFrame;
 //!

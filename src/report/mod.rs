@@ -24,7 +24,7 @@
 //! - **Error** of `V` against [`Exact`]: mean absolute, RMSE,
 //!   99th percentile, maximum, mean signed, share over 0.05
 //!   ([`ErrorSummary`]) over four groups ([`GROUPS`]): every receiver, the
-//!   exact penumbra (`0 < V_exact < 1`), the ground (object 0, the floor of
+//!   exact penumbra ([`in_penumbra`](crate::definitions::in_penumbra)), the ground (object 0, the floor of
 //!   every built-in scene) and the occluders (every other object); and the
 //!   same for the shaded value `V·max(0, n·l̂)` (`l̂` toward the light's
 //!   centre), which is what the papers' pictures show.
@@ -39,40 +39,67 @@
 //!
 //! # `results.json`
 //!
-//! [`Results`] serialized with `serde_json`: `format`, `config` (`side`,
-//! `runs`, `mc`), `machines` (one line per machine that ran a part),
-//! `scenes` ([`SceneRecord`]), `cells` ([`CellRecord`]) and `yardsticks`
-//! (per scene, [`Yardstick`]). Times are seconds.
+//! [`Results`] serialized with `serde_json`: `format` ([`FORMAT`]),
+//! `config` ([`ConfigRecord`]: `side`, `runs`, `mc`, `pictures`, the
+//! sweep's `scenes` and `settings` in cell order, and `cells`, their
+//! product), `machines` (one line per machine that ran a part), `scenes`
+//! ([`SceneRecord`]), `cells` ([`CellRecord`]) and `yardsticks` (per
+//! scene, [`Yardstick`]). Times are seconds. Every number is finite:
+//! what is written reads back, bit for bit.
+//!
+//! # The report's folder
+//!
+//! `results.json`, `index.md`, `plots/SCENE/WHAT.svg` and
+//! `pictures/SCENE/SETTING.png`, where `SCENE` and `SETTING` are the
+//! names flattened to letters, digits and `-`, at most 64 bytes, made
+//! unique within the sweep (ignoring case) by a suffix `-2`, `-3`, … The
+//! folder is written as a set ([`Staged`]): a reader sees the previous
+//! report or the new one, never a mix.
+//!
+//! # Parts and the merge
+//!
+//! A part is the results of one shard. [`merge`] (and [`merge_into`], from
+//! the parts' folders) takes parts only when each is [whole](Results::check)
+//! and all are of one sweep (the same [`ConfigRecord`]), and no cell is in
+//! two of them; it is linear in the parts' size.
 
+mod check;
+mod folder;
 mod machine;
+mod names;
 mod papers;
 mod plots;
 pub mod stability;
 mod write;
 mod yardstick;
 
+pub use check::{MAX_LINE, MAX_NAME, MAX_SIDE};
+pub use folder::{merge_into, read_part, Staged};
 pub use machine::machine_line;
-pub use write::{write, write_accuracy, ACCURACY_MARKER};
+pub use write::{check_accuracy, write, write_accuracy, ACCURACY_MARKER};
 pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
 
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
-use crate::render::image::{in_penumbra, ErrorSummary};
+use crate::render::image::ErrorSummary;
+use crate::render::score::{group_errors, group_masks, scaled, shading_factors};
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
-use std::collections::BTreeMap;
+use std::collections::{BTreeMap, HashMap, HashSet};
+use std::fmt;
 use std::sync::Arc;
 use std::time::Instant;
 
 /// The format tag of `results.json`.
-pub const FORMAT: &str = "softshadow-report/1";
+pub const FORMAT: &str = "softshadow-report/2";
 
 /// A run longer than this many seconds is not repeated.
 pub const SLOW_RUN: f64 = 2.0;
 
-/// The receiver groups, in table order.
-pub const GROUPS: [&str; 4] = ["all", "penumbra", "ground", "occluders"];
+/// The receiver groups, in table order (the renderer's, shared with
+/// `softshadow score`).
+pub use crate::render::score::GROUPS;
 
 /// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
 #[must_use]
@@ -89,19 +116,49 @@ pub struct Shard {
     pub count: u32,
 }
 
+/// Why a text is not a [`Shard`].
+#[derive(Clone, Debug, PartialEq, Eq)]
+#[non_exhaustive]
+pub enum ShardError {
+    /// Not two whole numbers `i/n`.
+    Syntax {
+        /// The text given.
+        text: String,
+    },
+    /// `i` is 0 or greater than `n`.
+    OutOfRange {
+        /// Which part.
+        index: u32,
+        /// Of how many.
+        count: u32,
+    },
+}
+
+impl fmt::Display for ShardError {
+    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        match self {
+            ShardError::Syntax { text } => write!(f, "'{text}'"),
+            ShardError::OutOfRange { index, count } => write!(f, "'{index}/{count}'"),
+        }?;
+        write!(f, ": a shard is i/n with 1 ≤ i ≤ n")
+    }
+}
+
+impl std::error::Error for ShardError {}
+
 impl std::str::FromStr for Shard {
-    type Err = String;
+    type Err = ShardError;
 
     /// `i/n` with `1 ≤ i ≤ n`.
-    fn from_str(s: &str) -> Result<Shard, String> {
-        let bad = || format!("'{s}': a shard is i/n with 1 ≤ i ≤ n");
-        let (i, n) = s.split_once('/').ok_or_else(bad)?;
+    fn from_str(s: &str) -> Result<Shard, ShardError> {
+        let syntax = || ShardError::Syntax { text: s.to_owned() };
+        let (i, n) = s.split_once('/').ok_or_else(syntax)?;
         let (index, count): (u32, u32) = (
-            i.trim().parse().map_err(|_| bad())?,
-            n.trim().parse().map_err(|_| bad())?,
+            i.trim().parse().map_err(|_| syntax())?,
+            n.trim().parse().map_err(|_| syntax())?,
         );
         if index == 0 || index > count {
-            return Err(bad());
+            return Err(ShardError::OutOfRange { index, count });
         }
         Ok(Shard { index, count })
     }
@@ -122,7 +179,7 @@ pub struct Config {
     /// The part of the sweep to run (`None`: all of it).
     pub shard: Option<Shard>,
     /// The side of the pictures (`0`: none); the scene named `default`
-    /// gets twice this, up to [`Config::side`].
+    /// gets twice this; never more than [`Config::side`].
     pub picture_side: u32,
     /// Methods of one's own (outside the registry), swept after the
     /// registry's settings like any other: tables, error-against-time plots
@@ -148,9 +205,12 @@ impl Default for Config {
 /// A scene to sweep: its name (a built-in name or a file) and the scene.
 #[derive(Clone, Debug)]
 pub struct Case {
-    /// How the report names it.
+    /// How the report names it: one line of at most [`MAX_NAME`] bytes,
+    /// distinct from the other cases' names.
     pub name: String,
-    /// The scene; it must have a camera.
+    /// The scene; without a camera (or with receivers the exact reference
+    /// refuses, inside the light), its cells record why and the scene is
+    /// listed by [`Results::unprepared`].
     pub scene: Scene,
 }
 
@@ -179,6 +239,12 @@ pub struct SceneRecord {
     pub profile_columns: Vec<u32>,
     /// The exact `V` along the profile.
     pub profile_exact: Vec<f64>,
+    /// The largest certified bound of the exact answers over the frame's
+    /// receivers (`|V − V_true| ≤ bound` for each:
+    /// [`exact::visibility_bounded`](crate::reference::exact::visibility_bounded));
+    /// `None` in parts written before it was recorded.
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub exact_bound: Option<f64>,
     /// The machine (index into [`Results::machines`]) that built this
     /// record.
     pub machine: usize,
@@ -240,17 +306,36 @@ pub struct Results {
     pub yardsticks: BTreeMap<String, Yardstick>,
 }
 
-/// What of [`Config`] a report records.
+/// What of [`Config`] a report records: what makes a sweep one sweep.
+/// Cell `k` is scene `scenes[k / settings.len()]` under setting
+/// `settings[k % settings.len()]`.
 #[derive(Clone, Debug, PartialEq, Eq, Serialize, Deserialize)]
 pub struct ConfigRecord {
     /// The frames' side.
     pub side: u32,
-    /// Timed runs per cell.
+    /// Timed runs per cell (at most).
     pub runs: u32,
     /// The yardstick's sample counts.
     pub mc: Vec<u32>,
-    /// The sweep's cell count.
+    /// The side of the pictures ([`Config::picture_side`]).
+    pub pictures: u32,
+    /// The sweep's scenes, in order.
+    pub scenes: Vec<String>,
+    /// The sweep's settings, in order ([`settings`]).
+    pub settings: Vec<String>,
+    /// The sweep's cell count, scenes × settings.
     pub cells: usize,
+}
+
+impl ConfigRecord {
+    /// Each scene's number in the sweep, by name.
+    pub(crate) fn scene_numbers(&self) -> HashMap<&str, usize> {
+        self.scenes
+            .iter()
+            .enumerate()
+            .map(|(k, s)| (s.as_str(), k))
+            .collect()
+    }
 }
 
 /// The settings a sweep runs on every scene: `exact`, the registry's
@@ -305,13 +390,16 @@ struct Prepared {
 }
 
 /// Runs this part of the sweep over `cases`, writing pictures under
-/// `out/pictures` (when `out` is given); the derived columns are left
-/// empty ([`finish`] fills them).
+/// `out/pictures` (when `out` is given: a fresh folder, [`Staged::path`]);
+/// the derived columns are left empty ([`finish`] fills them).
 ///
 /// # Errors
-/// A method setting that does not parse; a picture that cannot be
-/// written. A scene without a camera, a method that fails, are recorded
-/// in the cells, not returned.
+/// Before any work: a method setting that does not parse, case or setting
+/// names that are not distinct one-line names of at most [`MAX_NAME`]
+/// bytes, a side beyond `1..=`[`MAX_SIDE`]. Then a picture that cannot be
+/// written. A scene that cannot be prepared (no camera, receivers inside
+/// the light), a method that fails, are recorded in the cells, not
+/// returned ([`Results::unprepared`]).
 pub fn run(
     cases: &[Case],
     config: &Config,
@@ -323,26 +411,32 @@ pub fn run(
         .iter()
         .map(|s| match config.own.iter().find(|m| m.name() == *s) {
             Some(own) => Ok(Arc::clone(own)),
-            None => registry::parse(s).map(Arc::from),
+            None => registry::parse(s).map(Arc::from).map_err(|e| e.to_string()),
         })
         .collect::<Result<_, _>>()?;
-    let machine = machine_line();
+    let machine = check::one_line(&machine_line(), MAX_LINE);
     let total = cases.len() * settings.len();
+    let record = ConfigRecord {
+        side: config.side,
+        runs: config.runs.max(1),
+        mc: config.mc.clone(),
+        pictures: config.picture_side,
+        scenes: cases.iter().map(|c| c.name.clone()).collect(),
+        settings: settings.clone(),
+        cells: total,
+    };
+    record.check()?;
+    let names = names::Names::new(&record);
     let mine: Vec<usize> = (0..total)
         .filter(|k| {
             config
                 .shard
-                .is_none_or(|s| (*k as u32) % s.count == s.index - 1)
+                .is_none_or(|s| k % s.count as usize == s.index as usize - 1)
         })
         .collect();
     let mut results = Results {
         format: FORMAT.to_owned(),
-        config: ConfigRecord {
-            side: config.side,
-            runs: config.runs,
-            mc: config.mc.clone(),
-            cells: total,
-        },
+        config: record,
         machines: vec![machine],
         scenes: Vec::new(),
         cells: Vec::new(),
@@ -379,7 +473,9 @@ pub fn run(
             let mut cell = run_cell(k, case, &prepared, method, config);
             if cell.status == "ok" && pictured(setting, config) && config.picture_side > 0 {
                 if let Some(dir) = out {
-                    cell.picture = Some(picture(case, &prepared, method, config, dir)?);
+                    let name = names.picture(k);
+                    picture(case, &prepared, method, config, &dir.join(&name))?;
+                    cell.picture = Some(name);
                 }
             }
             results.cells.push(cell);
@@ -397,7 +493,7 @@ fn failed(index: usize, case: &Case, setting: &str, why: &str) -> CellRecord {
         scene: case.name.clone(),
         method: setting.to_owned(),
         base: base(setting),
-        status: format!("error: {why}"),
+        status: error(why),
         machine: 0,
         runs: Vec::new(),
         seconds: None,
@@ -409,6 +505,11 @@ fn failed(index: usize, case: &Case, setting: &str, why: &str) -> CellRecord {
         mc_equal_penumbra: None,
         speedup: None,
     }
+}
+
+/// An error's status: one line, at most [`MAX_LINE`] bytes.
+fn error(why: &str) -> String {
+    check::one_line(&format!("error: {why}"), MAX_LINE)
 }
 
 fn base(setting: &str) -> String {
@@ -431,25 +532,17 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
     });
     let exact = method::run(&Exact, &stages, &frame)
         .map_err(|e| format!("exact: {e}"))?
-        .output
-        .visibility;
+        .output;
+    let exact_bound = exact
+        .bound
+        .as_ref()
+        .map(|b| b.iter().copied().fold(0.0, f64::max));
+    let exact = exact.visibility;
     let receivers = frame.receivers();
-    let penumbra: Vec<bool> = exact.iter().map(|&v| in_penumbra(v)).collect();
-    let ground: Vec<bool> = receivers.iter().map(|r| r.object == Some(0)).collect();
-    let groups = [
-        vec![true; receivers.len()],
-        penumbra.clone(),
-        ground.clone(),
-        ground.iter().map(|g| !g).collect(),
-    ];
+    let groups = group_masks(receivers, &exact);
+    let penumbra = groups[1].clone();
     let light = scene.light();
-    let shading: Vec<f64> = receivers
-        .iter()
-        .map(|r| {
-            let l = (light.center() - r.position).normalize_or_zero();
-            r.normal.map_or(1.0, |n| n.dot(l).max(0.0))
-        })
-        .collect();
+    let shading = shading_factors(light, receivers);
     // The profile: the image row with the most exact-penumbra receivers.
     let (w, h) = frame.size();
     let pixels = frame.pixels();
@@ -483,6 +576,7 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
         profile_row,
         profile_columns,
         profile_exact: profile.iter().map(|&k| exact[k]).collect(),
+        exact_bound,
         machine: 0,
     };
     Ok(Prepared {
@@ -528,7 +622,7 @@ fn run_cell(
                 visibility = Some(r.output.visibility);
             }
             Err(e) => {
-                cell.status = format!("error: {e}");
+                cell.status = error(&e.to_string());
                 cell.runs.clear();
                 return cell;
             }
@@ -543,25 +637,15 @@ fn run_cell(
     cell.status = "ok".to_owned();
     cell.seconds = Some(median(&cell.runs));
     let exact = &prepared.exact;
-    cell.errors = Some(
-        prepared
-            .groups
-            .each_ref()
-            .map(|g| ErrorSummary::new(&v, exact, |i| g[i])),
-    );
-    let shade = |x: &[f64]| -> Vec<f64> {
-        x.iter()
-            .zip(&prepared.shading)
-            .map(|(v, s)| v * s)
-            .collect()
-    };
-    let (sv, se) = (shade(&v), shade(exact));
-    cell.shaded = Some(
-        prepared
-            .groups
-            .each_ref()
-            .map(|g| ErrorSummary::new(&sv, &se, |i| g[i])),
-    );
+    let all = |_| true;
+    cell.errors = Some(group_errors(&v, exact, &prepared.groups, all));
+    let shade = |x: &[f64]| scaled(x, &prepared.shading);
+    cell.shaded = Some(group_errors(
+        &shade(&v),
+        &shade(exact),
+        &prepared.groups,
+        all,
+    ));
     cell.profile = prepared.profile.iter().map(|&k| v[k]).collect();
     cell
 }
@@ -577,15 +661,15 @@ fn median(x: &[f64]) -> f64 {
     }
 }
 
-/// Writes the cell's side-by-side picture (shaded | signed error) under
-/// `dir/pictures`, and returns its path relative to `dir`.
+/// Writes the cell's side-by-side picture (shaded | signed error) to
+/// `path`, of [`names::picture_size`].
 fn picture(
     case: &Case,
     prepared: &Prepared,
     method: &dyn Method,
     config: &Config,
-    dir: &std::path::Path,
-) -> Result<String, String> {
+    path: &std::path::Path,
+) -> Result<(), String> {
     use crate::render::image::{error_heat_map, shaded, shaded_by_ends};
     let stages = Stages::new(&case.scene);
     let run = method::run(method, &stages, &prepared.frame).map_err(|e| e.to_string())?;
@@ -596,109 +680,138 @@ fn picture(
         None => shaded(scene, &prepared.frame, v),
     };
     let right = error_heat_map(&prepared.frame, v, &prepared.exact);
-    let side = if case.name == "default" {
-        (2 * config.picture_side).min(config.side)
-    } else {
-        config.picture_side.min(config.side)
-    };
-    let factor = (config.side / side.max(1)).max(1);
+    let factor = names::picture_factor(config.side, config.picture_side, &case.name);
     let image = write::side_by_side(&left.downsample(factor), &right.downsample(factor));
-    let name = format!(
-        "pictures/{}-{}.png",
-        write::file_part(&case.name),
-        write::file_part(&method.name())
-    );
-    let path = dir.join(&name);
     if let Some(parent) = path.parent() {
         std::fs::create_dir_all(parent).map_err(|e| format!("{}: {e}", parent.display()))?;
     }
     image
-        .write_png(&path)
-        .map_err(|e| format!("{}: {e}", path.display()))?;
-    Ok(name)
+        .write_png(path)
+        .map_err(|e| format!("{}: {e}", path.display()))
 }
 
-/// Joins parts of one sweep (the same format and settings) into one,
-/// keeping each cell's machine, and fills the derived columns.
+/// Joins parts of one sweep into one, keeping each cell's machine, and
+/// fills the derived columns ([`finish`]). Each part must be
+/// [whole](Results::check), all of one sweep (the same [`ConfigRecord`]),
+/// agree on the scenes they share, and hold no cell another holds. Linear
+/// in the parts' size.
 ///
 /// # Errors
-/// Parts of different formats or settings, a cell in two parts.
+/// One line: no part, a part that is not whole, parts of different
+/// sweeps, disagreeing on a scene or sharing a cell.
 pub fn merge(parts: Vec<Results>) -> Result<Results, String> {
+    merge_labelled(
+        parts
+            .into_iter()
+            .enumerate()
+            .map(|(k, p)| (format!("part {}", k + 1), p))
+            .collect(),
+    )
+}
+
+/// [`merge`], the parts named by their labels in messages.
+pub(crate) fn merge_labelled(parts: Vec<(String, Results)>) -> Result<Results, String> {
+    for (label, part) in &parts {
+        part.check().map_err(|e| format!("{label}: {e}"))?;
+    }
     let mut parts = parts.into_iter();
-    let mut all = parts.next().ok_or("nothing to merge")?;
-    for part in parts {
-        if part.format != all.format || part.config != all.config {
-            return Err("the parts are of different sweeps (format or settings differ)".to_owned());
+    let (first, mut all) = parts.next().ok_or("nothing to merge")?;
+    let mut machines: HashMap<String, usize> = all
+        .machines
+        .iter()
+        .enumerate()
+        .map(|(k, m)| (m.clone(), k))
+        .collect();
+    let mut scenes: HashMap<String, usize> = all
+        .scenes
+        .iter()
+        .enumerate()
+        .map(|(k, s)| (s.name.clone(), k))
+        .collect();
+    let mut cells: HashSet<usize> = all.cells.iter().map(|c| c.index).collect();
+    for (label, part) in parts {
+        if let Some(what) = all.config.differs(&part.config) {
+            return Err(format!("{label} is of another sweep than {first}: {what}"));
         }
-        let offset = all.machines.len();
         let remap: Vec<usize> = part
             .machines
-            .iter()
-            .enumerate()
-            .map(|(k, m)| match all.machines.iter().position(|x| x == m) {
-                Some(p) => p,
-                None => {
-                    all.machines.push(m.clone());
-                    offset + k
-                }
+            .into_iter()
+            .map(|m| {
+                let next = all.machines.len();
+                *machines.entry(m.clone()).or_insert_with(|| {
+                    all.machines.push(m);
+                    next
+                })
             })
             .collect();
         for mut s in part.scenes {
-            if !all.scenes.iter().any(|x| x.name == s.name) {
-                s.machine = remap.get(s.machine).copied().unwrap_or(0);
-                all.scenes.push(s);
+            if let Some(&k) = scenes.get(&s.name) {
+                if !check::same_scene(&all.scenes[k], &s) {
+                    return Err(format!(
+                        "{label} and {first} disagree on scene {} (its receivers or exact profile)",
+                        check::quote(&s.name)
+                    ));
+                }
+                continue;
             }
+            s.machine = remap[s.machine];
+            scenes.insert(s.name.clone(), all.scenes.len());
+            all.scenes.push(s);
         }
         for mut c in part.cells {
-            if all.cells.iter().any(|x| x.index == c.index) {
+            if !cells.insert(c.index) {
                 return Err(format!(
-                    "cell {} ({}, {}) is in two parts",
-                    c.index, c.scene, c.method
+                    "cell {} ({}, {}) is in two parts ({label} and one before it)",
+                    c.index,
+                    check::quote(&c.scene),
+                    check::quote(&c.method)
                 ));
             }
-            c.machine = remap.get(c.machine).copied().unwrap_or(0);
+            c.machine = remap[c.machine];
             all.cells.push(c);
         }
     }
-    Ok(finish(all))
+    let merged = finish(all);
+    merged
+        .check()
+        .map_err(|e| format!("the merged results: {e}"))?;
+    Ok(merged)
 }
 
-/// Orders the scenes and cells and fills the derived columns: the
-/// yardstick per scene, each cell's equal-RMSE sample counts and speed-up.
+/// Orders the scenes (as the sweep lists them) and the cells (by number)
+/// and fills the derived columns afresh: the yardstick per scene, each
+/// cell's equal-RMSE sample counts and speed-up. Linear in the cells.
 #[must_use]
 pub fn finish(mut results: Results) -> Results {
     results.cells.sort_by_key(|c| c.index);
-    let order: Vec<String> = {
-        let mut names = Vec::new();
-        for c in &results.cells {
-            if !names.contains(&c.scene) {
-                names.push(c.scene.clone());
-            }
+    let order = results.config.scene_numbers();
+    results
+        .scenes
+        .sort_by_key(|s| order.get(s.name.as_str()).copied().unwrap_or(usize::MAX));
+    let mut points: BTreeMap<String, Vec<(u32, f64, f64, f64)>> = BTreeMap::new();
+    for c in &mut results.cells {
+        c.mc_equal = None;
+        c.mc_equal_penumbra = None;
+        c.speedup = None;
+        if c.base != "mc" || c.status != "ok" {
+            continue;
         }
-        names
-    };
-    results.scenes.sort_by_key(|s| {
-        order
-            .iter()
-            .position(|n| *n == s.name)
-            .unwrap_or(usize::MAX)
-    });
-    results.yardsticks.clear();
-    for scene in &order {
-        let points: Vec<(u32, f64, f64, f64)> = results
-            .cells
-            .iter()
-            .filter(|c| c.scene == *scene && c.base == "mc" && c.status == "ok")
-            .filter_map(|c| {
-                let n: u32 = c.method.strip_prefix("mc:")?.parse().ok()?;
-                let e = c.errors?;
-                Some((n, e[0].rmse, e[1].rmse, c.seconds?))
-            })
-            .collect();
-        if let Some(y) = Yardstick::new(&points) {
-            results.yardsticks.insert(scene.clone(), y);
-        }
+        let (Some(n), Some(e), Some(t)) = (
+            c.method.strip_prefix("mc:").and_then(|n| n.parse().ok()),
+            c.errors,
+            c.seconds,
+        ) else {
+            continue;
+        };
+        points
+            .entry(c.scene.clone())
+            .or_default()
+            .push((n, e[0].rmse, e[1].rmse, t));
     }
+    results.yardsticks = points
+        .into_iter()
+        .filter_map(|(scene, p)| Some((scene, Yardstick::new(&p)?)))
+        .collect();
     for c in &mut results.cells {
         let (Some(y), Some(e), Some(t)) = (results.yardsticks.get(&c.scene), c.errors, c.seconds)
         else {
@@ -721,6 +834,13 @@ mod tests {
         for bad in ["0/3", "4/3", "3", "a/b", "1/0"] {
             assert!(bad.parse::<Shard>().is_err(), "{bad}");
         }
+        assert_eq!(
+            "4/3".parse::<Shard>(),
+            Err(ShardError::OutOfRange { index: 4, count: 3 })
+        );
+        let e = "a/b".parse::<Shard>().unwrap_err();
+        assert_eq!(e, ShardError::Syntax { text: "a/b".into() });
+        assert_eq!(e.to_string(), "'a/b': a shard is i/n with 1 ≤ i ≤ n");
     }
 
     #[test]

@@ -3,7 +3,7 @@
 //! Carlo a curve, the Pareto front marked), and the falloff profile across
 //! one penumbra per scene.
 
-use super::{CellRecord, Results, SceneRecord, GROUPS};
+use super::{CellRecord, ConfigRecord, SceneRecord, GROUPS};
 use plotters::prelude::*;
 
 /// One colour per method (base name), by its place in the registry.
@@ -39,34 +39,91 @@ fn short(v: f64) -> String {
 }
 
 /// The points `(ms, rmse)` not dominated by another (lower or equal in
-/// both, lower in one), by increasing time.
+/// both, lower in one), by increasing time: by time then error, each
+/// point kept when its error is below every earlier one's (n log n).
 fn pareto(points: &[(f64, f64)]) -> Vec<(f64, f64)> {
-    let mut front: Vec<(f64, f64)> = points
-        .iter()
-        .copied()
-        .filter(|&(t, e)| {
-            !points
-                .iter()
-                .any(|&(t2, e2)| t2 <= t && e2 <= e && (t2 < t || e2 < e))
-        })
-        .collect();
-    front.sort_by(|a, b| a.0.total_cmp(&b.0));
-    front.dedup();
+    let mut sorted = points.to_vec();
+    sorted.sort_by(|a, b| a.0.total_cmp(&b.0).then(a.1.total_cmp(&b.1)));
+    sorted.dedup();
+    let mut front: Vec<(f64, f64)> = Vec::new();
+    for p in sorted {
+        if front.last().is_none_or(|last| p.1 < last.1) {
+            front.push(p);
+        }
+    }
     front
 }
 
-/// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, as SVG
-/// text; `None` when there is nothing to plot.
+/// A label's box in pixels: left, top, right, bottom.
+type LabelBox = (i32, i32, i32, i32);
+
+fn overlaps(a: LabelBox, b: LabelBox) -> bool {
+    a.0 < b.2 && b.0 < a.2 && a.1 < b.3 && b.1 < a.3
+}
+
+/// Pixel size of `text` in the labels' font (sans-serif 11 px): a
+/// generous estimate, so that estimated boxes that do not overlap are
+/// drawn apart.
+fn label_size(text: &str) -> (i32, i32) {
+    (text.chars().count() as i32 * 6 + 2, 13)
+}
+
+/// Where to put a label of `size` for the point at `p` (pixels): the first
+/// of a ring of places around it, ever farther, that stays inside `area`
+/// and meets none of `taken`; `None` when all are taken. Returns the box.
+fn place_label(
+    p: (i32, i32),
+    size: (i32, i32),
+    area: LabelBox,
+    taken: &[LabelBox],
+) -> Option<LabelBox> {
+    const ANGLES: [f64; 12] = [
+        0.0, 180.0, -25.0, 25.0, 155.0, 205.0, -60.0, 60.0, 120.0, 240.0, -90.0, 90.0,
+    ];
+    for r in [7.0, 16.0, 28.0, 42.0, 60.0, 82.0, 108.0, 140.0, 180.0] {
+        for a in ANGLES {
+            let (dx, dy) = (r * f64::to_radians(a).cos(), -r * f64::to_radians(a).sin());
+            let (x, y) = (p.0 + dx.round() as i32, p.1 + dy.round() as i32);
+            // Right of the point the box starts at (x, y); left of it, it
+            // ends there; above and below it is centred.
+            let left = if dx > 2.0 {
+                x
+            } else if dx < -2.0 {
+                x - size.0
+            } else {
+                x - size.0 / 2
+            };
+            let top = if dy < -2.0 {
+                y - size.1
+            } else if dy > 2.0 {
+                y
+            } else {
+                y - size.1 / 2
+            };
+            let b = (left, top, left + size.0, top + size.1);
+            let inside = b.0 >= area.0 && b.1 >= area.1 && b.2 <= area.2 && b.3 <= area.3;
+            if inside && !taken.iter().any(|t| overlaps(*t, b)) {
+                return Some(b);
+            }
+        }
+    }
+    None
+}
+
+/// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, whose
+/// cells are `cells`, as SVG text; `None` when there is nothing to plot.
+///
+/// The exact reference has RMSE 0, off a log axis: it is drawn as a
+/// labelled marker on the axis floor at its time. Method settings are
+/// labelled by name, each label placed where it meets no other label or
+/// point (a leader line to its point when moved off it).
 pub(crate) fn error_against_time(
-    results: &Results,
+    config: &ConfigRecord,
     scene: &SceneRecord,
+    cells: &[&CellRecord],
     g: usize,
 ) -> Option<String> {
-    let cells: Vec<&CellRecord> = results
-        .cells
-        .iter()
-        .filter(|c| c.scene == scene.name && c.status == "ok")
-        .collect();
+    let cells: Vec<&CellRecord> = cells.iter().copied().filter(|c| c.status == "ok").collect();
     let point = |c: &CellRecord| -> Option<(f64, f64)> {
         let e = c.errors?[g].rmse;
         let t = c.seconds? * 1e3;
@@ -83,6 +140,13 @@ pub(crate) fn error_against_time(
         .filter_map(|c| point(c))
         .collect();
     mc.sort_by(|a, b| a.0.total_cmp(&b.0));
+    // The exact reference's time (its error is 0 by definition).
+    let exact_ms = cells
+        .iter()
+        .find(|c| c.base == "exact")
+        .and_then(|c| c.seconds)
+        .map(|s| s * 1e3)
+        .filter(|t| *t > 0.0 && t.is_finite());
     let all: Vec<(f64, f64)> = methods
         .iter()
         .map(|m| m.1)
@@ -91,16 +155,20 @@ pub(crate) fn error_against_time(
     if all.is_empty() {
         return None;
     }
-    let (t0, t1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
-        (a.min(p.0), b.max(p.0))
-    });
+    let (t0, t1) = all
+        .iter()
+        .map(|p| p.0)
+        .chain(exact_ms)
+        .fold((f64::INFINITY, 0.0f64), |(a, b), t| (a.min(t), b.max(t)));
     let (e0, e1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
         (a.min(p.1), b.max(p.1))
     });
+    // The axis floor, where RMSE 0 is drawn: below every measured point.
+    let floor = e0 / 3.0;
     let front = pareto(&all);
     let mut svg = String::new();
     {
-        let root = SVGBackend::with_string(&mut svg, (900, 620)).into_drawing_area();
+        let root = SVGBackend::with_string(&mut svg, (1100, 720)).into_drawing_area();
         root.fill(&WHITE).ok()?;
         let mut chart = ChartBuilder::on(&root)
             .caption(
@@ -115,13 +183,16 @@ pub(crate) fn error_against_time(
             .y_label_area_size(60)
             .build_cartesian_2d(
                 (t0 / 1.5..t1 * 1.5).log_scale(),
-                (e0 / 1.5..(e1 * 1.5).min(1.5)).log_scale(),
+                (floor..(e1 * 1.5).min(1.5)).log_scale(),
             )
             .ok()?;
         chart
             .configure_mesh()
             .x_desc("time of method::run (ms, median)")
-            .y_desc(format!("RMSE of V, {}", GROUPS[g]))
+            .y_desc(format!(
+                "RMSE of V, {} (the floor: RMSE 0, the exact reference)",
+                GROUPS[g]
+            ))
             .x_label_formatter(&|v| short(*v))
             .y_label_formatter(&|v| short(*v))
             .draw()
@@ -132,8 +203,8 @@ pub(crate) fn error_against_time(
                 .ok()?
                 .label(format!(
                     "Monte Carlo, {} … {} samples",
-                    results.config.mc.first().copied().unwrap_or(0),
-                    results.config.mc.last().copied().unwrap_or(0)
+                    config.mc.first().copied().unwrap_or(0),
+                    config.mc.last().copied().unwrap_or(0)
                 ))
                 .legend(|(x, y)| {
                     PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
@@ -161,18 +232,35 @@ pub(crate) fn error_against_time(
                     .map(|&p| Circle::new(p, 8, BLACK.stroke_width(1))),
             )
             .ok()?;
-        for (c, p) in &methods {
-            let col = colour(&c.base);
+        if let Some(t) = exact_ms {
+            // A downward triangle standing on the floor at the exact
+            // reference's time.
+            let exact_colour = RGBColor(0, 0, 0);
             chart
-                .draw_series(std::iter::once(
-                    EmptyElement::at(*p)
-                        + Circle::new((0, 0), 4, col.filled())
-                        + Text::new(
-                            c.method.clone(),
-                            (6, -4),
-                            ("sans-serif", 10).into_font().color(&col),
-                        ),
-                ))
+                .draw_series(std::iter::once(Polygon::new(
+                    vec![
+                        (t / 1.12, floor * 1.22),
+                        (t * 1.12, floor * 1.22),
+                        (t, floor * 1.02),
+                    ],
+                    exact_colour.filled(),
+                )))
+                .ok()?
+                .label("exact reference: RMSE 0, drawn on the floor at its time")
+                .legend(move |(x, y)| {
+                    Polygon::new(
+                        vec![(x + 4, y - 5), (x + 16, y - 5), (x + 10, y + 5)],
+                        exact_colour.filled(),
+                    )
+                });
+        }
+        for (c, p) in &methods {
+            chart
+                .draw_series(std::iter::once(Circle::new(
+                    *p,
+                    4,
+                    colour(&c.base).filled(),
+                )))
                 .ok()?;
         }
         chart
@@ -182,25 +270,81 @@ pub(crate) fn error_against_time(
             .border_style(BLACK)
             .draw()
             .ok()?;
+        // The labels, placed in pixels: every point and the legend are
+        // obstacles, then each label placed takes its box.
+        let (xr, yr) = chart.plotting_area().get_pixel_range();
+        let area = (xr.start, yr.start, xr.end, yr.end);
+        let at = |p: (f64, f64)| chart.backend_coord(&p);
+        let dot = |(x, y): (i32, i32), r: i32| (x - r, y - r, x + r, y + r);
+        let mut taken: Vec<LabelBox> = methods
+            .iter()
+            .map(|m| dot(at(m.1), 5))
+            .chain(mc.iter().map(|&p| dot(at(p), 4)))
+            .chain(front.iter().map(|&p| dot(at(p), 9)))
+            .collect();
+        // The legend: upper right, up to four lines of about 60 characters.
+        let entries = 2 + i32::from(exact_ms.is_some()) + i32::from(front.len() >= 2);
+        taken.push((area.2 - 440, area.1, area.2, area.1 + 14 + 20 * entries));
+        let font = ("sans-serif", 11).into_font();
+        let mut labels = Vec::new();
+        if let Some(t) = exact_ms {
+            let p = at((t, floor * 1.12));
+            taken.push(dot(p, 7));
+            labels.push((format!("exact: RMSE 0, {} ms", short(t)), p, BLACK));
+        }
+        // Crowded points first: the ones with the most neighbours within
+        // 40 pixels take the nearest places.
+        let mut order: Vec<usize> = (0..methods.len()).collect();
+        let crowd = |k: usize| {
+            let p = at(methods[k].1);
+            methods
+                .iter()
+                .filter(|m| {
+                    let q = at(m.1);
+                    (q.0 - p.0).abs() < 40 && (q.1 - p.1).abs() < 40
+                })
+                .count()
+        };
+        order.sort_by_key(|&k| std::cmp::Reverse(crowd(k)));
+        for k in order {
+            let (c, p) = methods[k];
+            labels.push((c.method.clone(), at(p), colour(&c.base)));
+        }
+        for (text, p, col) in labels {
+            let size = label_size(&text);
+            let Some(b) = place_label(p, size, area, &taken) else {
+                continue;
+            };
+            taken.push(b);
+            // A leader line from the point to the box's nearest side when
+            // the label is not beside it.
+            let (cx, cy) = (p.0.clamp(b.0, b.2), p.1.clamp(b.1, b.3));
+            if (cx - p.0).abs().max((cy - p.1).abs()) > 9 {
+                root.draw(&PathElement::new(vec![p, (cx, cy)], col.mix(0.6)))
+                    .ok()?;
+            }
+            root.draw(&Text::new(text, (b.0 + 1, b.1), font.clone().color(&col)))
+                .ok()?;
+        }
         root.present().ok()?;
     }
     Some(svg)
 }
 
 /// `V` along the scene's profile row: the exact answer and the default
-/// setting of each method that ran, as SVG text.
-pub(crate) fn profile(results: &Results, scene: &SceneRecord) -> Option<String> {
-    if scene.profile_columns.is_empty() {
-        return None;
-    }
-    let x = |k: usize| f64::from(scene.profile_columns[k]);
-    let (x0, x1) = (x(0), x(scene.profile_columns.len() - 1).max(x(0) + 1.0));
-    let cells: Vec<&CellRecord> = results
-        .cells
+/// setting of each method that ran (of `cells`, the scene's), as SVG text.
+pub(crate) fn profile(scene: &SceneRecord, cells: &[&CellRecord]) -> Option<String> {
+    let columns = &scene.profile_columns;
+    let (&first, &last) = (columns.first()?, columns.last()?);
+    let (x0, x1) = (
+        f64::from(first),
+        f64::from(last).max(f64::from(first) + 1.0),
+    );
+    let cells: Vec<&CellRecord> = cells
         .iter()
+        .copied()
         .filter(|c| {
-            c.scene == scene.name
-                && c.status == "ok"
+            c.status == "ok"
                 && c.base != "exact"
                 && c.base != "mc"
                 && c.profile.len() == scene.profile_columns.len()
@@ -231,7 +375,11 @@ pub(crate) fn profile(results: &Results, scene: &SceneRecord) -> Option<String> 
             .draw()
             .ok()?;
         let line = |values: &[f64]| -> Vec<(f64, f64)> {
-            values.iter().enumerate().map(|(k, &v)| (x(k), v)).collect()
+            columns
+                .iter()
+                .zip(values)
+                .map(|(&c, &v)| (f64::from(c), v))
+                .collect()
         };
         for c in &cells {
             let col = colour(&c.base);
@@ -267,5 +415,50 @@ mod tests {
     fn the_pareto_front_keeps_the_undominated() {
         let p = [(1.0, 0.5), (2.0, 0.2), (3.0, 0.3), (4.0, 0.1), (2.0, 0.25)];
         assert_eq!(super::pareto(&p), vec![(1.0, 0.5), (2.0, 0.2), (4.0, 0.1)]);
+        // Against the definition, on small integers: ties in time and in
+        // error, repeated points.
+        let mut seed = 7u64;
+        let mut next = || {
+            seed = seed
+                .wrapping_mul(6_364_136_223_846_793_005)
+                .wrapping_add(1_442_695_040_888_963_407);
+            f64::from((seed >> 60) as u32)
+        };
+        for _ in 0..200 {
+            let p: Vec<(f64, f64)> = (0..12).map(|_| (next(), next())).collect();
+            let mut brute: Vec<(f64, f64)> = p
+                .iter()
+                .copied()
+                .filter(|&(t, e)| {
+                    !p.iter()
+                        .any(|&(t2, e2)| t2 <= t && e2 <= e && (t2 < t || e2 < e))
+                })
+                .collect();
+            brute.sort_by(|a, b| a.0.total_cmp(&b.0));
+            brute.dedup();
+            assert_eq!(super::pareto(&p), brute, "{p:?}");
+        }
+    }
+
+    #[test]
+    fn labels_of_a_crowd_of_points_never_overlap_and_stay_inside() {
+        // Thirty points within 20 pixels of one another.
+        let area = (0, 0, 900, 600);
+        let points: Vec<(i32, i32)> = (0..30)
+            .map(|k| (400 + (k * 7) % 20, 300 + (k * 13) % 20))
+            .collect();
+        let mut taken: Vec<super::LabelBox> = points
+            .iter()
+            .map(|&(x, y)| (x - 5, y - 5, x + 5, y + 5))
+            .collect();
+        let obstacles = taken.len();
+        for (k, &p) in points.iter().enumerate() {
+            let size = super::label_size(&format!("method-{k}:option,other"));
+            let b = super::place_label(p, size, area, &taken).expect("a place");
+            assert!(b.0 >= 0 && b.1 >= 0 && b.2 <= 900 && b.3 <= 600);
+            assert!(taken.iter().all(|t| !super::overlaps(*t, b)));
+            taken.push(b);
+        }
+        assert_eq!(taken.len(), obstacles + 30);
     }
 }

@@ -52,6 +52,10 @@ pub struct Row {
     pub count: usize,
     /// The largest error (in the unit the section states).
     pub max: f64,
+    /// For the exact reference, the largest of its certified bounds over
+    /// the row's receivers (and whether each contained its error: the
+    /// note says otherwise).
+    pub bound: Option<f64>,
     /// Whether the row is inside the subject's documented domain, and if
     /// not, why.
     pub note: String,
@@ -74,6 +78,7 @@ impl Row {
             precision: "f64",
             count,
             max,
+            bound: None,
             note: note.to_owned(),
         }
     }
@@ -127,32 +132,233 @@ impl Plate {
     }
 }
 
-/// The largest `|V − V_closed|` of the exact reference over `points`, and
-/// how many receivers were refused.
+/// The exact reference's worst error against `truth` over `points` (each
+/// with its certified bound): the largest `|V − V_true|`, how many
+/// receivers were refused, the largest bound, and how many bounds did not
+/// contain their error (none, if the bound is right).
+#[derive(Clone, Copy, Debug, Default)]
+struct Measured {
+    max: f64,
+    refused: usize,
+    bound: f64,
+    violations: usize,
+}
+
+fn measure(
+    light: &Light,
+    tris: Vec<[DVec3; 3]>,
+    points: &[DVec3],
+    truth: impl Fn(DVec3) -> f64,
+) -> Measured {
+    let bvh = Bvh::new(Occluders::from_triangles(tris));
+    let values = exact::visibility_many_bounded(&bvh, light, points);
+    let mut m = Measured::default();
+    for (&p, v) in points.iter().zip(values) {
+        match v {
+            Ok(b) => {
+                let err = (b.visibility - truth(p)).abs();
+                m.max = m.max.max(err);
+                m.bound = m.bound.max(b.bound);
+                if err > b.bound {
+                    m.violations += 1;
+                }
+            }
+            Err(_) => m.refused += 1,
+        }
+    }
+    m
+}
+
+/// The largest `|V − V_closed|` of the exact reference over `points`
+/// (moved by `offset`, dyadic: the same scene).
 fn exact_error(
     plate: &Plate,
     offset: DVec3,
     points: &[DVec3],
     copies: usize,
     shift: f64,
-) -> (f64, usize) {
+) -> Measured {
     let reach =
         64.0 * (plate.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max));
     let Some((light, tris)) = plate.scene(offset, reach, copies, shift) else {
-        return (f64::NAN, points.len());
+        return Measured {
+            max: f64::NAN,
+            refused: points.len(),
+            ..Measured::default()
+        };
     };
-    let bvh = Bvh::new(Occluders::from_triangles(tris));
     let moved: Vec<DVec3> = points.iter().map(|&p| p + offset).collect();
-    let values = exact::visibility_many(&bvh, &light, &moved);
-    let mut worst = 0.0f64;
-    let mut refused = 0;
-    for (p, v) in points.iter().zip(values) {
-        match v {
-            Ok(v) => worst = worst.max((v - plate.fraction(*p)).abs()),
-            Err(_) => refused += 1,
+    measure(&light, tris, &moved, |q| plate.fraction(q - offset))
+}
+
+/// The same configurations in general position: the plate, the light and
+/// the receivers turned by an ordinary rotation and moved by an ordinary
+/// (non-dyadic) offset, every coordinate rounded. The closed form is then
+/// evaluated for the scene as rounded: the edge's trace on the light's
+/// plane from the rounded corners, the receiver and the light (its stored
+/// centre, normal and radius), in double-double ([`dd`]); the segment's
+/// area from that distance in `f64` ([`segment_area`]).
+struct General {
+    /// The frame: `x` across the edge, `y` toward the light, `z` along the
+    /// edge.
+    frame: [DVec3; 3],
+    offset: DVec3,
+}
+
+impl General {
+    /// A frame turned by the angles (radians) about two axes, and the
+    /// offset.
+    fn new(a: f64, b: f64, offset: DVec3) -> General {
+        let (sa, ca) = a.sin_cos();
+        let (sb, cb) = b.sin_cos();
+        let x = DVec3::new(ca, sa * cb, sa * sb);
+        let y = DVec3::new(-sa, ca * cb, ca * sb);
+        let z = x.cross(y);
+        General {
+            frame: [x, y, z],
+            offset,
         }
     }
-    (worst, refused)
+
+    fn at(&self, v: DVec3) -> DVec3 {
+        self.offset + self.frame[0] * v.x + self.frame[1] * v.y + self.frame[2] * v.z
+    }
+
+    /// The scene of `plate` in general position (its light facing `−y`),
+    /// with `copies` plates each `shift` further across, and the points.
+    fn measure(&self, plate: &Plate, points: &[DVec3], copies: usize, shift: f64) -> Measured {
+        let reach =
+            64.0 * (plate.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max));
+        let Ok(light) = Light::disk(
+            self.at(DVec3::new(0.0, plate.big_h, 0.0)),
+            -self.frame[1],
+            plate.r,
+        ) else {
+            return Measured {
+                max: f64::NAN,
+                refused: points.len(),
+                ..Measured::default()
+            };
+        };
+        let mut tris = Vec::with_capacity(2 * copies);
+        let mut first = None;
+        for k in 0..copies {
+            let s = plate.s + shift * k as f64;
+            let a = self.at(DVec3::new(s, plate.h, -reach));
+            let b = self.at(DVec3::new(s + reach, plate.h, -reach));
+            let c = self.at(DVec3::new(s + reach, plate.h, reach));
+            let d = self.at(DVec3::new(s, plate.h, reach));
+            first.get_or_insert((a, d, c));
+            tris.push([a, b, c]);
+            tris.push([a, c, d]);
+        }
+        let (a, d, inside) = first.expect("a plate");
+        let moved: Vec<DVec3> = points.iter().map(|&p| self.at(p)).collect();
+        measure(&light, tris, &moved, |p| {
+            dd::visible(&light, p, a, d, inside)
+        })
+    }
+}
+
+/// Double-double arithmetic for the general-position closed form.
+mod dd {
+    use crate::kernel::eft::f64::two_prod;
+    use crate::scene::Light;
+    use glam::DVec3;
+
+    /// `hi + lo`, about 106 bits.
+    #[derive(Clone, Copy, Debug)]
+    struct Dd(f64, f64);
+
+    fn two_sum(a: f64, b: f64) -> Dd {
+        let s = a + b;
+        let bv = s - a;
+        Dd(s, (a - (s - bv)) + (b - bv))
+    }
+
+    impl Dd {
+        fn add(self, o: Dd) -> Dd {
+            let s = two_sum(self.0, o.0);
+            let t = s.1 + self.1 + o.1;
+            two_sum(s.0, t)
+        }
+        fn neg(self) -> Dd {
+            Dd(-self.0, -self.1)
+        }
+        fn sub(self, o: Dd) -> Dd {
+            self.add(o.neg())
+        }
+        fn mul(self, o: Dd) -> Dd {
+            let (p, e) = two_prod(self.0, o.0);
+            two_sum(p, e + (self.0 * o.1 + self.1 * o.0))
+        }
+        fn div(self, o: Dd) -> Dd {
+            let q = self.0 / o.0;
+            let r = self.sub(o.mul(Dd(q, 0.0)));
+            two_sum(q, r.0 / o.0)
+        }
+        fn sqrt(self) -> Dd {
+            if self.0 <= 0.0 {
+                return Dd(0.0, 0.0);
+            }
+            let x = self.0.sqrt();
+            let (p, e) = two_prod(x, x);
+            let r = self.sub(Dd(p, e));
+            two_sum(x, r.0 / (2.0 * x))
+        }
+        fn value(self) -> f64 {
+            self.0 + self.1
+        }
+    }
+
+    type V = [Dd; 3];
+
+    /// `a − b` exactly.
+    fn diff(a: DVec3, b: DVec3) -> V {
+        [two_sum(a.x, -b.x), two_sum(a.y, -b.y), two_sum(a.z, -b.z)]
+    }
+    fn of(a: DVec3) -> V {
+        [Dd(a.x, 0.0), Dd(a.y, 0.0), Dd(a.z, 0.0)]
+    }
+    fn dot(a: &V, b: &V) -> Dd {
+        a[0].mul(b[0]).add(a[1].mul(b[1])).add(a[2].mul(b[2]))
+    }
+    fn cross(a: &V, b: &V) -> V {
+        [
+            a[1].mul(b[2]).sub(a[2].mul(b[1])),
+            a[2].mul(b[0]).sub(a[0].mul(b[2])),
+            a[0].mul(b[1]).sub(a[1].mul(b[0])),
+        ]
+    }
+
+    /// The visible fraction of the disk light from `p` with one straight
+    /// occluding edge `a d` of a plate on the side of `inside`, as the
+    /// inputs are given: the plane through `p` and the edge meets the
+    /// light's plane (its stored centre and normal) in a line at signed
+    /// distance `h r` from the centre; the part beyond it is hidden.
+    pub(super) fn visible(light: &Light, p: DVec3, a: DVec3, d: DVec3, inside: DVec3) -> f64 {
+        let Light::Disk(disk) = light else {
+            return f64::NAN;
+        };
+        let m = cross(&diff(a, p), &diff(d, a));
+        let n = of(disk.normal());
+        let n = {
+            let l = dot(&n, &n).sqrt();
+            [n[0].div(l), n[1].div(l), n[2].div(l)]
+        };
+        // m's part in the light's plane: n × (m × n).
+        let m_par = cross(&n, &cross(&m, &n));
+        let len = dot(&m_par, &m_par).sqrt();
+        let side = dot(&m, &diff(inside, p)).value().signum();
+        // The centre's signed distance from the line, positive on the
+        // visible side, in radii.
+        let dist = dot(&m, &diff(disk.center(), p)).div(len).value() * -side;
+        let h = (dist / disk.radius()).clamp(-1.0, 1.0);
+        // The hidden segment's half-angle acos(h) = atan2(√(1 − h²), h),
+        // 1 − h² as (1 − h)(1 + h).
+        let half = ((1.0 - h) * (1.0 + h)).max(0.0).sqrt().atan2(h);
+        1.0 - super::segment_area(2.0 * half) / std::f64::consts::PI
+    }
 }
 
 /// Receivers across the penumbra of `plate` on the floor (`y = 0`),
@@ -172,28 +378,40 @@ fn receivers(plate: &Plate, y: f64, n: usize) -> Vec<DVec3> {
         .collect()
 }
 
-/// The exact reference's section.
+/// The exact reference's section: every family twice, dyadic (the
+/// closed form exact, the moved scene the same scene) and in general
+/// position with ordinary coordinates (every input rounded; the closed
+/// form of the scene as rounded, [`General`]).
 fn exact_rows(rows: &mut Vec<Row>) {
-    let row = |family: &'static str, case: String, (max, refused): (f64, usize), n: usize| Row {
+    let row = |family: &'static str, case: String, m: Measured, n: usize| Row {
         subject: "exact reference".to_owned(),
         family,
         case,
         precision: "f64",
-        count: n - refused,
-        max,
-        note: if refused > 0 {
-            format!("{refused} receivers refused (a typed error, documented)")
-        } else if max <= 1e-14 {
-            "inside; within the documented ~1e-15".to_owned()
+        count: n - m.refused,
+        max: m.max,
+        bound: Some(m.bound),
+        note: if m.violations > 0 {
+            format!("{} bounds below their error", m.violations)
+        } else if m.refused > 0 {
+            format!(
+                "{} receivers refused (a typed error, documented)",
+                m.refused
+            )
+        } else if m.max <= 4e-15 {
+            "inside; within a few ulps, every bound containing its error".to_owned()
         } else {
-            match family {
-                "grazing" => "inside the documented domain, above the ~1e-15 of ordinary scenes: \
-                              the edge's image is found from a nearly flat view, and the error \
-                              grows about as ε / elevation"
-                    .to_owned(),
-                _ => "inside the documented domain, above the ~1e-15 of ordinary scenes".to_owned(),
-            }
+            "inside the documented domain, above a few ulps; every bound containing its error"
+                .to_owned()
         },
+    };
+    // General position: turned by these angles, moved by ordinary offsets.
+    let general = |scale: f64| {
+        General::new(
+            0.7319,
+            -0.4127,
+            DVec3::new(0.61237, -0.44371, 0.77113) * scale,
+        )
     };
     let unit = Plate {
         r: 0.5,
@@ -201,19 +419,26 @@ fn exact_rows(rows: &mut Vec<Row>) {
         h: 1.0,
         s: 0.0,
     };
-    // Far offsets: dyadic, so the moved scene is the same scene.
+    // Far offsets: dyadic, so the moved scene is the same scene; and
+    // ordinary offsets of the same size in general position.
     let base = receivers(&unit, 0.0, 33);
     let base: Vec<DVec3> = base
         .iter()
         .map(|p| DVec3::new((p.x * 1024.0).round() / 1024.0, p.y, p.z))
         .collect();
-    for e in [3, 4, 5, 6, 7, 8] {
+    for e in [3, 4, 5, 6, 7, 8, 9] {
         let d = 2f64.powi((f64::from(e) * std::f64::consts::LOG2_10).round() as i32);
         let offset = DVec3::new(d, d * 0.5, -d);
         rows.push(row(
             "far offset",
-            format!("10^{e} (2^{})", d.log2() as i32),
+            format!("10^{e} (2^{}), dyadic", d.log2() as i32),
             exact_error(&unit, offset, &base, 1, 0.0),
+            base.len(),
+        ));
+        rows.push(row(
+            "far offset",
+            format!("10^{e}, ordinary"),
+            general(10f64.powi(e)).measure(&unit, &base, 1, 0.0),
             base.len(),
         ));
     }
@@ -223,8 +448,14 @@ fn exact_rows(rows: &mut Vec<Row>) {
         let pts = receivers(&plate, 0.0, 33);
         rows.push(row(
             "light size",
-            format!("r = {r:e}"),
+            format!("r = {r:e}, dyadic"),
             exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
+            pts.len(),
+        ));
+        rows.push(row(
+            "light size",
+            format!("r = {r:e}, ordinary"),
+            general(1.0).measure(&plate, &pts, 1, 0.0),
             pts.len(),
         ));
     }
@@ -250,8 +481,14 @@ fn exact_rows(rows: &mut Vec<Row>) {
             .collect();
         rows.push(row(
             "grazing",
-            format!("elevation 1e-{e}"),
+            format!("elevation 1e-{e}, dyadic"),
             exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
+            pts.len(),
+        ));
+        rows.push(row(
+            "grazing",
+            format!("elevation 1e-{e}, ordinary"),
+            general(1.0).measure(&plate, &pts, 1, 0.0),
             pts.len(),
         ));
     }
@@ -261,8 +498,18 @@ fn exact_rows(rows: &mut Vec<Row>) {
         let pts = receivers(&unit, y, 33);
         rows.push(row(
             "contact",
-            format!("2^-{e} under the plate"),
+            format!("2^-{e} under the plate, dyadic"),
             exact_error(&unit, DVec3::ZERO, &pts, 1, 0.0),
+            pts.len(),
+        ));
+    }
+    for e in [3, 6, 9, 12] {
+        let y = unit.h - 1.37 * 10f64.powi(-e);
+        let pts = receivers(&unit, y, 33);
+        rows.push(row(
+            "contact",
+            format!("1.37e-{e} under the plate, ordinary"),
+            general(1.0).measure(&unit, &pts, 1, 0.0),
             pts.len(),
         ));
     }
@@ -271,26 +518,37 @@ fn exact_rows(rows: &mut Vec<Row>) {
         let pts = receivers(&unit, 0.0, 33);
         rows.push(row(
             "coincident edges",
-            format!("second edge 2^-{e} away"),
+            format!("second edge 2^-{e} away, dyadic"),
             exact_error(&unit, DVec3::ZERO, &pts, 2, 2f64.powi(-e)),
+            pts.len(),
+        ));
+        rows.push(row(
+            "coincident edges",
+            format!("second edge 2^-{e} away, ordinary"),
+            general(1.0).measure(&unit, &pts, 2, 2f64.powi(-e)),
             pts.len(),
         ));
     }
     // Deep overlap: 10⁴ plates on one another (the same, then each 2^-30
     // further; the union is the first).
     let pts = receivers(&unit, 0.0, 9);
-    rows.push(row(
-        "deep overlap",
-        "10^4 coincident plates".to_owned(),
-        exact_error(&unit, DVec3::ZERO, &pts, 10_000, 0.0),
-        pts.len(),
-    ));
-    rows.push(row(
-        "deep overlap",
-        "10^4 plates, each 2^-30 further".to_owned(),
-        exact_error(&unit, DVec3::ZERO, &pts, 10_000, 2f64.powi(-30)),
-        pts.len(),
-    ));
+    for (case, shift) in [
+        ("10^4 coincident plates", 0.0),
+        ("10^4 plates, each 2^-30 further", 2f64.powi(-30)),
+    ] {
+        rows.push(row(
+            "deep overlap",
+            format!("{case}, dyadic"),
+            exact_error(&unit, DVec3::ZERO, &pts, 10_000, shift),
+            pts.len(),
+        ));
+        rows.push(row(
+            "deep overlap",
+            format!("{case}, ordinary"),
+            general(1.0).measure(&unit, &pts, 10_000, shift),
+            pts.len(),
+        ));
+    }
 }
 
 /// `f32` kernels against `f64` on the same `f32` input.
@@ -327,6 +585,7 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             precision: "f32",
             count: 41,
             max: chords(1.0, far),
+            bound: None,
             note: "inside (documented: 3ε·r² for any edge length)".to_owned(),
         });
     }
@@ -338,6 +597,7 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             precision: "f32",
             count: 41,
             max: chords(r, 2.0 * r),
+            bound: None,
             note: "inside".to_owned(),
         });
     }
@@ -350,6 +610,7 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             precision: "f32",
             count: 1,
             max: segment(1.0, d, 2.0),
+            bound: None,
             note: f32_note(1.0, 10f64.powi(-e)),
         });
     }
@@ -393,6 +654,7 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             precision: "f32",
             count: 21,
             max: part(x0, 1.0, 1.0),
+            bound: None,
             note: f32_note(x0, 1.0),
         });
     }
@@ -405,6 +667,7 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             precision: "f32",
             count: 21,
             max: part(0.0, y, 1.0),
+            bound: None,
             note: "inside".to_owned(),
         });
     }
@@ -416,6 +679,7 @@ fn kernel_rows(rows: &mut Vec<Row>) {
             precision: "f32",
             count: 21,
             max: part(0.0, 1.0, len),
+            bound: None,
             note: "inside".to_owned(),
         });
     }
@@ -452,6 +716,7 @@ fn scalar_row(
         precision: "f32",
         count: inputs.len(),
         max: worst,
+        bound: None,
         note: "inside".to_owned(),
     });
 }
@@ -679,6 +944,7 @@ fn method_rows(rows: &mut Vec<Row>, side: u32) {
                 precision: "f64",
                 count: 0,
                 max: f64::NAN,
+                bound: None,
                 note: "the scene could not be built".to_owned(),
             });
             continue;
@@ -691,6 +957,7 @@ fn method_rows(rows: &mut Vec<Row>, side: u32) {
                 precision: "f64",
                 count: 0,
                 max: f64::NAN,
+                bound: None,
                 note: "refused (a receiver inside the light, or no camera)".to_owned(),
             });
             continue;
@@ -730,6 +997,7 @@ fn method_rows(rows: &mut Vec<Row>, side: u32) {
                 precision: "f64",
                 count,
                 max,
+                bound: None,
                 note,
             });
         }
@@ -997,6 +1265,7 @@ fn wedge_rows(rows: &mut Vec<Row>) {
                 precision,
                 count: tested,
                 max: missed as f64,
+                bound: None,
                 note,
             });
         }
@@ -1095,9 +1364,14 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
             &|r: &Row| r.subject == "exact reference",
             "A disk light over a plate parallel to it: the plate's straight edge hides a circle \
              segment of the light, whose area is a closed form (the error of the closed form \
-             itself is a few `ε`). Far offsets move the whole scene by a power of two with dyadic \
-             coordinates, so the moved scene is exactly the same scene. \"max\" is the largest \
-             `|V − V_closed|`.",
+             itself is a few `ε`). Every family twice: *dyadic* — axis-aligned, far offsets by a \
+             power of two with dyadic coordinates, so the moved scene is exactly the same scene; \
+             and *ordinary* — the same configuration turned by an ordinary rotation and moved by \
+             an ordinary offset, every input coordinate rounded, the closed form evaluated for the \
+             scene as rounded (the edge's trace on the light's plane in double-double). \"max\" \
+             is the largest `|V − V_closed|`; \"bound\" the largest certified bound the exact \
+             reference gave with its answers (`exact::visibility_bounded`), each of which must \
+             contain its error (the note says if one did not).",
         ),
         (
             "The kernels",
@@ -1123,15 +1397,29 @@ pub fn markdown(rows: &[Row], machine: &str, command: &str) -> String {
     ];
     for (title, keep, text) in sections {
         let _ = writeln!(s, "## {title}\n\n{text}\n");
-        let _ = writeln!(
-            s,
-            "| subject | family | case | precision | inputs | max | domain / note |"
-        );
-        let _ = writeln!(s, "|---|---|---|---|---:|---:|---|");
-        for r in rows.iter().filter(|r| keep(r)) {
+        let bounded = rows.iter().filter(|r| keep(r)).any(|r| r.bound.is_some());
+        if bounded {
             let _ = writeln!(
                 s,
-                "| {} | {} | {} | {} | {} | {:.2e} | {} |",
+                "| subject | family | case | precision | inputs | max | bound | domain / note |"
+            );
+            let _ = writeln!(s, "|---|---|---|---|---:|---:|---:|---|");
+        } else {
+            let _ = writeln!(
+                s,
+                "| subject | family | case | precision | inputs | max | domain / note |"
+            );
+            let _ = writeln!(s, "|---|---|---|---|---:|---:|---|");
+        }
+        for r in rows.iter().filter(|r| keep(r)) {
+            let bound = match (bounded, r.bound) {
+                (false, _) => String::new(),
+                (true, Some(b)) => format!(" {b:.2e} |"),
+                (true, None) => " — |".to_owned(),
+            };
+            let _ = writeln!(
+                s,
+                "| {} | {} | {} | {} | {} | {:.2e} |{bound} {} |",
                 r.subject, r.family, r.case, r.precision, r.count, r.max, r.note
             );
         }

@@ -1,11 +1,14 @@
 //! Writing a report: `results.json`, `index.md`, the plots, and the
 //! accuracy pages under `docs/accuracy/`.
 
+use super::names::Names;
 use super::papers::PAPERS;
 use super::plots;
 use super::{CellRecord, Errors, Results, SceneRecord, GROUPS, SLOW_RUN};
 use crate::method::registry::REGISTRY;
 use crate::render::image::Rgb;
+use crate::scene::file::{read_input, MAX_TEXT_BYTES};
+use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
 use std::path::Path;
 
@@ -14,23 +17,11 @@ use std::path::Path;
 pub const ACCURACY_MARKER: &str =
     "<!-- Tables below are written by `softshadow report --accuracy`: edit above this line. -->";
 
-/// A file name part for a name (`sism:exact-union,horizon` →
-/// `sism-exact-union-horizon`).
-pub(crate) fn file_part(name: &str) -> String {
-    let mut out = String::new();
-    for c in name.chars() {
-        if c.is_ascii_alphanumeric() {
-            out.push(c);
-        } else if !out.ends_with('-') && !out.is_empty() {
-            out.push('-');
-        }
-    }
-    out.trim_end_matches('-').to_owned()
-}
+/// The white gap between a picture's two halves, in pixels.
+pub(crate) const GAP: u32 = 4;
 
 /// `a` and `b` side by side, `b` on the right, a white gap between.
 pub(crate) fn side_by_side(a: &Rgb, b: &Rgb) -> Rgb {
-    const GAP: u32 = 4;
     let (w, h) = (a.width + GAP + b.width, a.height.max(b.height));
     let mut data = vec![255u8; (3 * w * h) as usize];
     for (img, x0) in [(a, 0), (b, a.width + GAP)] {
@@ -56,30 +47,56 @@ fn write_file(path: &Path, text: &str) -> Result<(), String> {
         .map_err(|e| format!("{}: {e}", path.display()))
 }
 
+/// The cells of each scene, by name, in the results' order.
+fn by_scene(results: &Results) -> HashMap<&str, Vec<&CellRecord>> {
+    let mut out: HashMap<&str, Vec<&CellRecord>> = HashMap::new();
+    for c in &results.cells {
+        out.entry(c.scene.as_str()).or_default().push(c);
+    }
+    out
+}
+
 /// Writes `results.json`, `index.md` and `plots/` into `dir` (the
-/// pictures were written by the run).
+/// pictures were written by the run): into a fresh folder
+/// ([`Staged::path`](super::Staged::path)), or what an earlier report left
+/// there stays beside. The results are [checked whole](Results::check)
+/// first: nothing is written from results that are not.
 ///
 /// # Errors
-/// A file that cannot be written.
+/// Results that are not whole; a file that cannot be written.
 pub fn write(results: &Results, dir: &Path) -> Result<(), String> {
+    results
+        .check()
+        .map_err(|e| format!("the results are not whole: {e}"))?;
     let json = serde_json::to_string_pretty(results).map_err(|e| e.to_string())?;
     write_file(&dir.join("results.json"), &json)?;
-    let mut plots_written = Vec::new();
+    let names = Names::new(&results.config);
+    let number = results.config.scene_numbers();
+    let cells = by_scene(results);
+    let mut plots_written: HashMap<&str, Vec<String>> = HashMap::new();
     for scene in &results.scenes {
+        let k = number[scene.name.as_str()];
+        let mine = cells
+            .get(scene.name.as_str())
+            .map_or(&[][..], Vec::as_slice);
+        let written = plots_written.entry(&scene.name).or_default();
         for (g, group) in GROUPS.iter().enumerate() {
-            if let Some(svg) = plots::error_against_time(results, scene, g) {
-                let name = format!("plots/{}-{group}.svg", file_part(&scene.name));
+            if let Some(svg) = plots::error_against_time(&results.config, scene, mine, g) {
+                let name = names.plot(k, group);
                 write_file(&dir.join(&name), &svg)?;
-                plots_written.push(name);
+                written.push(name);
             }
         }
-        if let Some(svg) = plots::profile(results, scene) {
-            let name = format!("plots/{}-profile.svg", file_part(&scene.name));
+        if let Some(svg) = plots::profile(scene, mine) {
+            let name = names.plot(k, "profile");
             write_file(&dir.join(&name), &svg)?;
-            plots_written.push(name);
+            written.push(name);
         }
     }
-    write_file(&dir.join("index.md"), &index(results, &plots_written))
+    write_file(
+        &dir.join("index.md"),
+        &index(results, &cells, &plots_written),
+    )
 }
 
 fn ms(c: &CellRecord) -> String {
@@ -92,7 +109,11 @@ fn opt<T: std::fmt::Display>(x: Option<T>) -> String {
 }
 
 /// The report's `index.md`.
-fn index(results: &Results, plots: &[String]) -> String {
+fn index(
+    results: &Results,
+    cells: &HashMap<&str, Vec<&CellRecord>>,
+    plots: &HashMap<&str, Vec<String>>,
+) -> String {
     let mut s = String::new();
     let c = &results.config;
     let _ = writeln!(s, "# Soft shadows: accuracy against run time\n");
@@ -125,7 +146,7 @@ fn index(results: &Results, plots: &[String]) -> String {
          beforehand — the maps a method builds are paid, the BVH and the primary rays (shared, \
          listed per scene) are not — the median of {} runs (one where a run takes over {SLOW_RUN} \
          s; each cell's count is in `results.json`). **Error** is `V − V_exact` (negative: too \
-         dark) over four receiver groups: all, the exact penumbra (`0 < V_exact < 1`), the \
+         dark) over four receiver groups: all, the exact penumbra (`{margin:e} < V_exact < 1 − {margin:e}`), the \
          ground (object 0) and the occluders (the other objects); \"shaded\" is the error of \
          `V·max(0, n·l̂)` (`l̂` toward the light's centre), what the papers' pictures show. \
          **MC N** is the Monte Carlo sample count of equal RMSE: per scene, Monte Carlo's RMSE \
@@ -140,7 +161,20 @@ fn index(results: &Results, plots: &[String]) -> String {
             .join(", "),
         c.mc.first().copied().unwrap_or(0),
         c.mc.last().copied().unwrap_or(0),
+        margin = crate::definitions::PENUMBRA_MARGIN,
     );
+    let unprepared = results.unprepared();
+    if !unprepared.is_empty() {
+        let _ = writeln!(s, "## Scenes that could not be prepared\n");
+        let _ = writeln!(
+            s,
+            "These scenes have no results: their frame or their exact answer could not be made.\n"
+        );
+        for (scene, why) in &unprepared {
+            let _ = writeln!(s, "- `{scene}`: {why}");
+        }
+        let _ = writeln!(s);
+    }
     let multi = results.machines.len() > 1;
     let _ = writeln!(s, "## Summary\n");
     let _ = writeln!(
@@ -197,7 +231,13 @@ fn index(results: &Results, plots: &[String]) -> String {
         );
     }
     for scene in &results.scenes {
-        scene_section(&mut s, results, scene, plots);
+        let mine = cells
+            .get(scene.name.as_str())
+            .map_or(&[][..], Vec::as_slice);
+        let plots = plots
+            .get(scene.name.as_str())
+            .map_or(&[][..], Vec::as_slice);
+        scene_section(&mut s, results, scene, mine, plots);
     }
     s
 }
@@ -211,13 +251,18 @@ fn error_row(s: &mut String, method: &str, group: &str, e: &Errors) {
     );
 }
 
-fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: &[String]) {
-    let part = file_part(&scene.name);
+fn scene_section(
+    s: &mut String,
+    results: &Results,
+    scene: &SceneRecord,
+    cells: &[&CellRecord],
+    plots: &[String],
+) {
     let _ = writeln!(s, "\n## `{}`\n", scene.name);
     let _ = writeln!(
         s,
         "{} light; {}×{}, {} receivers ({} in the exact penumbra, {} on the ground, {} on \
-         occluders). Shared, not in the times: BVH {:.1} ms, primary rays {:.1} ms.\n",
+         occluders){}. Shared, not in the times: BVH {:.1} ms, primary rays {:.1} ms.\n",
         scene.light,
         scene.width,
         scene.height,
@@ -225,6 +270,9 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
         scene.penumbra,
         scene.groups[2],
         scene.groups[3],
+        scene.exact_bound.map_or(String::new(), |b| format!(
+            "; the exact answers' largest certified bound {b:.1e}"
+        )),
         scene.shared[0] * 1e3,
         scene.shared[1] * 1e3
     );
@@ -241,16 +289,13 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
             y.seconds.d * 1e3
         );
     }
-    for name in plots
-        .iter()
-        .filter(|p| p.starts_with(&format!("plots/{part}-")))
-    {
+    for name in plots {
         let _ = writeln!(s, "![{name}]({name})\n");
     }
-    let pictures: Vec<&CellRecord> = results
-        .cells
+    let pictures: Vec<&CellRecord> = cells
         .iter()
-        .filter(|c| c.scene == scene.name && c.picture.is_some())
+        .copied()
+        .filter(|c| c.picture.is_some())
         .collect();
     if !pictures.is_empty() {
         let _ = writeln!(s, "Shaded (left) and the signed error against exact (right: blue too dark, red too bright, ±0.25 saturates):\n");
@@ -263,7 +308,7 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
     }
     let _ = writeln!(s, "| method | receivers | count | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 |");
     let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|");
-    for c in results.cells.iter().filter(|c| c.scene == scene.name) {
+    for c in cells {
         match (&c.errors, &c.shaded) {
             (Some(e), Some(sh)) => {
                 for (g, name) in GROUPS.iter().enumerate() {
@@ -281,14 +326,56 @@ fn scene_section(s: &mut String, results: &Results, scene: &SceneRecord, plots: 
     }
 }
 
+/// The accuracy pages' file names: `methods.md` and one per method with
+/// comparison settings (but `hard`, beside every other).
+fn accuracy_pages() -> impl Iterator<Item = String> {
+    std::iter::once("methods.md".to_owned()).chain(
+        REGISTRY
+            .iter()
+            .filter(|e| e.is_built() && !e.compare.is_empty() && e.name != "hard")
+            .map(|e| format!("{}.md", e.name)),
+    )
+}
+
+/// Checks, before a sweep, that the accuracy pages in `dir` can be
+/// updated: each page there is a regular UTF-8 file of at most
+/// [`MAX_TEXT_BYTES`] (a missing page is written new). The folder itself
+/// is the caller's to make and check.
+///
+/// # Errors
+/// One line naming the page.
+pub fn check_accuracy(dir: &Path) -> Result<(), String> {
+    for page in accuracy_pages() {
+        read_page(&dir.join(page))?;
+    }
+    Ok(())
+}
+
+/// An accuracy page's text (`None`: there is none), read as every input
+/// is: a regular file (never a FIFO or device) within [`MAX_TEXT_BYTES`].
+fn read_page(path: &Path) -> Result<Option<String>, String> {
+    let fail = |e: String| format!("{}: {e}", path.display());
+    match std::fs::metadata(path) {
+        Err(e) if e.kind() == std::io::ErrorKind::NotFound => return Ok(None),
+        Err(e) => return Err(fail(format!("cannot read: {e}"))),
+        Ok(_) => {}
+    }
+    let bytes = read_input(path, MAX_TEXT_BYTES).map_err(|e| fail(e.to_string()))?;
+    String::from_utf8(bytes)
+        .map(Some)
+        .map_err(|_| fail("not UTF-8 text".to_owned()))
+}
+
 /// Writes the accuracy pages into `dir`: `methods.md` (every setting on
 /// every scene, all receivers and the penumbra) and one page per method
 /// (its comparison settings by receiver group, the hard shadow beside).
-/// Each page keeps what is above [`ACCURACY_MARKER`].
+/// Each page keeps what is above [`ACCURACY_MARKER`]; each is read as
+/// [`check_accuracy`] reads it.
 ///
 /// # Errors
-/// A file that cannot be read or written.
+/// A page that cannot be read or written.
 pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<(), String> {
+    let cells = by_scene(results);
     let mut methods = String::new();
     let _ = writeln!(
         methods,
@@ -347,17 +434,15 @@ pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<()
             "Regenerate with `{command}` ({}).\n",
             results.machines.join("; ")
         );
-        let mut wanted: Vec<&str> = entry.compare.to_vec();
-        wanted.push("hard");
+        let mut wanted: HashSet<&str> = entry.compare.iter().copied().collect();
+        wanted.insert("hard");
         for scene in &results.scenes {
-            let rows: Vec<&CellRecord> = results
-                .cells
+            let rows: Vec<&CellRecord> = cells
+                .get(scene.name.as_str())
+                .map_or(&[][..], Vec::as_slice)
                 .iter()
-                .filter(|c| {
-                    c.scene == scene.name
-                        && wanted.contains(&c.method.as_str())
-                        && c.errors.is_some()
-                })
+                .copied()
+                .filter(|c| wanted.contains(c.method.as_str()) && c.errors.is_some())
                 .collect();
             if rows.iter().all(|c| c.base == "hard") {
                 continue;
@@ -395,27 +480,20 @@ fn horizon_table(s: &mut String, results: &Results) {
             format!("{m}:horizon")
         }
     };
-    let rmse = |scene: &str, m: &str| {
-        results
-            .cells
-            .iter()
-            .find(|c| c.scene == scene && c.method == m)
-            .and_then(|c| c.errors)
-            .map(|e| e[0].rmse)
-    };
-    let pairs: Vec<String> = {
-        let mut p = Vec::new();
-        for c in &results.cells {
-            let h = with_horizon(&c.method);
-            if !c.method.contains("horizon")
-                && results.cells.iter().any(|x| x.method == h)
-                && !p.contains(&c.method)
-            {
-                p.push(c.method.clone());
-            }
-        }
-        p
-    };
+    let by_cell: HashMap<(&str, &str), f64> = results
+        .cells
+        .iter()
+        .filter_map(|c| Some(((c.scene.as_str(), c.method.as_str()), c.errors?[0].rmse)))
+        .collect();
+    let rmse = |scene: &str, m: &str| by_cell.get(&(scene, m)).copied();
+    let settings: HashSet<&str> = results.config.settings.iter().map(String::as_str).collect();
+    let pairs: Vec<&str> = results
+        .config
+        .settings
+        .iter()
+        .map(String::as_str)
+        .filter(|m| !m.contains("horizon") && settings.contains(with_horizon(m).as_str()))
+        .collect();
     if pairs.is_empty() {
         return;
     }
@@ -442,25 +520,12 @@ fn horizon_table(s: &mut String, results: &Results) {
 /// Rewrites what is below the marker of the page at `path` (a new page
 /// gets `title` and the marker).
 fn update_page(path: &Path, title: &str, tables: &str) -> Result<(), String> {
-    let head = match std::fs::read_to_string(path) {
-        Ok(text) => match text.find(ACCURACY_MARKER) {
+    let head = match read_page(path)? {
+        Some(text) => match text.find(ACCURACY_MARKER) {
             Some(k) => text[..k].to_owned(),
             None => format!("{}\n\n", text.trim_end()),
         },
-        Err(_) => format!("# {title}\n\n"),
+        None => format!("# {title}\n\n"),
     };
     write_file(path, &format!("{head}{ACCURACY_MARKER}\n\n{tables}"))
-}
-
-#[cfg(test)]
-mod tests {
-    #[test]
-    fn file_parts_are_plain() {
-        assert_eq!(
-            super::file_part("sism:exact-union,horizon"),
-            "sism-exact-union-horizon"
-        );
-        assert_eq!(super::file_part("mc:16"), "mc-16");
-        assert_eq!(super::file_part("several-objects"), "several-objects");
-    }
 }

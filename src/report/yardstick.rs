@@ -17,7 +17,8 @@ pub struct PowerLaw {
 impl PowerLaw {
     /// The least-squares fit to the points `(N, y)` with `N > 0` and `y > 0`
     /// (others are skipped); `None` with fewer than two such points of
-    /// distinct `N`.
+    /// distinct `N`, or where `a` is beyond `f64` (`0` or infinite: a
+    /// curve falling or rising by hundreds of orders of magnitude).
     #[must_use]
     pub fn fit(points: &[(f64, f64)]) -> Option<PowerLaw> {
         let logs: Vec<(f64, f64)> = points
@@ -26,7 +27,8 @@ impl PowerLaw {
             .map(|(n, y)| (n.ln(), y.ln()))
             .collect();
         let (b, ln_a) = least_squares(&logs)?;
-        Some(PowerLaw { a: ln_a.exp(), b })
+        let a = ln_a.exp();
+        (a.is_finite() && a > 0.0).then_some(PowerLaw { a, b })
     }
 
     /// `a · N^b`.
@@ -213,6 +215,16 @@ mod tests {
         assert_eq!(y.speedup(Equal::Above(4096), 0.001), None);
         assert_eq!(Equal::Below(2).to_string(), "< 2");
         assert_eq!(Equal::Above(4096).to_string(), "> 4096");
+    }
+
+    #[test]
+    fn a_fit_beyond_f64_is_none() {
+        // ln a = 744: a = e^744 overflows; and its mirror underflows to 0.
+        let tiny = f64::from_bits(1);
+        assert_eq!(PowerLaw::fit(&[(2.0, 1.0), (4.0, tiny)]), None);
+        assert_eq!(PowerLaw::fit(&[(2.0, tiny), (4.0, 1.0)]), None);
+        let law = PowerLaw::fit(&[(2.0, 1.0), (4.0, 1e-300)]).unwrap();
+        assert!(law.a.is_finite() && law.a > 1e299, "{law:?}");
     }
 
     #[test]

@@ -16,6 +16,7 @@
 //! sphere light or in the plane of a disk or rect light ([visibility](crate::definitions#visibility): an
 //! error, not a NaN).
 
+use crate::kernel::eft;
 use crate::kernel::predicate::{orient2d, Sign};
 use crate::kernel::receiver_view;
 use glam::{DVec2, DVec3};
@@ -23,8 +24,10 @@ use std::fmt;
 
 pub use super::emitter::Emitter;
 
-/// Why a light could not be built.
-#[derive(Clone, Copy, Debug, PartialEq)]
+/// Why a light could not be built. A constructor checks every argument
+/// and reports each one that is invalid: one fault as its own variant,
+/// several as [`LightError::Several`].
+#[derive(Clone, Debug, PartialEq)]
 #[non_exhaustive]
 pub enum LightError {
     /// A coordinate or the radius is NaN or infinite; the field is named.
@@ -37,12 +40,38 @@ pub enum LightError {
         /// The radius given.
         radius: f64,
     },
-    /// A disk's normal has zero length.
+    /// A disk's normal is zero (any other finite normal is accepted,
+    /// however long or short).
     ZeroNormal,
-    /// A rect's half-axes are zero or parallel (no area).
+    /// A rect's half-axes are zero or parallel (no area; an area beyond
+    /// the range of `f64`, large or small, is accepted).
     DegenerateRect,
     /// A segment's endpoints coincide.
     ZeroLengthSegment,
+    /// More than one of the above, in the order of the constructor's
+    /// arguments (never nested, never fewer than two).
+    Several(Vec<LightError>),
+}
+
+impl LightError {
+    /// Each fault, in the order of the constructor's arguments: this one,
+    /// or the list of [`LightError::Several`].
+    #[must_use]
+    pub fn faults(&self) -> &[LightError] {
+        match self {
+            LightError::Several(all) => all,
+            one => std::slice::from_ref(one),
+        }
+    }
+
+    /// The faults found, as one error: `Ok` for none.
+    fn from_faults(mut faults: Vec<LightError>) -> Result<(), LightError> {
+        match faults.len() {
+            0 => Ok(()),
+            1 => Err(faults.remove(0)),
+            _ => Err(LightError::Several(faults)),
+        }
+    }
 }
 
 impl fmt::Display for LightError {
@@ -52,9 +81,18 @@ impl fmt::Display for LightError {
             LightError::NonPositiveRadius { radius } => {
                 write!(f, "light radius must be positive, got {radius}")
             }
-            LightError::ZeroNormal => write!(f, "disk light normal has zero length"),
+            LightError::ZeroNormal => write!(f, "disk light normal is zero"),
             LightError::DegenerateRect => write!(f, "rect light half-axes span no area"),
             LightError::ZeroLengthSegment => write!(f, "segment light endpoints coincide"),
+            LightError::Several(all) => {
+                for (k, e) in all.iter().enumerate() {
+                    if k > 0 {
+                        f.write_str("; ")?;
+                    }
+                    write!(f, "{e}")?;
+                }
+                Ok(())
+            }
         }
     }
 }
@@ -75,6 +113,12 @@ pub enum ReceiverError {
     /// The receiver is at the point light's position, or on a segment
     /// light.
     OnLight,
+    /// The scene around the receiver is beyond a reference's range: the
+    /// exact reference's determinants (products of three coordinate
+    /// differences) would overflow, or, for Monte Carlo, a coordinate
+    /// exceeds its segment test's domain (`10⁹⁰`). See
+    /// [`reference::exact`](crate::reference)'s and Monte Carlo's domains.
+    OutOfRange,
 }
 
 impl fmt::Display for ReceiverError {
@@ -84,6 +128,10 @@ impl fmt::Display for ReceiverError {
             ReceiverError::InsideSphere => write!(f, "receiver is inside the sphere light"),
             ReceiverError::InLightPlane => write!(f, "receiver lies in the light's plane"),
             ReceiverError::OnLight => write!(f, "receiver lies on the light"),
+            ReceiverError::OutOfRange => write!(
+                f,
+                "the scene's coordinates around the receiver are beyond the reference's range"
+            ),
         }
     }
 }
@@ -149,10 +197,11 @@ impl Sphere {
     /// # Errors
     /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`].
     pub fn new(center: DVec3, radius: f64) -> Result<Sphere, LightError> {
-        Ok(Sphere {
-            center: finite(center, "center")?,
-            radius: positive(radius)?,
-        })
+        let mut faults = Faults::default();
+        faults.finite(center, "center");
+        faults.positive(radius);
+        faults.done()?;
+        Ok(Sphere { center, radius })
     }
 
     /// The centre.
@@ -180,19 +229,30 @@ pub struct Disk {
 }
 
 impl Disk {
-    /// A disk light; `normal` need not be unit length (it is normalised).
+    /// A disk light; `normal` need not be unit length: every finite
+    /// non-zero normal is normalised, `1e-300` or `1e300` long alike
+    /// (scaled by a power of two first, so its squared length cannot
+    /// underflow or overflow; the same bits as `normal.normalize()`
+    /// wherever that is finite).
     ///
     /// # Errors
     /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`],
-    /// [`LightError::ZeroNormal`].
+    /// [`LightError::ZeroNormal`]; [`LightError::Several`] for more than
+    /// one.
     pub fn new(center: DVec3, normal: DVec3, radius: f64) -> Result<Disk, LightError> {
-        let normal = finite(normal, "normal")?
-            .try_normalize()
-            .ok_or(LightError::ZeroNormal)?;
+        let mut faults = Faults::default();
+        faults.finite(center, "center");
+        let unit = faults.finite(normal, "normal").and_then(|n| {
+            let unit = eft::unit(n);
+            faults.check(unit.is_some(), LightError::ZeroNormal);
+            unit
+        });
+        faults.positive(radius);
+        faults.done()?;
         Ok(Disk {
-            center: finite(center, "center")?,
-            normal,
-            radius: positive(radius)?,
+            center,
+            normal: unit.unwrap_or(DVec3::Z),
+            radius,
         })
     }
 
@@ -227,22 +287,26 @@ pub struct Rect {
 
 impl Rect {
     /// A rect light with half-axes `u`, `v` (any non-parallel pair: the
-    /// light is the parallelogram they span).
+    /// light is the parallelogram they span, whatever its area: `u × v` is
+    /// decided on `u` and `v` scaled by powers of two, so an area beyond
+    /// `f64`'s range, `1e400` or `1e-400`, is a rect like any other).
     ///
     /// # Errors
-    /// [`LightError::NonFinite`], [`LightError::DegenerateRect`] when
-    /// `u × v` is zero or not finite.
+    /// [`LightError::NonFinite`], [`LightError::DegenerateRect`] when `u`
+    /// or `v` is zero or they are parallel (`u × v` rounds to zero);
+    /// [`LightError::Several`] for more than one.
     pub fn new(center: DVec3, u: DVec3, v: DVec3) -> Result<Rect, LightError> {
-        let (u, v) = (finite(u, "u")?, finite(v, "v")?);
-        let n = u.cross(v);
-        if !(n.is_finite() && n.length_squared() > 0.0) {
-            return Err(LightError::DegenerateRect);
+        let mut faults = Faults::default();
+        faults.finite(center, "center");
+        let axes = (faults.finite(u, "u"), faults.finite(v, "v"));
+        if let (Some(u), Some(v)) = axes {
+            faults.check(
+                eft::scaled_cross(u, v).is_some(),
+                LightError::DegenerateRect,
+            );
         }
-        Ok(Rect {
-            center: finite(center, "center")?,
-            u,
-            v,
-        })
+        faults.done()?;
+        Ok(Rect { center, u, v })
     }
 
     /// The centre.
@@ -263,10 +327,37 @@ impl Rect {
         self.v
     }
 
-    /// The unit normal `u × v / ‖u × v‖`.
+    /// The unit normal `u × v / ‖u × v‖`, for every rect whatever its
+    /// area (computed on `u × v` scaled by a power of two).
     #[must_use]
     pub fn normal(&self) -> DVec3 {
-        self.u.cross(self.v).normalize_or_zero()
+        self.plane_direction().normalize()
+    }
+
+    /// `u × v` times the power of two that puts its largest component in
+    /// `[1, 4)`: the plane's normal direction, never overflowing or
+    /// underflowing (a power of two times `u × v` exactly wherever that is
+    /// a normal vector).
+    pub(crate) fn plane_direction(&self) -> DVec3 {
+        // `Rect::new` refused the rects without one.
+        eft::scaled_cross(self.u, self.v).map_or(DVec3::Z, |(n, _)| n)
+    }
+
+    /// The radius of the disk of equal area, `sqrt(4 ‖u × v‖ / π)`: the
+    /// bits of that formula wherever `u × v` is a normal vector, and
+    /// finite for every rect (`1e200` for half-axes of `1e200`, where
+    /// `u × v` overflows).
+    fn equivalent_radius(&self) -> f64 {
+        let Some((n, mut k)) = eft::scaled_cross(self.u, self.v) else {
+            return 0.0;
+        };
+        let mut length = n.length();
+        // An even exponent comes out of the square root exactly.
+        if k % 2 != 0 {
+            length *= 2.0;
+            k += 1;
+        }
+        eft::times_pow2((4.0 * length / std::f64::consts::PI).sqrt(), -k / 2)
     }
 }
 
@@ -284,10 +375,12 @@ impl Segment {
     /// # Errors
     /// [`LightError::NonFinite`], [`LightError::ZeroLengthSegment`].
     pub fn new(a: DVec3, b: DVec3) -> Result<Segment, LightError> {
-        let (a, b) = (finite(a, "a")?, finite(b, "b")?);
-        if a == b {
-            return Err(LightError::ZeroLengthSegment);
+        let mut faults = Faults::default();
+        let ends = (faults.finite(a, "a"), faults.finite(b, "b"));
+        if let (Some(a), Some(b)) = ends {
+            faults.check(a != b, LightError::ZeroLengthSegment);
         }
+        faults.done()?;
         Ok(Segment { a, b })
     }
 
@@ -316,9 +409,10 @@ impl Point {
     /// # Errors
     /// [`LightError::NonFinite`].
     pub fn new(position: DVec3) -> Result<Point, LightError> {
-        Ok(Point {
-            position: finite(position, "position")?,
-        })
+        let mut faults = Faults::default();
+        faults.finite(position, "position");
+        faults.done()?;
+        Ok(Point { position })
     }
 
     /// The position.
@@ -336,7 +430,7 @@ impl Point {
 /// ```compile_fail
 /// use softshadow::scene::Light;
 /// // The kinds' fields are private: a light cannot be written out unchecked.
-/// let light = Light::Sphere(softshadow::scene::light::Sphere { center: glam::DVec3::ZERO, radius: f64::NAN });
+/// let light = Light::Sphere(softshadow::scene::light::Sphere { center: softshadow::glam::DVec3::ZERO, radius: f64::NAN });
 /// ```
 #[derive(Clone, Copy, Debug, PartialEq)]
 pub enum Light {
@@ -352,21 +446,35 @@ pub enum Light {
     Point(Point),
 }
 
-fn finite(v: DVec3, field: &'static str) -> Result<DVec3, LightError> {
-    if v.is_finite() {
-        Ok(v)
-    } else {
-        Err(LightError::NonFinite { field })
-    }
-}
+/// The faults a constructor finds, every argument checked.
+#[derive(Default)]
+struct Faults(Vec<LightError>);
 
-fn positive(radius: f64) -> Result<f64, LightError> {
-    if !radius.is_finite() {
-        Err(LightError::NonFinite { field: "radius" })
-    } else if radius > 0.0 {
-        Ok(radius)
-    } else {
-        Err(LightError::NonPositiveRadius { radius })
+impl Faults {
+    /// Records `fault` unless `ok`.
+    fn check(&mut self, ok: bool, fault: LightError) {
+        if !ok {
+            self.0.push(fault);
+        }
+    }
+
+    /// `v` when finite, else a recorded [`LightError::NonFinite`].
+    fn finite(&mut self, v: DVec3, field: &'static str) -> Option<DVec3> {
+        self.check(v.is_finite(), LightError::NonFinite { field });
+        v.is_finite().then_some(v)
+    }
+
+    /// Records why `radius` is not finite and positive, if it is not.
+    fn positive(&mut self, radius: f64) {
+        if !radius.is_finite() {
+            self.0.push(LightError::NonFinite { field: "radius" });
+        } else {
+            self.check(radius > 0.0, LightError::NonPositiveRadius { radius });
+        }
+    }
+
+    fn done(self) -> Result<(), LightError> {
+        LightError::from_faults(self.0)
     }
 }
 
@@ -445,7 +553,7 @@ impl Light {
         match self {
             Light::Sphere(s) => s.radius,
             Light::Disk(d) => d.radius,
-            Light::Rect(r) => (4.0 * r.u.cross(r.v).length() / std::f64::consts::PI).sqrt(),
+            Light::Rect(r) => r.equivalent_radius(),
             Light::Segment(s) => 0.5 * (s.b - s.a).length(),
             Light::Point(_) => 0.0,
         }
@@ -457,7 +565,7 @@ impl Light {
     #[must_use]
     pub fn bounding_radius(&self) -> f64 {
         match self {
-            Light::Rect(r) => (r.u + r.v).length().max((r.u - r.v).length()),
+            Light::Rect(r) => eft::length(r.u + r.v).max(eft::length(r.u - r.v)),
             _ => self.equivalent_radius(),
         }
     }
@@ -532,7 +640,7 @@ impl Light {
                 Ok(Emitter::Disk(d))
             }
             Light::Rect(r) => {
-                off_plane(p, r.center, r.u.cross(r.v))?;
+                off_plane(p, r.center, r.plane_direction())?;
                 Ok(Emitter::Rect(r))
             }
             Light::Segment(s) => {

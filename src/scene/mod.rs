@@ -36,7 +36,7 @@ pub mod scene;
 pub use builtin::{builtin, BUILTIN_NAMES};
 pub use emitter::Emitter;
 #[cfg(feature = "scene-file")]
-pub use file::{FileError, Place};
+pub use file::{FileError, InputError, Place};
 pub use frame::{FrameError, LightFrame, Projected};
 pub use light::{Light, LightError, LightKind, ReceiverError};
 pub use mesh::{Mesh, MeshError};

@@ -5,9 +5,9 @@
 //! Möller–Trumbore ray cast.
 #![allow(dead_code)]
 
-use glam::{DVec2, DVec3};
 use robust::Coord;
 use softshadow::arbitrary::Rng;
+use softshadow::glam::{DVec2, DVec3};
 use softshadow::render::raster::{rasterize_triangle, LightView};
 use softshadow::scene::LightFrame;
 

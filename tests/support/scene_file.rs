@@ -4,7 +4,7 @@
 //! mesh checks (closed and consistently oriented; signed volume).
 #![allow(dead_code)]
 
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::scene::file::{points_from_str, scene_from_str};
 use softshadow::scene::Mesh;
 use std::collections::HashMap;

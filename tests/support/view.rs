@@ -23,7 +23,7 @@
 #![allow(dead_code)]
 
 use super::{Big, Ctx};
-use glam::DVec3;
+use softshadow::glam::DVec3;
 use softshadow::scene::Light;
 
 /// A 3-vector of [`Big`].

@@ -20,6 +20,21 @@ pub fn softshadow(args: &[&str]) -> Output {
         .expect("the softshadow binary runs")
 }
 
+/// Runs `visibility --scene scene --points points --method method` and
+/// any `more` arguments.
+pub fn visibility(scene: &str, points: &str, method: &str, more: &[&str]) -> Output {
+    let args = [
+        "visibility",
+        "--scene",
+        scene,
+        "--points",
+        points,
+        "--method",
+        method,
+    ];
+    softshadow(&[&args[..], more].concat())
+}
+
 /// A fresh folder for one test's files (`group` keeps test files apart).
 pub fn dir(group: &str, name: &str) -> PathBuf {
     let d = std::env::temp_dir().join(format!("softshadow-{group}-{}-{name}", std::process::id()));

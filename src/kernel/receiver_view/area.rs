@@ -32,7 +32,7 @@ use std::f64::consts::{PI, SQRT_2};
 /// relative to the receiver (`qⱼ − p`, `center − p`, the plane's axes),
 /// each evaluated in `f64` with a bound on its error and evaluated exactly
 /// where the bound would let the constructed line or corner stray by more
-/// than `2⁻⁴⁸` of the light's radius (a receiver `10⁻¹⁷` from an edge, a
+/// than `2⁻⁴³` of the light's radius (a receiver `10⁻¹⁷` from an edge, a
 /// light of radius `10⁻⁶` four units away, a corner `10²⁰` away).
 #[derive(Clone, Copy, Debug)]
 pub struct AreaView {
@@ -98,7 +98,7 @@ impl Line {
 /// The largest error, in the view's coordinates (the light's radius or
 /// half-width is 1), of an image's line or corner above which its
 /// determinants are evaluated exactly.
-const TOLERANCE: f64 = 1.0 / (1u64 << 40) as f64;
+const TOLERANCE: f64 = 1.0 / (1u64 << 43) as f64;
 
 impl AreaView {
     /// The view of the disk (`center`, `normal`, `radius`) from `p`, in
@@ -118,7 +118,8 @@ impl AreaView {
         if !(p.is_finite() && center.is_finite() && radius.is_finite() && radius > 0.0) {
             return None;
         }
-        let n = normal.try_normalize()?;
+        // Any finite non-zero normal, however long or short.
+        let n = crate::kernel::eft::unit(normal)?;
         // The normal's largest component k: the axes n × eᵢ, n × eⱼ for the
         // other two are independent (their cross product is n nₖ).
         let k = (0..3).fold(0, |m, k| if n[k].abs() > n[m].abs() { k } else { m });
@@ -148,11 +149,24 @@ impl AreaView {
         if !(p.is_finite() && center.is_finite() && u.is_finite() && v.is_finite()) {
             return None;
         }
+        // Half-axes far from 1 (1e200, 1e-200: an area beyond `f64`) are
+        // scaled by a common power of two `2^k` into `[1, 4)`, the map `M
+        // = 2^k I` taking the scaled oblique coordinates back: every
+        // product then stays in range, and both scalings are exact.
+        let big = u.abs().max_element().max(v.abs().max_element());
+        let (f, scale) = if (2f64.powi(-100)..=2f64.powi(100)).contains(&big) {
+            ([u, v], 1.0)
+        } else {
+            let (_, k) =
+                crate::kernel::eft::pow2_scaled(if big == u.abs().max_element() { u } else { v })?;
+            let at = |w: DVec3| w.map(|x| crate::kernel::eft::times_pow2(x, k));
+            ([at(u), at(v)], crate::kernel::eft::times_pow2(1.0, k))
+        };
         Self::new(
             p,
             center,
-            [u, v],
-            [1.0, 0.0, 1.0],
+            f,
+            [scale, 0.0, scale],
             1.0,
             Measure::Square,
             false,
@@ -242,10 +256,23 @@ impl AreaView {
     /// The pyramid from `p` over a square around the light: every triangle
     /// that hides some light point from `p` meets its convex hull, so a
     /// culling structure may skip the triangles that miss it.
+    ///
+    /// The square is the light's own box (`|X|, |Y| ≤ 1`), widened by what
+    /// the rounding of its corners (3D points, each within `2ε` of its
+    /// magnitude) may move them, over the light's smallest height, in the
+    /// view's units — so that a light of radius `10⁻⁶` at `10⁹` is held
+    /// whole — and, for a disk, by `2⁻²⁰` more, the unit disk being the
+    /// light only to the rounding of the view's map.
     #[must_use]
     pub fn hull(&self) -> [DVec3; 5] {
-        let h = self.half;
         let (center, e) = self.axes();
+        let height = e[0].cross(e[1]).length() / e[0].length().max(e[1].length());
+        let size = max_abs(center) + 2.0 * (max_abs(e[0]) + max_abs(e[1]));
+        let rounding = 8.0 * f64::EPSILON * size / height;
+        let h = match self.measure {
+            Measure::Disk(r) => r * (1.0 + HULL_SLACK) + rounding,
+            Measure::Square => 1.0 + rounding,
+        };
         let corner = |sx: f64, sy: f64| center + e[0] * (sx * h) + e[1] * (sy * h);
         [
             self.p,
@@ -509,7 +536,10 @@ impl AreaView {
     /// the square (then the square lies wholly on one side; `Err(true)`
     /// inside).
     fn line<const B: bool>(&self, u: &Row, v: &Row, center_o: &Row) -> Result<Line, bool> {
-        let cross = Cross::of(u.r, v.r);
+        let mut cross = Cross::of(u.r, v.r);
+        if cross.cancels() {
+            cross = Cross::compensated(u, v);
+        }
         let [f0, f1] = &self.rows;
         let [m0, m1] = self.rows_max;
         let (a, b, c) = (
@@ -556,6 +586,33 @@ impl AreaView {
             line
         };
         self.settled(line).unwrap_or(Ok(line))
+    }
+
+    /// Whether the half-plane `s · line ≥ 0` (`s = ±1`) certainly leaves
+    /// out the whole light (the unit disk, or the square `[−1, 1]²`) by more
+    /// than [`MISS_MARGIN`]: then the triangle's image hides none of it, and
+    /// its clipping is skipped. The largest value of `s · line` over the
+    /// light (`s c + |(a, b)|` on the disk, `s c + |a| + |b|` on the
+    /// square), rounded up, plus the line's own error (within `err ·
+    /// max(|a|, |b|)` of the exact line's values over the square), below
+    /// minus the margin. Most images of a frame that are clipped at all lie
+    /// beside the light (culling keeps whatever meets the pyramid over the
+    /// square `|X|, |Y| ≤ half`).
+    #[inline(always)]
+    fn excludes_light(&self, line: &Result<Line, bool>, s: f64) -> bool {
+        let line = match line {
+            Ok(line) => line,
+            // The line misses the square: all or nothing of it is kept.
+            &Err(inside) => return (s > 0.0) != inside,
+        };
+        let (a, b) = (line.a.abs(), line.b.abs());
+        let reach = match self.measure {
+            Measure::Disk(r) => r * a.hypot(b),
+            Measure::Square => a + b,
+        };
+        let top = s * line.c + reach;
+        let rounding = 4.0 * f64::EPSILON * (line.c.abs() + reach);
+        top + rounding + 2.0 * (line.err + MISS_MARGIN) * a.max(b) < 0.0
     }
 
     /// `line` if it is within [`TOLERANCE`], `Err` if it certainly misses
@@ -654,12 +711,12 @@ impl AreaView {
             let at = corners.map(|c| c.flatten().expect("every corner projected"));
             return Polygon::Corners(at.map(|a| a.0), at.map(|a| a.1));
         }
-        let mut clip = Clip::new(self.half);
         // The cone: for the edge (j, k) opposite corner i, the plane through
         // p and the edge, oriented toward corner i (σ · det[qⱼ − p, qₖ − p,
         // qᵢ − p] = σ², a cyclic shift of the rows). The edge's ends are
         // taken in a canonical order, so that the two triangles sharing an
         // edge cut their images along the same line, bit for bit.
+        let mut lines = [(Err(true), 0.0); 4];
         for (i, (j, k)) in [(1, 2), (2, 0), (0, 1)].into_iter().enumerate() {
             let (u, v, s) = if lexicographic(tri[j], tri[k]) {
                 (tri[j], tri[k], sigma)
@@ -671,6 +728,22 @@ impl AreaView {
             // (small or distant edges subtend small angles).
             let (ru, e) = (Row::diff(u, self.p), Row::diff(v, u));
             let line = self.line::<B>(&ru, &e, &self.c);
+            if self.excludes_light(&line, s) {
+                return Polygon::Clipped(Image::EMPTY);
+            }
+            lines[i] = (line, s);
+        }
+        // Strictly beyond the triangle's plane: σ · det[q₁ − q₀, q₂ − q₀,
+        // x − q₀] > 0 (at x = p it is −σ).
+        let (e1, e2) = (Row::diff(tri[1], tri[0]), Row::diff(tri[2], tri[0]));
+        let line = self.line::<B>(&e1, &e2, &Row::diff(self.center, tri[0]));
+        if self.excludes_light(&line, sigma) {
+            return Polygon::Clipped(Image::EMPTY);
+        }
+        lines[3] = (line, sigma);
+        // Every line leaves some of the light: cut the square by each.
+        let mut clip = Clip::new(self.half);
+        for (i, &(line, s)) in lines[..3].iter().enumerate() {
             if !clip.cut(On::Cone(i as u8), line, s, |corner| {
                 *corners[corner].get_or_insert_with(|| {
                     self.corner::<B>(&Row::diff(tri[corner], self.p), true).at
@@ -679,14 +752,21 @@ impl AreaView {
                 return Polygon::Clipped(clip.finish::<B>());
             }
         }
-        // Strictly beyond the triangle's plane: σ · det[q₁ − q₀, q₂ − q₀,
-        // x − q₀] > 0 (at x = p it is −σ).
-        let (e1, e2) = (Row::diff(tri[1], tri[0]), Row::diff(tri[2], tri[0]));
-        let line = self.line::<B>(&e1, &e2, &Row::diff(self.center, tri[0]));
-        clip.cut(On::Plane, line, sigma, |_| None);
+        let (line, s) = lines[3];
+        clip.cut(On::Plane, line, s, |_| None);
         Polygon::Clipped(clip.finish::<B>())
     }
 }
+
+/// How much wider than a disk light's box (relative) the culling pyramid
+/// is ([`AreaView::hull`]).
+const HULL_SLACK: f64 = 1.0 / (1u64 << 20) as f64;
+
+/// How far (in the view's coordinates) a half-plane must leave out the
+/// whole light for [`AreaView::excludes_light`] to skip the triangle: far
+/// beyond any vertex's error, so that nothing the clipping would have kept
+/// can lie in the light.
+const MISS_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
 
 /// The largest error, in half-widths of the square, of a vertex computed
 /// from its two lines alone (beyond it, as where two lines are nearly

@@ -7,7 +7,7 @@
 //! the kernels alone:
 //!
 //! ```
-//! use glam::DVec3;
+//! use softshadow::glam::DVec3;
 //! use softshadow::kernel::receiver_view::{AreaView, Scratch};
 //!
 //! // A disk light of radius 1 at height 4; a receiver at the origin; a
@@ -42,7 +42,7 @@
 //!   the plane through `p` and the edge `uv`, against the plane's axes and
 //!   `center − p`; the triangle's own plane relative to a corner), each
 //!   rounded with a bound on its error and computed exactly where that
-//!   bound could move the line by more than `2⁻⁴⁰` of the light's radius —
+//!   bound could move the line by more than `2⁻⁴³` of the light's radius —
 //!   a receiver within `10⁻¹⁷` of an edge, whose plane through the edge
 //!   a rounded cross product would turn at random, or a light of radius
 //!   `10⁻⁶`. The disk's plane is spanned exactly (its normal crossed with
@@ -74,7 +74,7 @@
 //!   light `x(s) = a + s (b − a)`: each is `(1 − s) F(a) + s F(b)` with
 //!   `F(a)`, `F(b)` determinants of the inputs with exact signs, so a
 //!   triangle hides one interval of `s` ([`SegmentView::blocked`]), its
-//!   ends the quotients `F(a) / (F(a) − F(b))` of values accurate to `2⁻⁴⁰`
+//!   ends the quotients `F(a) / (F(a) − F(b))` of values accurate to `2⁻⁵⁰`
 //!   of their difference. No point is constructed: a receiver `10⁻¹⁷`
 //!   behind a triangle, or a light `10⁻¹⁶` long, costs no accuracy. The
 //!   occluded fraction is the length of the union of the blocked
@@ -168,7 +168,7 @@
 //!
 //! Accuracy: every combinatorial decision is exact, and the constructions
 //! are evaluated exactly wherever their rounding could move an image's
-//! line or corner by more than `2⁻⁴⁰` of the light's radius (a segment
+//! line or corner by more than `2⁻⁴³` of the light's radius (a segment
 //! light's interval end by more than `2⁻⁵⁰` of its length): within a few
 //! units in the last place of `V` on every family of `tests/certified.rs`
 //! (docs/accuracy/references.md).

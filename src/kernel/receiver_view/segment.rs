@@ -81,7 +81,7 @@ impl SegmentView {
     /// values where their error bounds settle the signs, else the exact
     /// ones), so which conditions cut the light, and on which side, is
     /// decided exactly; a cut lies at `F(a) / (F(a) − F(b))`, two values of
-    /// opposite signs with errors below `2⁻⁴⁸` of their difference. The
+    /// opposite signs with errors below `2⁻⁵⁰` of their difference. The
     /// cone is closed (a light lying wholly in a plane through `p` and an
     /// edge is hidden where the segments cross the edge, as
     /// [`segment_blocked`] blocks a segment through an edge), the plane

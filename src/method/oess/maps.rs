@@ -79,10 +79,14 @@ pub(crate) struct Strategies {
 /// The light frames at both ends: `x` along the segment, `z` along the
 /// mean of the directions from the light's line to `receivers` (each made
 /// orthogonal to the segment and unit), so that as many receivers as can
-/// be are in front of both ends; `None` for a degenerate light.
+/// be are in front of both ends. A segment of any length has them: its
+/// direction is found from `b − a` scaled to a largest component of 1
+/// (normalising `b − a` itself fails below a length of about 1e-154,
+/// where its squared length underflows).
 pub(crate) fn frames(light: &Segment, receivers: &[DVec3]) -> Option<(LightFrame, LightFrame)> {
     let (a, b) = (light.a(), light.b());
-    let x = (b - a).try_normalize()?;
+    let d = b - a;
+    let x = (d / d.abs().max_element()).try_normalize()?;
     let mid = a.midpoint(b);
     let across = |p: DVec3| {
         let d = p - mid;

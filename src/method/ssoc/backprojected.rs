@@ -209,6 +209,11 @@ impl Method for BackprojectedSsoc {
         crate::method::options::print(self)
     }
 
+    /// The shadow and distortion maps, as [`Ssoc`](super::Ssoc)'s.
+    fn map_bytes(&self) -> u64 {
+        super::MAP_BYTES_PER_TEXEL * u64::from(self.resolution).pow(2)
+    }
+
     fn lights(&self) -> &'static [LightKind] {
         Self::LIGHTS
     }

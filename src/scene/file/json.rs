@@ -1,7 +1,10 @@
 //! The located JSON reader under the scene and points files: a parsed value
 //! (`Json`) that keeps integers apart from other numbers and object keys in
-//! file order, duplicates rejected while parsing (serde's `Deserialize` and
-//! `Visitor`); a path into it (`At`), rendered (`meshes[2].triangles[5][1]`)
+//! file order, duplicates rejected while parsing, built only for the small
+//! parts of a file (a light, a camera, one vertex, one point: at most
+//! [`SMALL_VALUES`] values each); the streamed parts around them (`Array`,
+//! `Object`: a file's lists are read one item at a time, never held as a
+//! tree); a path into the file (`At`), rendered (`meshes[2].triangles[5][1]`)
 //! only when an error needs it; an object's checked fields (`Fields`); and
 //! the walk over one file (`Cx`), whose every accessor fails with a
 //! [`FileError`] naming the file and the place. What the scene and points
@@ -9,7 +12,8 @@
 
 use super::{FileError, Place};
 use glam::DVec3;
-use serde::de::{self, Deserialize, Deserializer, MapAccess, SeqAccess, Visitor};
+use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
+use std::cell::{Cell, RefCell};
 use std::fmt;
 
 /// A parsed JSON value that keeps integers apart from other numbers and
@@ -40,58 +44,107 @@ impl Json {
     }
 }
 
-impl<'de> Deserialize<'de> for Json {
-    fn deserialize<D: Deserializer<'de>>(d: D) -> Result<Json, D::Error> {
-        d.deserialize_any(JsonVisitor)
+/// The most JSON values (numbers, strings, arrays, objects, …) one small
+/// part of a file may hold — a light, a camera, a primitive, a transform,
+/// one vertex, one triangle, one point — since its tree is built whole
+/// (about 50 bytes a value): what a hostile file nests in one of them is
+/// refused past 3 MB of tree, not built at 17 times its size.
+pub(super) const SMALL_VALUES: usize = 1 << 16;
+
+/// What is left of one small part's [`SMALL_VALUES`].
+struct Budget {
+    left: Cell<usize>,
+    exceeded: Cell<bool>,
+}
+
+impl Budget {
+    fn new() -> Budget {
+        Budget {
+            left: Cell::new(SMALL_VALUES),
+            exceeded: Cell::new(false),
+        }
+    }
+
+    /// Takes one value, or fails once the budget is spent.
+    fn take<E: de::Error>(&self) -> Result<(), E> {
+        match self.left.get().checked_sub(1) {
+            Some(left) => {
+                self.left.set(left);
+                Ok(())
+            }
+            None => {
+                self.exceeded.set(true);
+                Err(E::custom("too many values"))
+            }
+        }
     }
 }
 
-struct JsonVisitor;
+/// A [`Json`] tree of one small part, within its [`Budget`].
+#[derive(Clone, Copy)]
+struct Small<'b>(&'b Budget);
 
-impl<'de> Visitor<'de> for JsonVisitor {
+impl<'de> DeserializeSeed<'de> for Small<'_> {
+    type Value = Json;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<Json, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<'de> Visitor<'de> for Small<'_> {
     type Value = Json;
 
     fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
         f.write_str("a JSON value")
     }
 
-    fn visit_unit<E>(self) -> Result<Json, E> {
+    fn visit_unit<E: de::Error>(self) -> Result<Json, E> {
+        self.0.take()?;
         Ok(Json::Null)
     }
 
-    fn visit_bool<E>(self, b: bool) -> Result<Json, E> {
+    fn visit_bool<E: de::Error>(self, b: bool) -> Result<Json, E> {
+        self.0.take()?;
         Ok(Json::Bool(b))
     }
 
-    fn visit_u64<E>(self, v: u64) -> Result<Json, E> {
+    fn visit_u64<E: de::Error>(self, v: u64) -> Result<Json, E> {
+        self.0.take()?;
         Ok(Json::UInt(v))
     }
 
-    fn visit_i64<E>(self, v: i64) -> Result<Json, E> {
+    fn visit_i64<E: de::Error>(self, v: i64) -> Result<Json, E> {
+        self.0.take()?;
         Ok(u64::try_from(v).map_or(Json::Int(v), Json::UInt))
     }
 
-    fn visit_f64<E>(self, v: f64) -> Result<Json, E> {
+    fn visit_f64<E: de::Error>(self, v: f64) -> Result<Json, E> {
+        self.0.take()?;
         Ok(Json::Float(v))
     }
 
-    fn visit_str<E>(self, v: &str) -> Result<Json, E> {
+    fn visit_str<E: de::Error>(self, v: &str) -> Result<Json, E> {
+        self.0.take()?;
         Ok(Json::Str(v.to_owned()))
     }
 
-    fn visit_string<E>(self, v: String) -> Result<Json, E> {
+    fn visit_string<E: de::Error>(self, v: String) -> Result<Json, E> {
+        self.0.take()?;
         Ok(Json::Str(v))
     }
 
     fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<Json, A::Error> {
+        self.0.take()?;
         let mut items = Vec::new();
-        while let Some(v) = seq.next_element()? {
+        while let Some(v) = seq.next_element_seed(self)? {
             items.push(v);
         }
         Ok(Json::Array(items))
     }
 
     fn visit_map<A: MapAccess<'de>>(self, mut map: A) -> Result<Json, A::Error> {
+        self.0.take()?;
         let mut entries: Vec<(String, Json)> = Vec::new();
         // Linear search for the usual few keys, a set past that.
         let mut seen: Option<std::collections::HashSet<String>> = None;
@@ -108,12 +161,187 @@ impl<'de> Visitor<'de> for JsonVisitor {
                 }
             };
             if duplicate {
-                return Err(de::Error::custom(format!("duplicate key {}", quoted(&key))));
+                return Err(duplicate_key(&key));
             }
-            let value = map.next_value()?;
+            let value = map.next_value_seed(self)?;
             entries.push((key, value));
         }
         Ok(Json::Object(entries))
+    }
+}
+
+/// The error of a key given twice in one object, placed by serde_json at
+/// its line and column.
+fn duplicate_key<E: de::Error>(key: &str) -> E {
+    E::custom(format!("duplicate key {}", quoted(key)))
+}
+
+/// What a value is, for "expected …, got …", when it is read as a stream:
+/// scalars by what they are, an array by its length (counted without
+/// keeping it), an object as one.
+struct Describe;
+
+impl<'de> Visitor<'de> for Describe {
+    type Value = String;
+
+    fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+        f.write_str("a JSON value")
+    }
+
+    fn visit_unit<E>(self) -> Result<String, E> {
+        Ok("null".to_owned())
+    }
+
+    fn visit_bool<E>(self, b: bool) -> Result<String, E> {
+        Ok(b.to_string())
+    }
+
+    fn visit_u64<E>(self, _: u64) -> Result<String, E> {
+        Ok("a number".to_owned())
+    }
+
+    fn visit_i64<E>(self, _: i64) -> Result<String, E> {
+        Ok("a number".to_owned())
+    }
+
+    fn visit_f64<E>(self, _: f64) -> Result<String, E> {
+        Ok("a number".to_owned())
+    }
+
+    fn visit_str<E>(self, v: &str) -> Result<String, E> {
+        Ok(format!("the string {}", quoted(v)))
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, mut seq: A) -> Result<String, A::Error> {
+        let mut n = 0usize;
+        while seq.next_element::<IgnoredAny>()?.is_some() {
+            n += 1;
+        }
+        Ok(format!("an array of {n}"))
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, _: A) -> Result<String, A::Error> {
+        Ok("an object".to_owned())
+    }
+}
+
+/// The rest of an array, read one item at a time ([`Array`]).
+pub(super) trait Items<'de> {
+    type Out;
+    fn items<A: SeqAccess<'de>>(self, seq: A) -> Result<Self::Out, A::Error>;
+}
+
+/// The entries of an object, read one at a time ([`Object`]).
+pub(super) trait Entries<'de> {
+    type Out;
+    fn entries<A: MapAccess<'de>>(self, map: A) -> Result<Self::Out, A::Error>;
+}
+
+/// A streamed array at `at`: its items go to `I`; any other value fails
+/// with "expected an array, got …".
+pub(super) struct Array<'c, 'f, 'a, I> {
+    pub(super) cx: &'c Cx<'f>,
+    pub(super) at: &'a At<'a>,
+    pub(super) items: I,
+}
+
+/// A streamed object at `at`: its entries go to `N`; any other value
+/// fails with "expected an object, got …".
+pub(super) struct Object<'c, 'f, 'a, N> {
+    pub(super) cx: &'c Cx<'f>,
+    pub(super) at: &'a At<'a>,
+    pub(super) entries: N,
+}
+
+/// The visits of a streamed value of the wrong kind: each described as
+/// [`Describe`] does and reported at the value's place.
+macro_rules! wrong_kinds {
+    ($expected:literal) => {
+        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+            f.write_str($expected)
+        }
+        fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
+            self.wrong(Describe.visit_unit()?)
+        }
+        fn visit_bool<E: de::Error>(self, v: bool) -> Result<Self::Value, E> {
+            self.wrong(Describe.visit_bool(v)?)
+        }
+        fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+            self.wrong(Describe.visit_u64(v)?)
+        }
+        fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+            self.wrong(Describe.visit_i64(v)?)
+        }
+        fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
+            self.wrong(Describe.visit_f64(v)?)
+        }
+        fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
+            self.wrong(Describe.visit_str(v)?)
+        }
+    };
+}
+
+impl<'de, I: Items<'de>> DeserializeSeed<'de> for Array<'_, '_, '_, I> {
+    type Value = I::Out;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<I::Out, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<I> Array<'_, '_, '_, I> {
+    fn wrong<T, E: de::Error>(&self, got: String) -> Result<T, E> {
+        Err(self.cx.fail(
+            self.cx
+                .err(self.at, format!("expected an array, got {got}")),
+        ))
+    }
+}
+
+impl<'de, I: Items<'de>> Visitor<'de> for Array<'_, '_, '_, I> {
+    type Value = I::Out;
+
+    wrong_kinds!("an array");
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<I::Out, A::Error> {
+        self.wrong(Describe.visit_map(map)?)
+    }
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<I::Out, A::Error> {
+        self.items.items(seq)
+    }
+}
+
+impl<'de, N: Entries<'de>> DeserializeSeed<'de> for Object<'_, '_, '_, N> {
+    type Value = N::Out;
+
+    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<N::Out, D::Error> {
+        d.deserialize_any(self)
+    }
+}
+
+impl<N> Object<'_, '_, '_, N> {
+    fn wrong<T, E: de::Error>(&self, got: String) -> Result<T, E> {
+        Err(self.cx.fail(
+            self.cx
+                .err(self.at, format!("expected an object, got {got}")),
+        ))
+    }
+}
+
+impl<'de, N: Entries<'de>> Visitor<'de> for Object<'_, '_, '_, N> {
+    type Value = N::Out;
+
+    wrong_kinds!("an object");
+
+    fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<N::Out, A::Error> {
+        self.cx.started.set(true);
+        self.wrong(Describe.visit_seq(seq)?)
+    }
+
+    fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<N::Out, A::Error> {
+        self.cx.started.set(true);
+        self.entries.entries(map)
     }
 }
 
@@ -196,6 +424,22 @@ impl<'v> Fields<'v> {
 /// The walk over one file: every error names the file and the place.
 pub(super) struct Cx<'a> {
     pub(super) file: &'a str,
+    /// The first error found while serde_json walks the file, kept while
+    /// it unwinds (serde's own error carries a message only).
+    stash: RefCell<Option<FileError>>,
+    /// Whether the file's top-level value began (else an end of input is
+    /// an empty file).
+    started: Cell<bool>,
+}
+
+impl<'a> Cx<'a> {
+    pub(super) fn new(file: &'a str) -> Cx<'a> {
+        Cx {
+            file,
+            stash: RefCell::new(None),
+            started: Cell::new(false),
+        }
+    }
 }
 
 impl Cx<'_> {
@@ -207,30 +451,110 @@ impl Cx<'_> {
         }
     }
 
-    pub(super) fn parse(&self, text: &str) -> Result<Json, FileError> {
-        if text.trim().is_empty() {
-            return Err(super::whole(self.file, "file is empty".to_owned()));
+    /// Keeps `e` (the first error wins) and gives serde the error that
+    /// unwinds its walk; [`Cx::finish`] returns `e`.
+    pub(super) fn fail<E: de::Error>(&self, e: FileError) -> E {
+        let mut stash = self.stash.borrow_mut();
+        if stash.is_none() {
+            *stash = Some(e);
         }
-        serde_json::from_str(text).map_err(|e| self.json_error(&e))
+        E::custom("see the stashed error")
+    }
+
+    /// The outcome of a walk: its value, the error kept by [`Cx::fail`], an
+    /// empty file, or serde_json's syntax error at its line and column.
+    pub(super) fn finish<T>(&self, r: Result<T, serde_json::Error>) -> Result<T, FileError> {
+        r.map_err(|e| {
+            if let Some(kept) = self.stash.borrow_mut().take() {
+                kept
+            } else if e.is_eof() && !self.started.get() {
+                super::whole(self.file, "file is empty".to_owned())
+            } else {
+                self.json_error(&e)
+            }
+        })
+    }
+
+    /// One small part of the file, the value of `map`'s current entry, as
+    /// a [`Json`] tree within [`SMALL_VALUES`].
+    pub(super) fn small_value<'de, A: MapAccess<'de>>(
+        &self,
+        map: &mut A,
+        at: &At,
+    ) -> Result<Json, A::Error> {
+        let budget = Budget::new();
+        map.next_value_seed(Small(&budget))
+            .map_err(|e| self.over_budget(&budget, at, e))
+    }
+
+    /// The next item of `seq` (at `at`) as a [`Json`] tree within
+    /// [`SMALL_VALUES`].
+    pub(super) fn small_item<'de, A: SeqAccess<'de>>(
+        &self,
+        seq: &mut A,
+        at: &At,
+    ) -> Result<Option<Json>, A::Error> {
+        let budget = Budget::new();
+        seq.next_element_seed(Small(&budget))
+            .map_err(|e| self.over_budget(&budget, at, e))
+    }
+
+    fn over_budget<E: de::Error>(&self, budget: &Budget, at: &At, e: E) -> E {
+        if budget.exceeded.get() {
+            self.fail(self.err(
+                at,
+                format!("holds more than {SMALL_VALUES} JSON values, far more than it can"),
+            ))
+        } else {
+            e
+        }
+    }
+
+    /// The next key of the streamed object `map` at `at`, as its index in
+    /// `keys`; a key not in `keys`, or one already marked in `seen` (a
+    /// duplicate, reported at its line and column), fails the walk.
+    pub(super) fn next_key<'de, A: MapAccess<'de>>(
+        &self,
+        map: &mut A,
+        at: &At,
+        keys: &[&str],
+        seen: &mut [bool],
+    ) -> Result<Option<usize>, A::Error> {
+        let Some(key) = map.next_key::<String>()? else {
+            return Ok(None);
+        };
+        let Some(k) = keys.iter().position(|&k| k == key) else {
+            return Err(self.fail(self.err(
+                &at.key(&key),
+                format!("unknown key (expected one of: {})", keys.join(", ")),
+            )));
+        };
+        if std::mem::replace(&mut seen[k], true) {
+            return Err(duplicate_key(&key));
+        }
+        Ok(Some(k))
     }
 
     /// A JSON syntax error at its line and column.
     pub(super) fn json_error(&self, e: &serde_json::Error) -> FileError {
-        {
-            let full = e.to_string();
-            let suffix = format!(" at line {} column {}", e.line(), e.column());
-            let mut message = full.strip_suffix(&suffix).unwrap_or(&full).to_owned();
-            if message == "number out of range" {
-                message.push_str(" (not a finite f64)");
-            }
-            FileError {
-                file: self.file.to_owned(),
-                place: Place::Position {
-                    line: e.line(),
-                    column: e.column(),
-                },
-                message,
-            }
+        let full = e.to_string();
+        let suffix = format!(" at line {} column {}", e.line(), e.column());
+        let mut message = full.strip_suffix(&suffix).unwrap_or(&full).to_owned();
+        if message == "number out of range" {
+            message.push_str(" (not a finite f64)");
+        }
+        if e.classify() == serde_json::error::Category::Io {
+            // A read error (or invalid UTF-8 found by the reader, which
+            // says where) has no position of serde's.
+            return super::whole(self.file, message);
+        }
+        FileError {
+            file: self.file.to_owned(),
+            place: Place::Position {
+                line: e.line(),
+                column: e.column(),
+            },
+            message,
         }
     }
 
@@ -293,13 +617,6 @@ impl Cx<'_> {
     ) -> Result<&'v Json, FileError> {
         f.get(key)
             .ok_or_else(|| self.err(&at.key(key), "required but missing"))
-    }
-
-    pub(super) fn array<'v>(&self, v: &'v Json, at: &At) -> Result<&'v [Json], FileError> {
-        match v {
-            Json::Array(items) => Ok(items),
-            _ => Err(self.err(at, format!("expected an array, got {}", v.describe()))),
-        }
     }
 
     pub(super) fn string<'v>(&self, v: &'v Json, at: &At) -> Result<&'v str, FileError> {
