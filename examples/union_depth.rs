@@ -3,7 +3,8 @@
 //! Carlo at 4096 samples), layers stacked `10⁻⁴` apart, and one convex
 //! polygon given as a fan of slivers. Median of `runs` calls each.
 //!
-//! `cargo run --release --example union_depth -- [pile|stacked|fan|all] [runs]`
+//! `UNION=grid|tree cargo run --release --example union_depth -- [pile|stacked|fan|all] [runs]`,
+//! or `... -- one CASE N CALLS` (see [`one`]).
 
 use glam::DVec3;
 use softshadow::arbitrary::Rng;
@@ -130,9 +131,10 @@ fn main() {
     let what = args.get(1).map_or("all", String::as_str);
     let runs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     let mut scratch = Scratch::default();
-    let tree = std::env::var("UNION").is_ok_and(|v| v == "tree");
-    if tree {
-        scratch.set_union_search(UnionSearch::Tree);
+    // UNION=grid (the default) or tree.
+    match std::env::var("UNION").as_deref() {
+        Ok("tree") => scratch.set_union_search(UnionSearch::Tree),
+        _ => scratch.set_union_search(UnionSearch::Grid),
     }
     if what == "one" {
         one(&args, &mut scratch);

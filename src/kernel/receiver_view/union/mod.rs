@@ -179,10 +179,6 @@ pub(super) fn union_area<const B: bool>(
     union_area_sweeping_from::<B>(tris, weights, measure, half, scratch, SWEEP_FROM)
 }
 
-/// Under [`Search::Hybrid`], the span tests an edge's search makes in the
-/// grid before it goes on in the tree.
-const HAND_OVER: usize = 48;
-
 /// Sides holding at least this many edges are swept ([`union_area`]; ours:
 /// no built-in scene's receiver has a side that full).
 pub(super) const SWEEP_FROM: usize = 64;
@@ -204,10 +200,10 @@ pub(super) fn union_area_sweeping_from<const B: bool>(
     // scenes' instructions).
     let deep = scratch.interior.build(tris, half);
     match (scratch.search, deep) {
-        (Search::Grid | Search::Hybrid, true) => {
+        (Search::Grid, true) => {
             union_area_in::<true, B>(tris, weights, measure, half, scratch, sweep_from)
         }
-        (Search::Grid | Search::Hybrid, false) => {
+        (Search::Grid, false) => {
             union_area_in::<false, B>(tris, weights, measure, half, scratch, sweep_from)
         }
         (Search::Tree, true) => {
@@ -281,13 +277,6 @@ fn union_area_in<const DEEP: bool, const B: bool>(
         0.0
     };
     let mut edge_id = 0_u32;
-    // An edge whose search in the grid has made this many span tests
-    // without settling goes on in the tree (built on the first such edge).
-    let hand_over = match scratch.search {
-        Search::Hybrid => HAND_OVER,
-        _ => usize::MAX,
-    };
-    let mut tree_built = false;
     for (i, ti) in tris.iter().enumerate() {
         #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.
         for k in 0..3 {
@@ -338,7 +327,6 @@ fn union_area_in<const DEEP: bool, const B: bool>(
             let searched = &scratch.searched;
             let keep =
                 |x: usize, y: usize| !DEEP || searched[(y - fy0) * (fx1 - fx0 + 1) + x - fx0];
-            let mut tests = 0;
             grid.for_each_near(lo, hi, keep, |j| {
                 let j = j as usize;
                 if j == i || scratch.stamp[j] == edge_id {
@@ -349,10 +337,6 @@ fn union_area_in<const DEEP: bool, const B: bool>(
                 if tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
                     return true;
                 }
-                if tests == hand_over {
-                    return false;
-                }
-                tests += 1;
                 if let Some(span) = covered_span(a, b, tj, j < i) {
                     // Spans that together cover the edge settle it: nothing
                     // of it is on the boundary. Most edges are covered
@@ -369,39 +353,15 @@ fn union_area_in<const DEEP: bool, const B: bool>(
                 !whole
             });
             edge_id = edge_id.wrapping_add(1);
-            if whole {
-                continue;
-            }
-            // The covered start as one interval: the same pieces.
-            if cover.reach > 0.0 {
-                scratch.intervals.push((0.0, cover.reach));
-            }
-            if tests == hand_over {
-                // The search goes on in the tree, from the spans found.
-                if !tree_built {
-                    scratch.tree.build(tris, half);
-                    tree_built = true;
+            if !whole {
+                // The covered start as one interval: the same pieces.
+                if cover.reach > 0.0 {
+                    scratch.intervals.push((0.0, cover.reach));
                 }
-                let spans = &mut scratch.spans;
-                spans.clear();
-                for &span in &scratch.intervals {
-                    spans.add(span);
+                add_uncovered(a, b, &mut scratch.intervals, measure, &mut sum);
+                if B {
+                    bound += cut_errors(a, b, &mut scratch.bounded);
                 }
-                let bounded = &mut scratch.bounded;
-                let whole = scratch.tree.search(&Ray::new(a, b), spans, |j| {
-                    span_of::<B>(a, b, i, j as usize, tris, (lo, hi), bounded)
-                });
-                if !whole {
-                    add_uncovered(a, b, &mut spans.list, measure, &mut sum);
-                    if B {
-                        bound += cut_errors(a, b, &mut scratch.bounded);
-                    }
-                }
-                continue;
-            }
-            add_uncovered(a, b, &mut scratch.intervals, measure, &mut sum);
-            if B {
-                bound += cut_errors(a, b, &mut scratch.bounded);
             }
         }
     }
@@ -618,9 +578,6 @@ pub enum Search {
     /// largest triangle, searched with the edge's cover so far: subtrees
     /// whose part of the edge is covered already are left out.
     Tree,
-    /// The grid, and for an edge not settled after [`HAND_OVER`] span
-    /// tests, the tree from the spans found so far.
-    Hybrid,
 }
 
 /// Buffers of [`union_area`].
@@ -2727,8 +2684,7 @@ mod tests {
         }
     }
 
-    /// The tree's search, and the grid handing over to it, give the grid's
-    /// area and bound bit for bit, on both measures, over every family of
+    /// The tree's search gives the grid's area and bound bit for bit, on both measures, over every family of
     /// [`family`] (the bound since [`cut_errors`] takes the largest error
     /// among spans starting at one point: before, the first found).
     #[test]
@@ -2751,7 +2707,7 @@ mod tests {
                 .collect();
             for measure in [Measure::Disk(1.0), Measure::Square] {
                 let grid = area_by(Search::Grid, &tris, &w, measure, h, &mut scratch);
-                for search in [Search::Tree, Search::Hybrid] {
+                for search in [Search::Tree] {
                     let other = area_by(search, &tris, &w, measure, h, &mut scratch);
                     for (g, t) in grid.iter().zip(&other) {
                         assert_eq!(
@@ -2928,7 +2884,7 @@ mod tests {
             } else {
                 Measure::Square
             };
-            for search in [Search::Grid, Search::Tree, Search::Hybrid] {
+            for search in [Search::Grid, Search::Tree] {
                 scratch.search = search;
                 let area = union_area::<false>(&tris, &[], measure, h, &mut scratch).0;
                 assert!(
