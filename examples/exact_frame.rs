@@ -16,7 +16,7 @@ fn main() -> Result<(), Box<dyn Error>> {
     let args: Vec<String> = std::env::args().skip(1).collect();
     let name = args.first().map_or("default", String::as_str);
     let side: u32 = args.get(1).map_or(Ok(256), |s| s.parse())?;
-    let bounded = args.get(2).map_or(true, |m| m != "plain");
+    let bounded = args.get(2).is_none_or(|m| m != "plain");
     let scene = builtin(name).ok_or("no such built-in scene")?;
     let camera = scene
         .camera()

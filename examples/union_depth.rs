@@ -6,9 +6,9 @@
 //! `UNION=grid|tree cargo run --release --example union_depth -- [pile|stacked|fan|all] [runs]`,
 //! or `... -- one CASE N CALLS` (see [`one`]).
 
-use glam::DVec3;
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
 use softshadow::kernel::receiver_view::UnionSearch;
 use softshadow::reference::exact::{self, Scratch};
 use softshadow::reference::monte_carlo::{self, Options};

@@ -171,7 +171,12 @@ pub(crate) fn light_extent(emitter: &Emitter) -> f64 {
 pub(crate) fn domain(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> Domain {
     let t = bvh.max_coordinate().max(p.abs().max_element());
     let l = light_extent(emitter);
-    if !(t * t * (t + l) <= f64::MAX / 1024.0) {
+    // Beyond, or NaN.
+    let within = (t * t * (t + l)).partial_cmp(&(f64::MAX / 1024.0));
+    if !matches!(
+        within,
+        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+    ) {
         Domain::Overflow
     } else if t.max(l) > DOMAIN {
         Domain::Uncertified

@@ -204,7 +204,11 @@ pub fn visibility(
 pub(crate) fn out_of_range(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> bool {
     let t = bvh.max_coordinate().max(p.abs().max_element());
     let l = super::exact::light_extent(emitter);
-    !(t.max(l) <= 1e90)
+    // Beyond, or NaN.
+    !matches!(
+        t.max(l).partial_cmp(&1e90),
+        Some(std::cmp::Ordering::Less | std::cmp::Ordering::Equal)
+    )
 }
 
 /// [`visibility`] for a receiver whose view of the light is already known:
