@@ -245,37 +245,10 @@ fn union_area_in<const DEEP: bool, const B: bool>(
     scratch.edges.build(tris, half);
     scratch.stamp.clear();
     scratch.stamp.resize(tris.len(), u32::MAX);
-    let mut counts = [0usize; 4];
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = t.edge(k);
-            if let Some(side) = Side::of(a, b, half) {
-                counts[side as usize] += 1;
-            }
-        }
-    }
-    for (set, &count) in scratch.sides.iter_mut().zip(&counts) {
-        set.clear();
-        set.active = count >= sweep_from;
-    }
+    let widest =
+        prepare_sides_and_bands::<DEEP, B>(tris, weights, half, &mut scratch.sides, sweep_from);
     let mut sum = Sum::default();
     let mut bound = 0.0;
-    // The widest band of any edge (each allowance is at least twice its
-    // width times its length): the raster's margin covers an edge's exact
-    // position only if the covering triangle's and its own are within it.
-    let widest = if B && DEEP {
-        tris.iter()
-            .zip(weights)
-            .flat_map(|(t, w)| {
-                (0..3).map(move |k| {
-                    let (a, b) = t.edge(k);
-                    w[k] / (2.0 * (b - a).length())
-                })
-            })
-            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
-    } else {
-        0.0
-    };
     let mut edge_id = 0_u32;
     for (i, ti) in tris.iter().enumerate() {
         #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.
@@ -371,6 +344,47 @@ fn union_area_in<const DEEP: bool, const B: bool>(
     (sum.value(), bound)
 }
 
+/// The common start of [`union_area_in`] and [`union_area_tree`]: each
+/// side of the square swept if it holds `sweep_from` edges or more, and
+/// (with `B` under a deep pile) the widest band of any edge — each
+/// allowance is at least twice its width times its length: the raster's
+/// margin covers an edge's exact position only if the covering
+/// triangle's and its own are within it.
+fn prepare_sides_and_bands<const DEEP: bool, const B: bool>(
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    half: f64,
+    sides: &mut [SideSet; 4],
+    sweep_from: usize,
+) -> f64 {
+    let mut counts = [0usize; 4];
+    for t in tris {
+        for k in 0..3 {
+            let (a, b) = t.edge(k);
+            if let Some(side) = Side::of(a, b, half) {
+                counts[side as usize] += 1;
+            }
+        }
+    }
+    for (set, &count) in sides.iter_mut().zip(&counts) {
+        set.clear();
+        set.active = count >= sweep_from;
+    }
+    if B && DEEP {
+        tris.iter()
+            .zip(weights)
+            .flat_map(|(t, w)| {
+                (0..3).map(move |k| {
+                    let (a, b) = t.edge(k);
+                    w[k] / (2.0 * (b - a).length())
+                })
+            })
+            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
+    } else {
+        0.0
+    }
+}
+
 /// [`union_area_in`] with the edges' searches in a [`Tree`] instead of the
 /// grids: the same spans' union for every edge (the tree leaves out only
 /// triangles whose spans lie inside the cover already found; see
@@ -387,34 +401,10 @@ fn union_area_tree<const DEEP: bool, const B: bool>(
 ) -> (f64, f64) {
     scratch.tree.build(tris, half);
     scratch.edges.build(tris, half);
-    let mut counts = [0usize; 4];
-    for t in tris {
-        for k in 0..3 {
-            let (a, b) = t.edge(k);
-            if let Some(side) = Side::of(a, b, half) {
-                counts[side as usize] += 1;
-            }
-        }
-    }
-    for (set, &count) in scratch.sides.iter_mut().zip(&counts) {
-        set.clear();
-        set.active = count >= sweep_from;
-    }
+    let widest =
+        prepare_sides_and_bands::<DEEP, B>(tris, weights, half, &mut scratch.sides, sweep_from);
     let mut sum = Sum::default();
     let mut bound = 0.0;
-    let widest = if B && DEEP {
-        tris.iter()
-            .zip(weights)
-            .flat_map(|(t, w)| {
-                (0..3).map(move |k| {
-                    let (a, b) = t.edge(k);
-                    w[k] / (2.0 * (b - a).length())
-                })
-            })
-            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
-    } else {
-        0.0
-    };
     for (i, ti) in tris.iter().enumerate() {
         #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.
         for k in 0..3 {
