@@ -75,6 +75,14 @@ pub struct Scratch {
     view: receiver_view::Scratch,
 }
 
+impl Scratch {
+    /// Chooses the union's search ([`UnionSearch`](receiver_view::UnionSearch)):
+    /// the same answers bit for bit, kept side by side for comparison.
+    pub fn set_union_search(&mut self, search: receiver_view::UnionSearch) {
+        self.view.set_union_search(search);
+    }
+}
+
 /// An exact answer with its certified bound: `|visibility − V(p)| ≤ bound`
 /// for inputs in the documented domain (module documentation).
 #[derive(Clone, Copy, Debug, Default, PartialEq)]

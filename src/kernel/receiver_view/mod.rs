@@ -187,6 +187,7 @@ mod union;
 
 pub use area::{AreaView, Image};
 pub use segment::SegmentView;
+pub use union::Search as UnionSearch;
 
 use crate::kernel::segment::segment_blocked;
 use crate::scene::Emitter;
@@ -202,6 +203,16 @@ pub struct Scratch {
     weights: Vec<[f64; 3]>,
     intervals: Vec<(f64, f64)>,
     union: UnionScratch,
+}
+
+impl Scratch {
+    /// Chooses how the union of the images finds, for each image edge, the
+    /// images that may cover it ([`UnionSearch`]): both designs give the
+    /// same answer bit for bit; kept side by side so that benchmarks and
+    /// tests can compare them.
+    pub fn set_union_search(&mut self, search: UnionSearch) {
+        self.union.search = search;
+    }
 }
 
 /// An occluded fraction and a certified bound on its error:

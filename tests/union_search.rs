@@ -1,0 +1,143 @@
+//! The union's two searches (issue 46) give the same exact answers bit for
+//! bit: the grid (`UnionSearch::Grid`, the design before) and the tree of
+//! bounding boxes pruned by the edge's cover (`Tree`), through the whole
+//! exact reference — every
+//! built-in scene's floor grid under its own light, a pile of random
+//! occluders, layers stacked `10⁻⁴` apart, and convex polygons given as
+//! fans of slivers — value and certified bound.
+
+use softshadow::arbitrary::Rng;
+use softshadow::bvh::{Bvh, Occluders};
+use softshadow::glam::DVec3;
+use softshadow::kernel::receiver_view::UnionSearch;
+use softshadow::reference::exact::{visibility_bounded_with, Scratch};
+use softshadow::scene::builtin::{builtin, floor_receivers, BUILTIN_NAMES};
+use softshadow::scene::Light;
+
+/// Every receiver's `(V, bound)` bits under each search, compared with the
+/// grid's; how many answers lie strictly between 0 and 1.
+fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3]) -> usize {
+    let searches = [UnionSearch::Grid, UnionSearch::Tree];
+    let mut scratch: Vec<Scratch> = searches
+        .iter()
+        .map(|&s| {
+            let mut scratch = Scratch::default();
+            scratch.set_union_search(s);
+            scratch
+        })
+        .collect();
+    let mut partial = 0;
+    for &p in receivers {
+        let answers: Vec<(u64, u64)> = scratch
+            .iter_mut()
+            .map(|s| match visibility_bounded_with(bvh, light, p, s) {
+                Ok(b) => (b.visibility.to_bits(), b.bound.to_bits()),
+                Err(_) => (u64::MAX, u64::MAX),
+            })
+            .collect();
+        for (search, answer) in searches.iter().zip(&answers).skip(1) {
+            assert_eq!(
+                answers[0],
+                *answer,
+                "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
+                (f64::from_bits(answers[0].0), f64::from_bits(answers[0].1)),
+                (f64::from_bits(answer.0), f64::from_bits(answer.1))
+            );
+        }
+        let v = f64::from_bits(answers[0].0);
+        partial += usize::from(v > 0.0 && v < 1.0);
+    }
+    partial
+}
+
+#[test]
+fn the_searches_agree_on_the_built_in_scenes() {
+    for name in BUILTIN_NAMES {
+        let scene = builtin(name).expect("a built-in scene");
+        let bvh = Bvh::new(Occluders::from_scene(&scene));
+        let receivers = floor_receivers(&scene, 20);
+        let partial = compare(name, &bvh, scene.light(), &receivers);
+        assert!(partial > 10, "{name}: {partial} receivers in a penumbra");
+    }
+}
+
+/// The pile of `benches/references.rs`: random small triangles over one
+/// receiver, every one projecting onto the light; receivers about it.
+#[test]
+fn the_searches_agree_under_a_pile() {
+    let mut rng = Rng::new(7);
+    let light = Light::sphere(DVec3::new(0.0, 0.0, 4.0), 0.5).expect("a light");
+    for n in [300, 3000] {
+        let tris: Vec<[DVec3; 3]> = (0..n)
+            .map(|_| {
+                let target = DVec3::new(0.0, 0.0, 4.0)
+                    + DVec3::new(rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4), 0.0);
+                let q = target * rng.uniform(0.2, 0.8);
+                let s = 0.05 * q.z / 4.0;
+                let mut corner =
+                    || q + DVec3::new(rng.uniform(-s, s), rng.uniform(-s, s), rng.uniform(-s, s));
+                [corner(), corner(), corner()]
+            })
+            .collect();
+        let bvh = Bvh::new(Occluders::from_triangles(tris));
+        let receivers: Vec<DVec3> = (0..6)
+            .map(|_| DVec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), 0.0))
+            .collect();
+        assert!(compare("pile", &bvh, &light, &receivers) > 0);
+    }
+}
+
+/// Layers stacked `10⁻⁴` apart (near-nested images), and one convex
+/// polygon as a fan of slivers covering all or part of a disk light.
+#[test]
+fn the_searches_agree_on_stacked_layers_and_fans() {
+    let t = [
+        DVec3::new(-1.0, 1.0, -1.0),
+        DVec3::new(1.0, 1.0, -1.0),
+        DVec3::new(0.0, 1.0, 1.0),
+    ];
+    let stacked: Vec<[DVec3; 3]> = (0..2000)
+        .map(|k| t.map(|v| v + DVec3::new(0.0, 1e-4 * k as f64, 0.0)))
+        .collect();
+    let light = Light::sphere(DVec3::new(0.0, 3.0, 0.0), 0.5).expect("a light");
+    let receivers = [
+        DVec3::new(0.9, 0.0, 0.0),
+        DVec3::new(0.83, 0.0, 0.21),
+        DVec3::new(-0.7, 0.0, 0.4),
+    ];
+    compare(
+        "stacked",
+        &Bvh::new(Occluders::from_triangles(stacked)),
+        &light,
+        &receivers,
+    );
+    let disk = Light::disk(
+        DVec3::new(0.1031, 0.2017, 4.0),
+        DVec3::new(0.03, 0.01, 1.0),
+        0.5,
+    )
+    .expect("a light");
+    let p = [DVec3::new(0.0137, 0.0213, 0.0), DVec3::new(0.2, -0.1, 0.0)];
+    for (center, radius, apex) in [
+        (
+            DVec3::new(0.0, 0.0, 2.0),
+            50.0,
+            DVec3::new(0.0313, 0.0271, 2.0),
+        ),
+        (
+            DVec3::new(0.35, 0.2, 2.0),
+            0.23,
+            DVec3::new(0.3513, 0.1871, 2.0),
+        ),
+    ] {
+        let n = 3000;
+        let ring: Vec<DVec3> = (0..n)
+            .map(|k| {
+                let a = k as f64 * std::f64::consts::TAU / n as f64;
+                center + DVec3::new(a.cos(), a.sin(), 0.0) * radius
+            })
+            .collect();
+        let tris: Vec<[DVec3; 3]> = (0..n).map(|k| [apex, ring[k], ring[(k + 1) % n]]).collect();
+        compare("fan", &Bvh::new(Occluders::from_triangles(tris)), &disk, &p);
+    }
+}
