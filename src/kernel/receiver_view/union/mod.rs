@@ -615,12 +615,15 @@ struct Edges {
 impl Edges {
     const EMPTY: u32 = u32::MAX;
 
-    /// The most triangles the table is built for: beyond, it outgrows the
-    /// caches, and on images that share no edge it cost more than the
-    /// search it was to save (10⁵ near-coincident copies of a triangle, an
-    /// earlier hash: a fifth more); the search alone decides there, as it
-    /// would.
-    const MOST: usize = 1 << 16;
+    /// The most triangles the table is built for (a bound on its memory:
+    /// 32 MiB of slots at most). It was once 2¹⁶, since on images that
+    /// share no edge the table cost more than the search it was to save
+    /// (10⁵ near-coincident copies of a triangle, an earlier hash: a fifth
+    /// more); but a convex polygon given as a fan of 10⁵ slivers, every
+    /// inner edge shared, then went to the search edge by edge and took
+    /// minutes for one answer, against about 0.1 s with the table
+    /// (`examples/union_depth.rs`, `one fan0 100000`).
+    const MOST: usize = 1 << 20;
 
     /// The fewest triangles the table is built for: below, the search is
     /// short, and the table cost more than it saved where no edge is
