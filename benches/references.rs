@@ -12,7 +12,9 @@
 //! `cargo bench --bench references`; figures in `benches/README.md`.
 
 use criterion::{criterion_group, criterion_main, BenchmarkId, Criterion, Throughput};
-use softshadow::arbitrary::Rng;
+#[path = "support/pile.rs"]
+mod pile;
+use pile::occluders;
 use softshadow::bvh::{Bvh, Occluders};
 use softshadow::definitions::in_penumbra;
 use softshadow::glam::DVec3;
@@ -55,25 +57,6 @@ fn default_scene(c: &mut Criterion) {
         });
     }
     g.finish();
-}
-
-/// `n` triangles of size about a tenth of the light's image, centred on
-/// segments from the receiver at the origin to points of a sphere light of
-/// radius 0.5 at height 4, at depths 0.2–0.8 of the way.
-fn occluders(n: usize) -> Vec<[DVec3; 3]> {
-    let mut rng = Rng::new(7);
-    let light = DVec3::new(0.0, 0.0, 4.0);
-    (0..n)
-        .map(|_| {
-            let target = light + DVec3::new(rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4), 0.0);
-            let depth = rng.uniform(0.2, 0.8);
-            let q = target * depth;
-            let s = 0.05 * depth;
-            let mut corner =
-                || q + DVec3::new(rng.uniform(-s, s), rng.uniform(-s, s), rng.uniform(-s, s));
-            [corner(), corner(), corner()]
-        })
-        .collect()
 }
 
 fn growth(c: &mut Criterion) {

@@ -6,7 +6,9 @@
 //! `UNION=grid|tree cargo run --release --example union_depth -- [pile|stacked|fan|all] [runs]`,
 //! or `... -- one CASE N CALLS` (see [`one`]).
 
-use softshadow::arbitrary::Rng;
+#[path = "../benches/support/pile.rs"]
+mod pile;
+use pile::occluders;
 use softshadow::bvh::{Bvh, Occluders};
 use softshadow::glam::DVec3;
 use softshadow::kernel::receiver_view::UnionSearch;
@@ -15,23 +17,6 @@ use softshadow::reference::monte_carlo::{self, Options};
 use softshadow::scene::Light;
 use std::hint::black_box;
 use std::time::Instant;
-
-/// The pile of `benches/references.rs`.
-fn occluders(n: usize) -> Vec<[DVec3; 3]> {
-    let mut rng = Rng::new(7);
-    let light = DVec3::new(0.0, 0.0, 4.0);
-    (0..n)
-        .map(|_| {
-            let target = light + DVec3::new(rng.uniform(-0.4, 0.4), rng.uniform(-0.4, 0.4), 0.0);
-            let depth = rng.uniform(0.2, 0.8);
-            let q = target * depth;
-            let s = 0.05 * depth;
-            let mut corner =
-                || q + DVec3::new(rng.uniform(-s, s), rng.uniform(-s, s), rng.uniform(-s, s));
-            [corner(), corner(), corner()]
-        })
-        .collect()
-}
 
 fn median(runs: usize, mut f: impl FnMut() -> f64) -> (f64, f64) {
     let mut times = Vec::new();
