@@ -14,6 +14,7 @@ use proptest::prelude::*;
 use softshadow::arbitrary::disk::{clipped_edge, disk_edge, edge, polygon, radius, DiskEdge};
 use softshadow::arbitrary::Rng;
 use softshadow::glam::{DVec2, Vec2};
+use softshadow::kernel::catalogue;
 use softshadow::kernel::disk::{f32 as k32, f64 as k64};
 use softshadow::kernel::predicate::{orient2d, Sign};
 use std::f64::consts::PI;
@@ -21,15 +22,13 @@ use std::f64::consts::PI;
 const EPS64: f64 = f64::EPSILON;
 const EPS32: f64 = f32::EPSILON as f64;
 
-/// Error budgets, in units of `ε · r²` (segment and polygon areas) or `ε`
-/// (the normalised circle-segment occlusion). Each is the measured maximum
-/// over the stiff generators (`SOFTSHADOW_EXHAUSTIVE=1`), rounded up; see
-/// `docs/accuracy/kernels.md`.
-const BUDGET_SEGMENT: f64 = 3.0;
-const BUDGET_POLYGON: f64 = 5.0;
-const BUDGET_CIRCLE_SEGMENT: f64 = 1.0;
-/// Relative error budget of thin full-chord slivers, in units of `ε`.
-const BUDGET_SLIVER_RELATIVE: f64 = 9.0;
+/// Error budgets, from the kernel catalogue: in units of `ε · r²` (segment
+/// and polygon areas) or `ε` (the normalised circle-segment occlusion;
+/// relative for thin full-chord slivers).
+const BUDGET_SEGMENT: f64 = catalogue::disk::SEGMENT_DISK_AREA.bound;
+const BUDGET_POLYGON: f64 = catalogue::disk::POLYGON_DISK_AREA.bound;
+const BUDGET_CIRCLE_SEGMENT: f64 = catalogue::disk::CIRCLE_SEGMENT_OCCLUSION.bound;
+const BUDGET_SLIVER_RELATIVE: f64 = catalogue::disk::THIN_CHORD.bound;
 
 // ---------------------------------------------------------------------------
 // The 256-bit references.

@@ -15,8 +15,8 @@ use support::{exhaustive, printing, ulp_at};
 use proptest::prelude::*;
 use softshadow::arbitrary::light::{distortion_case, DistortionCase};
 use softshadow::arbitrary::Rng;
-use softshadow::kernel::distortion;
 use softshadow::kernel::falloff::{self, Falloff};
+use softshadow::kernel::{catalogue, distortion};
 
 use support::dd::{two_prod, two_sum, Dd};
 
@@ -65,14 +65,10 @@ const FALLOFFS: [(Falloff, f64); 3] = [
     (Falloff::Exact, 4.0 / core::f64::consts::PI),
 ];
 
-/// Accuracy budgets of `kernel::falloff` (tests/falloff.rs), in ulps,
+/// Accuracy budgets of `kernel::falloff` (the kernel catalogue), in ulps,
 /// including subnormal results.
 fn falloff_budget(f: Falloff) -> f64 {
-    match f {
-        Falloff::Linear => 0.0,
-        Falloff::Bernstein => 1.0,
-        Falloff::Exact => 1.0,
-    }
+    catalogue::falloff::of(f).bound
 }
 
 #[test]
@@ -136,10 +132,12 @@ fn accuracy_budget() {
     // 1.39/1.45 ulp over 4e6 samples): max_distortion rounds at most four
     // times, relative error ≤ 4·2^-p, which is ≤ 4 ulp of the result;
     // penumbra_position at most twice, ≤ 2 ulp.
-    assert!(dmax64 <= 4.0, "{dmax64} {:?}", worst[0]);
-    assert!(dmax32 <= 4.0, "{dmax32} {:?}", worst[2]);
-    assert!(pos64 <= 2.0, "{pos64} {:?}", worst[1]);
-    assert!(pos32 <= 2.0, "{pos32} {:?}", worst[3]);
+    let dmax = catalogue::distortion::MAX_DISTORTION.bound;
+    let pos = catalogue::distortion::PENUMBRA_POSITION.bound;
+    assert!(dmax64 <= dmax, "{dmax64} {:?}", worst[0]);
+    assert!(dmax32 <= dmax, "{dmax32} {:?}", worst[2]);
+    assert!(pos64 <= pos, "{pos64} {:?}", worst[1]);
+    assert!(pos32 <= pos, "{pos32} {:?}", worst[3]);
 }
 
 /// The f32 intensity against the f64 intensity on the same (f32) input.

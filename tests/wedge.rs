@@ -18,19 +18,14 @@ use softshadow::arbitrary::mesh::{
 };
 use softshadow::arbitrary::Rng;
 use softshadow::glam::{DVec2, DVec3, Vec3};
+use softshadow::kernel::catalogue;
 use softshadow::kernel::wedge::{f32 as w32, f64 as w64, WedgeError};
 
-/// Budget for the angle between an `f32` wedge plane and the `f64` plane of
-/// the same input, in units of the `f32` ε, over well-conditioned
-/// `wedge_case` inputs (edge and its line ≥ 2 r from the centre, ≤ 100 r
-/// away, ≥ 0.1 off radial; measured max, rounded up). The planes are built
-/// for a radius inflated by `32 ε ‖e − c‖` (the margin their verification
-/// needs), which tilts a tangent plane by about `32 ε ‖e − c‖ / (ρ z)`: the
-/// bulk of this number.
-const BUDGET_NORMAL_F32: f64 = 512.0;
-/// Budget for the relative difference of the `f32` and `f64` quad radius,
-/// in units of the `f32` ε (measured max, rounded up).
-const BUDGET_QUAD_RADIUS_F32: f64 = 16.0;
+/// Budgets of the `f32` wedge against the `f64` one on the same input, in
+/// units of the `f32` ε (the kernel catalogue's): the angle between their
+/// planes, the relative difference of their quad radii.
+const BUDGET_NORMAL_F32: f64 = catalogue::wedge::NORMAL_F32.bound;
+const BUDGET_QUAD_RADIUS_F32: f64 = catalogue::wedge::QUAD_RADIUS_F32.bound;
 
 // ---------------------------------------------------------------------------
 // The independent partial-occlusion test.

@@ -9,12 +9,13 @@ use glam::DVec2;
 use libfuzzer_sys::fuzz_target;
 use softshadow::arbitrary::disk::{clipped_edge, disk_edge, polygon, radius};
 use softshadow::arbitrary::Rng;
+use softshadow::kernel::catalogue;
 use softshadow::kernel::disk::f64 as k;
 
 const EPS: f64 = f64::EPSILON;
-/// The measured error budget of `segment_disk_area`, in `ε·r²`, with margin
-/// for the few operations the checks add.
-const SLACK: f64 = 4.0;
+/// The error budget of `segment_disk_area` (the kernel catalogue), in
+/// `ε·r²`, with a margin of one for the few operations the checks add.
+const SLACK: f64 = catalogue::disk::SEGMENT_DISK_AREA.bound + 1.0;
 
 fn word(data: &[u8], i: usize) -> u64 {
     let mut w = [0u8; 8];

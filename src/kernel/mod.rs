@@ -6,6 +6,7 @@
 //! |---|---|
 //! | [`predicate`] | exact `orient2d` / `orient3d` for every side decision |
 //! | [`angle`] | a portable, platform-independent `atan2` (1.5 ulp) |
+//! | [`catalogue`] | each kernel family's contract declared once: domain, error budgets, stiff cases |
 //! | [`silhouette`] | mesh topology, silhouette edges from a point, conservative silhouettes for a sphere light |
 //! | [`wedge`] | penumbra wedges and the light-image-plane penumbra quad (SISM's coarse test) |
 //! | [`disk`] | area of a polygon ∩ a disk, signed circle-segment occlusion (SISM eq. 3); many edges at once, bit for bit the one-edge kernel |
@@ -20,6 +21,7 @@
 //! body (`disk::f32`, `disk::f64`, …).
 
 pub mod angle;
+pub mod catalogue;
 pub mod disk;
 pub mod distortion;
 pub(crate) mod eft;

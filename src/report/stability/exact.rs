@@ -7,6 +7,7 @@ use super::general::General;
 use super::measured::{exact_error, Measured};
 use super::plate::{receivers, Plate};
 use super::Row;
+use crate::kernel::catalogue::Stiff;
 use glam::DVec3;
 
 /// The plate every family starts from: a light of radius ½ at height 2,
@@ -76,13 +77,13 @@ fn far_offset(rows: &mut Vec<Row>) {
         let d = 2f64.powi((f64::from(e) * std::f64::consts::LOG2_10).round() as i32);
         let offset = DVec3::new(d, d * 0.5, -d);
         rows.push(exact_row(
-            "far offset",
+            Stiff::FarOffset.name(),
             format!("10^{e} (2^{}), dyadic", d.log2() as i32),
             exact_error(&UNIT, offset, &base, 1, 0.0),
             base.len(),
         ));
         rows.push(exact_row(
-            "far offset",
+            Stiff::FarOffset.name(),
             format!("10^{e}, ordinary"),
             general(10f64.powi(e)).measure(&UNIT, &base, 1, 0.0),
             base.len(),
@@ -96,13 +97,13 @@ fn light_size(rows: &mut Vec<Row>) {
         let plate = Plate { r, ..UNIT };
         let pts = receivers(&plate, 0.0, 33);
         rows.push(exact_row(
-            "light size",
+            Stiff::LightSize.name(),
             format!("r = {r:e}, dyadic"),
             exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
             pts.len(),
         ));
         rows.push(exact_row(
-            "light size",
+            Stiff::LightSize.name(),
             format!("r = {r:e}, ordinary"),
             general(1.0).measure(&plate, &pts, 1, 0.0),
             pts.len(),
@@ -132,13 +133,13 @@ fn grazing(rows: &mut Vec<Row>) {
             })
             .collect();
         rows.push(exact_row(
-            "grazing",
+            Stiff::Grazing.name(),
             format!("elevation 1e-{e}, dyadic"),
             exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
             pts.len(),
         ));
         rows.push(exact_row(
-            "grazing",
+            Stiff::Grazing.name(),
             format!("elevation 1e-{e}, ordinary"),
             general(1.0).measure(&plate, &pts, 1, 0.0),
             pts.len(),
@@ -152,7 +153,7 @@ fn contact(rows: &mut Vec<Row>) {
         let y = UNIT.h - 2f64.powi(-e);
         let pts = receivers(&UNIT, y, 33);
         rows.push(exact_row(
-            "contact",
+            Stiff::Contact.name(),
             format!("2^-{e} under the plate, dyadic"),
             exact_error(&UNIT, DVec3::ZERO, &pts, 1, 0.0),
             pts.len(),
@@ -162,7 +163,7 @@ fn contact(rows: &mut Vec<Row>) {
         let y = UNIT.h - 1.37 * 10f64.powi(-e);
         let pts = receivers(&UNIT, y, 33);
         rows.push(exact_row(
-            "contact",
+            Stiff::Contact.name(),
             format!("1.37e-{e} under the plate, ordinary"),
             general(1.0).measure(&UNIT, &pts, 1, 0.0),
             pts.len(),
@@ -175,13 +176,13 @@ fn coincident_edges(rows: &mut Vec<Row>) {
     for e in [20, 40, 52] {
         let pts = receivers(&UNIT, 0.0, 33);
         rows.push(exact_row(
-            "coincident edges",
+            Stiff::CoincidentEdges.name(),
             format!("second edge 2^-{e} away, dyadic"),
             exact_error(&UNIT, DVec3::ZERO, &pts, 2, 2f64.powi(-e)),
             pts.len(),
         ));
         rows.push(exact_row(
-            "coincident edges",
+            Stiff::CoincidentEdges.name(),
             format!("second edge 2^-{e} away, ordinary"),
             general(1.0).measure(&UNIT, &pts, 2, 2f64.powi(-e)),
             pts.len(),
@@ -198,13 +199,13 @@ fn deep_overlap(rows: &mut Vec<Row>) {
         ("10^4 plates, each 2^-30 further", 2f64.powi(-30)),
     ] {
         rows.push(exact_row(
-            "deep overlap",
+            Stiff::DeepOverlap.name(),
             format!("{case}, dyadic"),
             exact_error(&UNIT, DVec3::ZERO, &pts, 10_000, shift),
             pts.len(),
         ));
         rows.push(exact_row(
-            "deep overlap",
+            Stiff::DeepOverlap.name(),
             format!("{case}, ordinary"),
             general(1.0).measure(&UNIT, &pts, 10_000, shift),
             pts.len(),

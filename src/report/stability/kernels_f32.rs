@@ -3,6 +3,8 @@
 //! rounding.
 
 use super::Row;
+use crate::kernel::catalogue::disk::SEGMENT_DISK_AREA;
+use crate::kernel::catalogue::Stiff;
 use crate::kernel::linear_light::{self, OccluderSide};
 use crate::kernel::{angle, disk, distortion, falloff, footprint};
 use glam::{DVec2, Vec2};
@@ -50,17 +52,20 @@ fn segment_disk_area_rows(rows: &mut Vec<Row>) {
         let far = 10f64.powi(e);
         rows.push(Row::f32(
             subject,
-            "far offset",
+            Stiff::FarOffset.name(),
             format!("chord ends 10^{e} away, r = 1"),
             41,
             chords(1.0, far),
-            "inside (documented: 3ε·r² for any edge length)".to_owned(),
+            format!(
+                "inside (documented: {} for any edge length)",
+                SEGMENT_DISK_AREA.stated()
+            ),
         ));
     }
     for r in [1e-6, 1e-3, 1e3] {
         rows.push(Row::f32(
             subject,
-            "light size",
+            Stiff::LightSize.name(),
             format!("r = {r:e}, chord ends 2r away"),
             41,
             chords(r, 2.0 * r),
@@ -71,7 +76,7 @@ fn segment_disk_area_rows(rows: &mut Vec<Row>) {
         let d = 1.0 - 10f64.powi(-e);
         rows.push(Row::f32(
             subject,
-            "grazing",
+            Stiff::Grazing.name(),
             format!("chord at (1 − 1e-{e})·r"),
             1,
             segment(1.0, d, 2.0),
@@ -117,7 +122,7 @@ fn visible_part_rows(rows: &mut Vec<Row>) {
         let x0 = 10f64.powi(e);
         rows.push(Row::f32(
             subject,
-            "far offset",
+            Stiff::FarOffset.name(),
             format!("light 10^{e} from the origin, length 1"),
             21,
             part(x0, 1.0, 1.0),
@@ -128,7 +133,7 @@ fn visible_part_rows(rows: &mut Vec<Row>) {
         let y = 10f64.powi(-e);
         rows.push(Row::f32(
             subject,
-            "grazing",
+            Stiff::Grazing.name(),
             format!("fragment 1e-{e} from the light's line"),
             21,
             part(0.0, y, 1.0),
@@ -138,7 +143,7 @@ fn visible_part_rows(rows: &mut Vec<Row>) {
     for len in [1e-6, 1e3] {
         rows.push(Row::f32(
             subject,
-            "light size",
+            Stiff::LightSize.name(),
             format!("length {len:e}, fragment at 1"),
             21,
             part(0.0, 1.0, len),
@@ -209,7 +214,7 @@ fn falloff_rows(rows: &mut Vec<Row>) {
     ] {
         scalar_row(
             rows,
-            (name, "uniform", "t in [0, 1]".to_owned()),
+            (name, Stiff::Uniform.name(), "t in [0, 1]".to_owned()),
             &ramp(0.0, 1.0, 200),
             |x| f32_fn(x[0]),
             |x| f64_fn(x[0]),
@@ -218,7 +223,11 @@ fn falloff_rows(rows: &mut Vec<Row>) {
         for e in [3, 6] {
             scalar_row(
                 rows,
-                (name, "contact", format!("t within 1e-{e} of 0 and 1")),
+                (
+                    name,
+                    Stiff::Contact.name(),
+                    format!("t within 1e-{e} of 0 and 1"),
+                ),
                 &ends(10f64.powi(-e)),
                 |x| f32_fn(x[0]),
                 |x| f64_fn(x[0]),
@@ -232,9 +241,9 @@ fn falloff_rows(rows: &mut Vec<Row>) {
 fn atan2_rows(rows: &mut Vec<Row>) {
     let name = "angle::atan2 (relative)";
     for (family, case, scale) in [
-        ("far offset", "x and y of magnitude 1e30", 1e30),
-        ("light size", "x and y of magnitude 1e-30", 1e-30),
-        ("uniform", "x and y of magnitude 1", 1.0),
+        (Stiff::FarOffset.name(), "x and y of magnitude 1e30", 1e30),
+        (Stiff::LightSize.name(), "x and y of magnitude 1e-30", 1e-30),
+        (Stiff::Uniform.name(), "x and y of magnitude 1", 1.0),
     ] {
         let inputs: Vec<[f64; 3]> = (0..64)
             .map(|i| {
@@ -256,7 +265,11 @@ fn atan2_rows(rows: &mut Vec<Row>) {
         .collect();
     scalar_row(
         rows,
-        (name, "grazing", "y/x from 1e-1 to 1e-16".to_owned()),
+        (
+            name,
+            Stiff::Grazing.name(),
+            "y/x from 1e-1 to 1e-16".to_owned(),
+        ),
         &near_axis,
         |x| angle::f32::atan2(x[0], x[1]),
         |x| angle::f64::atan2(x[0], x[1]),
@@ -269,19 +282,19 @@ fn footprint_and_distortion_rows(rows: &mut Vec<Row>) {
     let name = "footprint::radius (relative)";
     for (family, case, inputs) in [
         (
-            "contact",
+            Stiff::Contact.name(),
             "receiver 1e-3 … 1e-6 past the occluder (relative)",
             (3..=6)
                 .map(|e| [0.5, 2.0, 2.0 * (1.0 + 10f64.powi(-e))])
                 .collect::<Vec<_>>(),
         ),
         (
-            "light size",
+            Stiff::LightSize.name(),
             "light radius 1e-6 … 1e3",
             [1e-6, 1e-3, 1.0, 1e3].map(|r| [r, 2.0, 3.0]).to_vec(),
         ),
         (
-            "far offset",
+            Stiff::FarOffset.name(),
             "depths 1e3 … 1e8",
             (3..=8)
                 .map(|e| [0.5, 10f64.powi(e), 1.5 * 10f64.powi(e)])
@@ -302,7 +315,7 @@ fn footprint_and_distortion_rows(rows: &mut Vec<Row>) {
         rows,
         (
             name,
-            "contact",
+            Stiff::Contact.name(),
             "receiver 1e-3 … 1e-6 past the near depth".to_owned(),
         ),
         &(3..=6)

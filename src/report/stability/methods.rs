@@ -4,6 +4,7 @@
 //! in.
 
 use super::Row;
+use crate::kernel::catalogue::Stiff;
 use crate::method::{self, Exact, Method};
 use crate::render::image::ErrorSummary;
 use crate::render::{Frame, Stages};
@@ -61,32 +62,32 @@ fn frame_and_exact(scene: &Scene, side: u32) -> Option<(Frame, Vec<f64>)> {
 fn cases() -> Vec<(&'static str, String, Option<Scene>)> {
     vec![
         (
-            "far offset",
+            Stiff::FarOffset.name(),
             "moved by 2^10".to_owned(),
             moved("default", DVec3::splat(1024.0), 1.0),
         ),
         (
-            "far offset",
+            Stiff::FarOffset.name(),
             "moved by 2^20".to_owned(),
             moved("default", DVec3::splat(1_048_576.0), 1.0),
         ),
         (
-            "light size",
+            Stiff::LightSize.name(),
             "light radius × 2^-10".to_owned(),
             moved("default", DVec3::ZERO, 1.0 / 1024.0),
         ),
         (
-            "light size",
+            Stiff::LightSize.name(),
             "light radius × 4".to_owned(),
             moved("default", DVec3::ZERO, 4.0),
         ),
         (
-            "grazing",
+            Stiff::Grazing.name(),
             "light 2° over the floor".to_owned(),
             grazing(2.0),
         ),
         (
-            "contact",
+            Stiff::Contact.name(),
             "the contact scene".to_owned(),
             builtin("contact"),
         ),

@@ -3,6 +3,7 @@
 //! predicate, but no shared topology).
 
 use super::Row;
+use crate::kernel::catalogue::Stiff;
 use crate::kernel::predicate::{orient3d, Sign};
 use crate::kernel::silhouette::{MeshTopology, SilhouetteEdge};
 use glam::DVec3;
@@ -32,7 +33,7 @@ pub(super) fn rows(rows: &mut Vec<Row>) {
                 }
                 rows.push(Row::f64(
                     "silhouette::silhouettes_from_point (edges wrong)",
-                    "far offset",
+                    Stiff::FarOffset.name(),
                     format!(
                         "sphere of 24 bands moved 2^{}, seen from 1.5 to 1e6 radii",
                         e * 10 / 3

@@ -8,6 +8,7 @@
 //! under a sphere light, moved far, with tiny and huge lights.
 
 use super::Row;
+use crate::kernel::catalogue::Stiff;
 use crate::kernel::wedge;
 use glam::DVec3;
 
@@ -56,10 +57,15 @@ pub(super) fn rows(rows: &mut Vec<Row>) {
     let center = DVec3::new(0.0, 0.0, 4.0);
     let mut rng = Xorshift(0x5eed_u64);
     for (family, case, shift, r) in [
-        ("far offset", "moved 2^10, r = 0.5", 1024.0, 0.5),
-        ("far offset", "moved 2^30, r = 0.5", 2f64.powi(30), 0.5),
-        ("light size", "r = 1e-6", 0.0, 1e-6),
-        ("light size", "r = 1.5", 0.0, 1.5),
+        (Stiff::FarOffset.name(), "moved 2^10, r = 0.5", 1024.0, 0.5),
+        (
+            Stiff::FarOffset.name(),
+            "moved 2^30, r = 0.5",
+            2f64.powi(30),
+            0.5,
+        ),
+        (Stiff::LightSize.name(), "r = 1e-6", 0.0, 1e-6),
+        (Stiff::LightSize.name(), "r = 1.5", 0.0, 1.5),
     ] {
         let off = DVec3::splat(shift);
         let (a, b, c) = (e0 + off, e1 + off, center + off);
