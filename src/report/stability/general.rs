@@ -50,18 +50,13 @@ impl General {
         copies: usize,
         shift: f64,
     ) -> Measured {
-        let reach =
-            64.0 * (plate.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max));
+        let reach = plate.reach(points);
         let Ok(light) = Light::disk(
             self.at(DVec3::new(0.0, plate.big_h, 0.0)),
             -self.frame[1],
             plate.r,
         ) else {
-            return Measured {
-                max: f64::NAN,
-                refused: points.len(),
-                ..Measured::default()
-            };
+            return Measured::refused(points.len());
         };
         let mut tris = Vec::with_capacity(2 * copies);
         let mut first = None;

@@ -50,7 +50,8 @@ fn segment_disk_area_rows(rows: &mut Vec<Row>) {
     let subject = "disk::segment_disk_area (error / r²)";
     for e in [3, 5, 8] {
         let far = 10f64.powi(e);
-        rows.push(Row::f32(
+        rows.push(Row::new(
+            "f32",
             subject,
             Stiff::FarOffset.name(),
             format!("chord ends 10^{e} away, r = 1"),
@@ -63,7 +64,8 @@ fn segment_disk_area_rows(rows: &mut Vec<Row>) {
         ));
     }
     for r in [1e-6, 1e-3, 1e3] {
-        rows.push(Row::f32(
+        rows.push(Row::new(
+            "f32",
             subject,
             Stiff::LightSize.name(),
             format!("r = {r:e}, chord ends 2r away"),
@@ -74,7 +76,8 @@ fn segment_disk_area_rows(rows: &mut Vec<Row>) {
     }
     for e in [3, 6] {
         let d = 1.0 - 10f64.powi(-e);
-        rows.push(Row::f32(
+        rows.push(Row::new(
+            "f32",
             subject,
             Stiff::Grazing.name(),
             format!("chord at (1 − 1e-{e})·r"),
@@ -120,7 +123,8 @@ fn visible_part_rows(rows: &mut Vec<Row>) {
     let subject = "linear_light::visible_part (fraction)";
     for e in [3, 5, 8] {
         let x0 = 10f64.powi(e);
-        rows.push(Row::f32(
+        rows.push(Row::new(
+            "f32",
             subject,
             Stiff::FarOffset.name(),
             format!("light 10^{e} from the origin, length 1"),
@@ -131,7 +135,8 @@ fn visible_part_rows(rows: &mut Vec<Row>) {
     }
     for e in [3, 6] {
         let y = 10f64.powi(-e);
-        rows.push(Row::f32(
+        rows.push(Row::new(
+            "f32",
             subject,
             Stiff::Grazing.name(),
             format!("fragment 1e-{e} from the light's line"),
@@ -141,7 +146,8 @@ fn visible_part_rows(rows: &mut Vec<Row>) {
         ));
     }
     for len in [1e-6, 1e3] {
-        rows.push(Row::f32(
+        rows.push(Row::new(
+            "f32",
             subject,
             Stiff::LightSize.name(),
             format!("length {len:e}, fragment at 1"),
@@ -175,7 +181,8 @@ fn scalar_row(
         };
         worst = worst.max(if e.is_nan() { f64::INFINITY } else { e });
     }
-    rows.push(Row::f32(
+    rows.push(Row::new(
+        "f32",
         subject,
         family,
         case,

@@ -37,7 +37,7 @@ pub(super) fn polygon_disk_area_rows(rows: &mut Vec<Row>) {
     // A cap is cut by one edge: the bound is that of one edge.
     let documented = format!("inside (documented: {})", SEGMENT_DISK_AREA.stated());
     let mut push = |family, case: String, count, max, note: &str| {
-        rows.push(Row::f64(subject, family, case, count, max, note));
+        rows.push(Row::new("f64", subject, family, case, count, max, note));
     };
     let deltas = [0.5, 0.25, 1.0, 1.5, 1.9];
     let worst = |r: f64, far: f64| deltas.iter().map(|&d| cap(r, d, far)).fold(0.0, f64::max);
@@ -87,7 +87,8 @@ pub(super) fn falloff_rows(rows: &mut Vec<Row>) {
             (f(t) + f(1.0 - t) - 1.0).abs()
         })
         .fold((f(0.5) - 0.5).abs(), f64::max);
-    rows.push(Row::f64(
+    rows.push(Row::new(
+        "f64",
         "falloff::disk_edge_falloff",
         Stiff::Symmetry.name(),
         "|F(t) + F(1 − t) − 1| at t = k/1024, and F(½) − ½",
@@ -98,7 +99,8 @@ pub(super) fn falloff_rows(rows: &mut Vec<Row>) {
     for e in [3, 6, 9, 12] {
         let t = 10f64.powi(-e);
         let want = segment_area(4.0 * t.sqrt().asin()) / std::f64::consts::PI;
-        rows.push(Row::f64(
+        rows.push(Row::new(
+            "f64",
             "falloff::disk_edge_falloff",
             Stiff::Grazing.name(),
             format!("t = 1e-{e} (relative error)"),
@@ -115,7 +117,8 @@ pub(super) fn falloff_rows(rows: &mut Vec<Row>) {
             (falloff::bernstein(t) - (3.0 * t * t - 2.0 * t * t * t)).abs()
         })
         .fold(0.0, f64::max);
-    rows.push(Row::f64(
+    rows.push(Row::new(
+        "f64",
         "falloff::bernstein",
         Stiff::ExactPoints.name(),
         "t = k/1024 (3t² − 2t³ exact)",

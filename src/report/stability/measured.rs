@@ -8,10 +8,10 @@ use crate::reference::exact;
 use crate::scene::Light;
 use glam::DVec3;
 
-/// The exact reference's worst error against `truth` over `points` (each
-/// with its certified bound): the largest `|V − V_true|`, how many
-/// receivers were refused, the largest bound, and how many bounds did not
-/// contain their error (none, if the bound is right).
+/// The exact reference's worst error over a set of receivers (each with
+/// its certified bound): the largest `|V − V_true|`, how many receivers
+/// were refused, the largest bound, and how many bounds did not contain
+/// their error (none, if the bound is right).
 #[derive(Clone, Copy, Debug, Default)]
 pub(super) struct Measured {
     pub(super) max: f64,
@@ -20,6 +20,19 @@ pub(super) struct Measured {
     pub(super) violations: usize,
 }
 
+impl Measured {
+    /// All `n` receivers refused (the scene could not be built).
+    pub(super) fn refused(n: usize) -> Measured {
+        Measured {
+            max: f64::NAN,
+            refused: n,
+            ..Measured::default()
+        }
+    }
+}
+
+/// The exact reference's [`Measured`] error against `truth` over `points`,
+/// with `light` and the triangles `tris`.
 pub(super) fn measure(
     light: &Light,
     tris: Vec<[DVec3; 3]>,
@@ -54,14 +67,9 @@ pub(super) fn exact_error(
     copies: usize,
     shift: f64,
 ) -> Measured {
-    let reach =
-        64.0 * (plate.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max));
+    let reach = plate.reach(points);
     let Some((light, tris)) = plate.scene(offset, reach, copies, shift) else {
-        return Measured {
-            max: f64::NAN,
-            refused: points.len(),
-            ..Measured::default()
-        };
+        return Measured::refused(points.len());
     };
     let moved: Vec<DVec3> = points.iter().map(|&p| p + offset).collect();
     measure(&light, tris, &moved, |q| plate.fraction(q - offset))

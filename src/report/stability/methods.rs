@@ -116,29 +116,27 @@ pub(super) fn rows(rows: &mut Vec<Row>, side: u32) {
     let unmoved = unmoved(side);
     for (family, case, scene) in cases() {
         let Some(scene) = scene else {
-            rows.push(Row {
-                subject: "(scene)".to_owned(),
+            rows.push(Row::new(
+                "f64",
+                "(scene)",
                 family,
                 case,
-                precision: "f64",
-                count: 0,
-                max: f64::NAN,
-                bound: None,
-                note: "the scene could not be built".to_owned(),
-            });
+                0,
+                f64::NAN,
+                "the scene could not be built",
+            ));
             continue;
         };
         let Some((frame, exact)) = frame_and_exact(&scene, side) else {
-            rows.push(Row {
-                subject: "exact reference".to_owned(),
+            rows.push(Row::new(
+                "f64",
+                "exact reference",
                 family,
                 case,
-                precision: "f64",
-                count: 0,
-                max: f64::NAN,
-                bound: None,
-                note: "refused (a receiver inside the light, or no camera)".to_owned(),
-            });
+                0,
+                f64::NAN,
+                "refused (a receiver inside the light, or no camera)",
+            ));
             continue;
         };
         let stages = Stages::new(&scene);

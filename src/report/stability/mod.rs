@@ -80,31 +80,8 @@ pub struct Row {
 }
 
 impl Row {
-    /// A row of an `f64` subject.
-    fn f64(
-        subject: &str,
-        family: &'static str,
-        case: impl Into<String>,
-        count: usize,
-        max: f64,
-        note: impl Into<String>,
-    ) -> Row {
-        Row::of("f64", subject, family, case, count, max, note)
-    }
-
-    /// A row of an `f32` subject.
-    fn f32(
-        subject: &str,
-        family: &'static str,
-        case: impl Into<String>,
-        count: usize,
-        max: f64,
-        note: impl Into<String>,
-    ) -> Row {
-        Row::of("f32", subject, family, case, count, max, note)
-    }
-
-    fn of(
+    /// A row of a subject without a certified bound.
+    fn new(
         precision: &'static str,
         subject: &str,
         family: &'static str,

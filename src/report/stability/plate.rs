@@ -29,6 +29,13 @@ impl Plate {
         1.0 - hidden
     }
 
+    /// How far the plate reaches past its edge and sideways for
+    /// `points`: far enough that its other edges hide nothing of the
+    /// light from any of them.
+    pub(super) fn reach(&self, points: &[DVec3]) -> f64 {
+        64.0 * (self.r + 1.0) * (1.0 + points.iter().map(|p| p.x.abs()).fold(0.0, f64::max))
+    }
+
     /// The plate (two triangles) and the light, moved by `offset`; the
     /// plate reaches `reach` past the edge and sideways.
     pub(super) fn scene(

@@ -31,7 +31,8 @@ pub(super) fn rows(rows: &mut Vec<Row>) {
                     views += 1;
                     mismatched += mismatch(&positions, tris, x, &edges);
                 }
-                rows.push(Row::f64(
+                rows.push(Row::new(
+                    "f64",
                     "silhouette::silhouettes_from_point (edges wrong)",
                     Stiff::FarOffset.name(),
                     format!(
