@@ -8,7 +8,7 @@
 //!   presents to a receiver are the kernels' ([`kernel::light`](crate::kernel::light)),
 //!   named here too.
 //! - [`emitter`]: that measure as one receiver sees it
-//!   ([`Emitter`](crate::kernel::light::Emitter)), named here too.
+//!   ([`Emitter`]), named here too.
 //! - [`frame`]: the light frame and the light image plane of §2.
 //! - [`mesh`]: occluder meshes, validated.
 //! - [`receiver`]: a receiver point with its surface normal and object id,
