@@ -112,13 +112,7 @@ pub fn visibility_many(
     light: &Light,
     points: &[DVec3],
 ) -> Vec<Result<f64, ReceiverError>> {
-    use rayon::prelude::*;
-    points
-        .par_iter()
-        .map_init(Scratch::default, |scratch, &p| {
-            visibility_with(bvh, light, p, scratch)
-        })
-        .collect()
+    many(points, |p, scratch| visibility_with(bvh, light, p, scratch))
 }
 
 /// [`visibility`] with caller-provided buffers.
@@ -131,11 +125,23 @@ pub fn visibility_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<f64, ReceiverError> {
+    in_range(bvh, light, p, |e| emitter_visibility(bvh, e, p, scratch))
+}
+
+/// `answer` of the emitter `light` presents to `p`; an error where it
+/// presents none ([`Light::emitter`]) or where the determinants could
+/// overflow ([`ReceiverError::OutOfRange`]).
+fn in_range<T>(
+    bvh: &Bvh,
+    light: &Light,
+    p: DVec3,
+    answer: impl FnOnce(&Emitter) -> T,
+) -> Result<T, ReceiverError> {
     let emitter = light.emitter(p)?;
     if domain(bvh, &emitter, p) == Domain::Overflow {
         return Err(ReceiverError::OutOfRange);
     }
-    Ok(emitter_visibility(bvh, &emitter, p, scratch))
+    Ok(answer(&emitter))
 }
 
 /// Where a receiver lies against the exact reference's domain (module
@@ -207,12 +213,21 @@ pub fn visibility_many_bounded(
     light: &Light,
     points: &[DVec3],
 ) -> Vec<Result<Bounded, ReceiverError>> {
+    many(points, |p, scratch| {
+        visibility_bounded_with(bvh, light, p, scratch)
+    })
+}
+
+/// `one` of every point, in parallel over the points (rayon's global
+/// pool), one [`Scratch`] per worker.
+fn many<T: Send>(
+    points: &[DVec3],
+    one: impl Fn(DVec3, &mut Scratch) -> Result<T, ReceiverError> + Sync + Send,
+) -> Vec<Result<T, ReceiverError>> {
     use rayon::prelude::*;
     points
         .par_iter()
-        .map_init(Scratch::default, |scratch, &p| {
-            visibility_bounded_with(bvh, light, p, scratch)
-        })
+        .map_init(Scratch::default, |scratch, &p| one(p, scratch))
         .collect()
 }
 
@@ -226,11 +241,9 @@ pub fn visibility_bounded_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<Bounded, ReceiverError> {
-    let emitter = light.emitter(p)?;
-    if domain(bvh, &emitter, p) == Domain::Overflow {
-        return Err(ReceiverError::OutOfRange);
-    }
-    Ok(emitter_visibility_bounded(bvh, &emitter, p, scratch))
+    in_range(bvh, light, p, |e| {
+        emitter_visibility_bounded(bvh, e, p, scratch)
+    })
 }
 
 /// [`emitter_visibility`] with its certified bound ([`Bounded`]); outside
