@@ -1,6 +1,8 @@
 //! The closest hit of a ray ([`Bvh::closest_hit`]): the ordered, culling
-//! traversal, the segment a ray is decided on, and the [`Hit`] it returns.
+//! traversal and the segment a ray is decided on; batches of rays, in
+//! packets where they are coherent (`packet.rs`).
 
+use super::hit::{facing, Hit, U_SLACK};
 use super::node::{LEAF, WIDTH};
 use super::packet::PACKET;
 use super::ray::{Ray32, STACK, T_SLACK};
@@ -110,21 +112,6 @@ impl Bvh {
         })
     }
 
-    /// Every occluder's [`unit_normal`], computed (in parallel) on first
-    /// use: a hit's record then costs a load, a dot product and a flip
-    /// instead of a square root and a division per hit (measured: 10 % of
-    /// the time of the renderer's primary rays). Only closest-hit queries
-    /// pay its 24 bytes per triangle.
-    pub(super) fn normals(&self) -> &[DVec3] {
-        self.normals.get_or_init(|| {
-            self.occluders
-                .triangles()
-                .par_iter()
-                .map(unit_normal)
-                .collect()
-        })
-    }
-
     /// [`Bvh::closest_hit`] for every `(origin, direction)` of `rays`, on
     /// the current rayon pool (chunks of 256 rays, each as
     /// [`Bvh::closest_hits`]); the same answers as one call per ray, in
@@ -148,10 +135,9 @@ impl Bvh {
     /// saves), and since each run of eight consecutive rays that share
     /// their origin and point within a narrow cone — a camera's rays
     /// along an image row — goes through the tree in one walk, tested
-    /// against each box and triangle side by side (measured on the
-    /// default scene's 512² camera rays: 1.6–1.7 times the rays per
-    /// second of one walk per ray). Give such rays in order to gain it;
-    /// other rays are traced one at a time as before.
+    /// against each box and triangle side by side (`benches/README.md`
+    /// has the figures). Give such rays in order to gain it; other rays
+    /// are traced one at a time.
     pub fn closest_hits(&self, rays: &[(DVec3, DVec3)], t_max: f64, out: &mut Vec<Option<Hit>>) {
         out.clear();
         out.resize(rays.len(), None);
@@ -320,22 +306,6 @@ impl Bvh {
     }
 }
 
-/// The nearest crossing of a ray with the occluders: what
-/// [`Bvh::closest_hit`] returns.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Hit {
-    /// The ray parameter of the hit point `origin + t · direction`,
-    /// `0 < t ≤ t_max`.
-    pub t: f64,
-    /// The triangle hit: its index in [`Bvh::occluders`].
-    pub triangle: u32,
-    /// Its object id, `occluders().objects()[triangle]`.
-    pub object: u32,
-    /// The triangle's unit geometric normal, turned against the ray
-    /// (`normal · direction ≤ 0`; see [`Bvh::closest_hit`]).
-    pub normal: DVec3,
-}
-
 /// The segment a closest-hit query decides on (see [`Bvh::ray_segment`]).
 struct Probe {
     o: DVec3,
@@ -354,11 +324,6 @@ impl Probe {
         crossing(self.o, self.x, self.d, self.d_norm, t)
     }
 }
-
-/// A bound on the relative error of a crossing's `u` (what
-/// [`segment_crossing`](crate::kernel::segment::segment_crossing)
-/// promises), for culling.
-pub(super) const U_SLACK: f64 = 1.0 / (1u64 << 23) as f64;
 
 /// The best crossing so far of a closest-hit query.
 struct Best {
@@ -386,47 +351,4 @@ impl Best {
             _ => false,
         }
     }
-}
-
-/// The unit normal of `t`, either way round; zero for a triangle too thin
-/// for its normal to be computed.
-///
-/// The cross product of the two edges at the triangle's largest angle (the
-/// corner opposite the longest edge) is the best conditioned of the three;
-/// where it under- or overflows (tiny or huge triangles), each edge is first
-/// divided by its max-norm.
-fn unit_normal(t: &[DVec3; 3]) -> DVec3 {
-    let [a, b, c] = *t;
-    let (ab, bc, ca) = (b - a, c - b, a - c);
-    let (lab, lbc, lca) = (
-        ab.abs().max_element(),
-        bc.abs().max_element(),
-        ca.abs().max_element(),
-    );
-    let (u, v, lu, lv) = if lab >= lbc && lab >= lca {
-        (bc, ca, lbc, lca)
-    } else if lbc >= lca {
-        (ca, ab, lca, lab)
-    } else {
-        (ab, bc, lab, lbc)
-    };
-    u.cross(v)
-        .try_normalize()
-        .or_else(|| (u / lu).cross(v / lv).try_normalize())
-        .unwrap_or(DVec3::ZERO)
-}
-
-/// The unit normal `n` (from [`unit_normal`]) turned against `direction`
-/// (finite, nonzero): the flip is decided by the rounded `n · direction`
-/// itself, so that a caller evaluating it finds it `≤ 0`. Where `n` is
-/// zero, `−direction` normalised.
-#[inline(always)]
-pub(super) fn facing(n: DVec3, direction: DVec3) -> DVec3 {
-    let n = if n == DVec3::ZERO {
-        (-direction / direction.abs().max_element()).normalize()
-    } else {
-        n
-    };
-    // Branch-free: which way a normal faces is unpredictable per pixel.
-    DVec3::select(glam::BVec3::splat(n.dot(direction) > 0.0), -n, n)
 }

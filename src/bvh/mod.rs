@@ -55,7 +55,8 @@
 //! `lanes.rs` the eight `f32` lanes both run on (AVX2 through `pulp`, or
 //! portable); `ray.rs` the conservative `f32` slab tests and the any-hit
 //! walk ([`Bvh::segment_unoccluded`]); `node.rs` the quantised 4-wide
-//! node; `closest.rs` the closest hit ([`Bvh::closest_hit`], [`Hit`]);
+//! node; `closest.rs` the closest hit ([`Bvh::closest_hit`]); `hit.rs`
+//! what it returns ([`Hit`]) and the triangles' unit normals it reads;
 //! `packet.rs` the closest hits of eight coherent rays through one walk
 //! (for [`Bvh::closest_hits`]); `hull.rs` the culling query of the exact
 //! reference ([`Bvh::triangles_meeting_hull`]); `occluders.rs` the
@@ -76,6 +77,7 @@
 //! [`orient3d`]: crate::kernel::predicate::orient3d
 
 mod closest;
+mod hit;
 mod hull;
 mod lanes;
 mod leaf;
@@ -89,7 +91,7 @@ mod reinsert;
 mod tests;
 mod wide;
 
-pub use closest::Hit;
+pub use hit::Hit;
 pub use occluders::Occluders;
 pub use ray::OcclusionCounts;
 

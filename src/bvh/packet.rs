@@ -4,10 +4,10 @@
 //! against the rays that reach it side by side
 //! ([`crossings_filtered`]).
 
-use super::closest::{facing, U_SLACK};
-use super::node::{decode, EMPTY, LEAF, WIDTH};
+use super::hit::{facing, Hit, U_SLACK};
+use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
 use super::ray::{Ray32, STACK, T_SLACK};
-use super::{f32_up, Bvh, Hit};
+use super::{f32_up, Bvh};
 use crate::kernel::segment::{crossing, crossings_filtered, Filtered};
 use glam::DVec3;
 
@@ -58,15 +58,18 @@ impl Bvh {
         let sides: Option<[usize; 3]> = (0..3)
             .all(|k| ray.back[k].iter().all(|&m| m == ray.back[k][0]))
             .then(|| core::array::from_fn(|k| usize::from(ray.back[k][0] != 0)));
-        let mut limit: Lanes32 = core::array::from_fn(|l| {
-            if t_max < f64::INFINITY {
-                1.0f32.min(f32_up(t_max / ray.scale[l] * (1.0 + U_SLACK)))
-            } else {
-                1.0
-            }
-        });
-        let mut best_u = [f64::INFINITY; PACKET];
-        let mut best_id = [u32::MAX; PACKET];
+        let mut best = PacketBest {
+            u: [f64::INFINITY; PACKET],
+            id: [u32::MAX; PACKET],
+            limit: core::array::from_fn(|l| {
+                if t_max < f64::INFINITY {
+                    1.0f32.min(f32_up(t_max / ray.scale[l] * (1.0 + U_SLACK)))
+                } else {
+                    1.0
+                }
+            }),
+            t_max,
+        };
 
         // Only the stack the tree needs is cleared (as `closest_in_tree`).
         let (mut small, mut large);
@@ -81,58 +84,7 @@ impl Bvh {
         let (mut node, mut rays_in) = (0u32, u8::MAX);
         loop {
             let n = &self.nodes[node as usize];
-            // Per lane of the node: the rays that may meet its box, and
-            // the entry of the first of them (the order of the visit).
-            let mut kept = [(f32::INFINITY, 0u8, 0usize); WIDTH];
-            let mut count = 0;
-            for lane in 0..WIDTH {
-                if n.child[lane] == EMPTY {
-                    continue;
-                }
-                let mut t_near = [0.0f32; PACKET];
-                let mut t_far = limit;
-                for k in 0..3 {
-                    let plane = |side: usize| decode(n.origin[k], n.q[side][k][lane], n.scale[k]);
-                    let mut axis = |entry: &dyn Fn(usize) -> f32, exit: &dyn Fn(usize) -> f32| {
-                        for l in 0..PACKET {
-                            let a = (entry(l) - ray.near[k][l]) * ray.inv[k][l];
-                            let b = (exit(l) - ray.far[k][l]) * ray.inv[k][l];
-                            t_near[l] = if a > t_near[l] { a } else { t_near[l] };
-                            t_far[l] = if b < t_far[l] { b } else { t_far[l] };
-                        }
-                    };
-                    if let Some(side) = sides {
-                        // Every ray enters by the same plane (most packets).
-                        let (entry, exit) = (plane(side[k]), plane(1 - side[k]));
-                        axis(&|_| entry, &|_| exit);
-                    } else {
-                        let (lo, hi) = (plane(0).to_bits(), plane(1).to_bits());
-                        let m = &ray.back[k];
-                        axis(&|l| f32::from_bits((hi & m[l]) | (lo & !m[l])), &|l| {
-                            f32::from_bits((lo & m[l]) | (hi & !m[l]))
-                        });
-                    }
-                }
-                // Each ray's bit in place, then one reduction (a form the
-                // compiler keeps in vector registers).
-                let bits: [u32; PACKET] =
-                    core::array::from_fn(|l| u32::from(t_near[l] <= t_far[l] * T_SLACK) << l);
-                let hit = bits.iter().fold(0, |a, b| a | b) as u8 & rays_in;
-                if hit == 0 {
-                    continue;
-                }
-                // The order of the visit: the entry of the first ray kept.
-                let first = t_near[hit.trailing_zeros() as usize];
-                // By that entry (insertion: at most four).
-                let mut k = count;
-                let mut item = (first, hit, lane);
-                while k > 0 && kept[k - 1].0 > item.0 {
-                    (kept[k], item) = (kept[k - 1], item);
-                    k -= 1;
-                }
-                kept[k] = item;
-                count += 1;
-            }
+            let (kept, count) = packet_lanes(n, &ray, sides, &best.limit, rays_in);
             let mut inner = [(0u32, 0u8); WIDTH];
             let mut inner_count = 0;
             for &(_, hit, lane) in &kept[..count] {
@@ -140,34 +92,8 @@ impl Bvh {
                 if child & LEAF == 0 {
                     inner[inner_count] = (child, hit);
                     inner_count += 1;
-                    continue;
-                }
-                let i = (child & !LEAF) as usize;
-                let t = &self.triangles[i];
-                let id = self.ids[i];
-                let (verdict, u) = crossings_filtered(ray.origin, &ray.d, &ray.d_norm, t);
-                let mut rest = hit;
-                while rest != 0 {
-                    let l = rest.trailing_zeros() as usize;
-                    rest &= rest - 1;
-                    let u = match verdict[l] {
-                        Filtered::Miss => continue,
-                        Filtered::Hit => u[l],
-                        Filtered::Unsure => {
-                            let at = |v: &[[f64; PACKET]; 3]| DVec3::new(v[0][l], v[1][l], v[2][l]);
-                            match crossing(ray.origin, at(&ray.x), at(&ray.d), ray.d_norm[l], t) {
-                                Some(u) => u,
-                                None => continue,
-                            }
-                        }
-                    };
-                    if (u < best_u[l] || (u == best_u[l] && id < best_id[l]))
-                        && u * ray.scale[l] <= t_max
-                    {
-                        best_u[l] = u;
-                        best_id[l] = id;
-                        limit[l] = limit[l].min(f32_up(u));
-                    }
+                } else {
+                    self.packet_leaf((child & !LEAF) as usize, &ray, hit, &mut best);
                 }
             }
             // Farthest first, so that the nearest is popped next.
@@ -183,12 +109,12 @@ impl Bvh {
         }
         let (normals, objects) = (self.normals(), self.occluders.objects());
         for (l, out) in out.iter_mut().enumerate() {
-            let id = best_id[l];
+            let id = best.id[l];
             *out = if id == u32::MAX {
                 None
             } else {
                 Some(Hit {
-                    t: (best_u[l] * ray.scale[l]).clamp(f64::from_bits(1), t_max.min(f64::MAX)),
+                    t: (best.u[l] * ray.scale[l]).clamp(f64::from_bits(1), t_max.min(f64::MAX)),
                     triangle: id,
                     object: objects[id as usize],
                     normal: facing(normals[id as usize], rays[l].1),
@@ -197,6 +123,114 @@ impl Bvh {
         }
         true
     }
+
+    /// Tests the leaf triangle `i` against the packet's rays in `hit` (a
+    /// bit a ray), offering each crossing to `best`.
+    #[inline(always)]
+    fn packet_leaf(&self, i: usize, ray: &Setup, hit: u8, best: &mut PacketBest) {
+        let t = &self.triangles[i];
+        let id = self.ids[i];
+        let (verdict, u) = crossings_filtered(ray.origin, &ray.d, &ray.d_norm, t);
+        let mut rest = hit;
+        while rest != 0 {
+            let l = rest.trailing_zeros() as usize;
+            rest &= rest - 1;
+            let u = match verdict[l] {
+                Filtered::Miss => continue,
+                Filtered::Hit => u[l],
+                Filtered::Unsure => {
+                    let at = |v: &[[f64; PACKET]; 3]| DVec3::new(v[0][l], v[1][l], v[2][l]);
+                    match crossing(ray.origin, at(&ray.x), at(&ray.d), ray.d_norm[l], t) {
+                        Some(u) => u,
+                        None => continue,
+                    }
+                }
+            };
+            if (u < best.u[l] || (u == best.u[l] && id < best.id[l]))
+                && u * ray.scale[l] <= best.t_max
+            {
+                best.u[l] = u;
+                best.id[l] = id;
+                best.limit[l] = best.limit[l].min(f32_up(u));
+            }
+        }
+    }
+}
+
+/// Each ray's nearest crossing so far in a packet's walk.
+struct PacketBest {
+    /// Segment parameter (`∞`: none yet) and occluder index (`u32::MAX`).
+    u: [f64; PACKET],
+    id: [u32; PACKET],
+    /// The segment parameter past which a box cannot hold a better
+    /// crossing (rounded up).
+    limit: Lanes32,
+    t_max: f64,
+}
+
+/// The lanes of node `n` that some ray of `rays_in` (a bit a ray) may
+/// meet within its `limit`, each with those rays and the entry of the
+/// first of them, sorted by that entry (the order of the visit); and how
+/// many. `sides`: the entry side of each axis where every ray has the same.
+#[inline(always)]
+fn packet_lanes(
+    n: &Node,
+    ray: &Setup,
+    sides: Option<[usize; 3]>,
+    limit: &Lanes32,
+    rays_in: u8,
+) -> ([(f32, u8, usize); WIDTH], usize) {
+    let mut kept = [(f32::INFINITY, 0u8, 0usize); WIDTH];
+    let mut count = 0;
+    for lane in 0..WIDTH {
+        if n.child[lane] == EMPTY {
+            continue;
+        }
+        let mut t_near = [0.0f32; PACKET];
+        let mut t_far = *limit;
+        for k in 0..3 {
+            let plane = |side: usize| decode(n.origin[k], n.q[side][k][lane], n.scale[k]);
+            let mut axis = |entry: &dyn Fn(usize) -> f32, exit: &dyn Fn(usize) -> f32| {
+                for l in 0..PACKET {
+                    let a = (entry(l) - ray.near[k][l]) * ray.inv[k][l];
+                    let b = (exit(l) - ray.far[k][l]) * ray.inv[k][l];
+                    t_near[l] = if a > t_near[l] { a } else { t_near[l] };
+                    t_far[l] = if b < t_far[l] { b } else { t_far[l] };
+                }
+            };
+            if let Some(side) = sides {
+                // Every ray enters by the same plane (most packets).
+                let (entry, exit) = (plane(side[k]), plane(1 - side[k]));
+                axis(&|_| entry, &|_| exit);
+            } else {
+                let (lo, hi) = (plane(0).to_bits(), plane(1).to_bits());
+                let m = &ray.back[k];
+                axis(&|l| f32::from_bits((hi & m[l]) | (lo & !m[l])), &|l| {
+                    f32::from_bits((lo & m[l]) | (hi & !m[l]))
+                });
+            }
+        }
+        // Each ray's bit in place, then one reduction (a form the
+        // compiler keeps in vector registers).
+        let bits: [u32; PACKET] =
+            core::array::from_fn(|l| u32::from(t_near[l] <= t_far[l] * T_SLACK) << l);
+        let hit = bits.iter().fold(0, |a, b| a | b) as u8 & rays_in;
+        if hit == 0 {
+            continue;
+        }
+        // The order of the visit: the entry of the first ray kept.
+        let first = t_near[hit.trailing_zeros() as usize];
+        // By that entry (insertion: at most four).
+        let mut k = count;
+        let mut item = (first, hit, lane);
+        while k > 0 && kept[k - 1].0 > item.0 {
+            (kept[k], item) = (kept[k - 1], item);
+            k -= 1;
+        }
+        kept[k] = item;
+        count += 1;
+    }
+    (kept, count)
 }
 
 /// The packet's rays as [`Bvh::probe`] and [`Ray32::new`] make them, in
@@ -271,9 +305,9 @@ impl Bvh {
         };
         // Coherent packets only: one origin, directions within a narrow
         // cone (`|s − s₀|∞ ≤ 1/4`, `|s|∞ = 1`). Elsewhere a shared walk
-        // visits more than its rays would apart (measured: random rays,
-        // and random directions from one origin, 13–40 % slower). A NaN
-        // (zero or non-finite input) is refused below.
+        // visits more than its rays would apart (slower on random rays,
+        // and on random directions from one origin). A NaN (zero or
+        // non-finite input) is refused below.
         for k in 0..3 {
             for l in 0..PACKET {
                 refused |= origin[k][l].to_bits() != origin[k][0].to_bits();

@@ -14,6 +14,7 @@
 //! | [`footprint`] | the light's footprint on the light image plane: its radius, the projection, near and far clips, an edge mapped into the footprint; the rounding bound `γ(n)` |
 //! | [`distortion`] | SSOC: distortion magnitude to shadow intensity |
 //! | [`linear_light`] | OESS: visible fraction of a segment light and its endpoint weights |
+//! | [`light`] | the light's geometry: the five shapes (sphere, disk, rect, segment, point), validated, and the emitting measure each presents to a receiver ([`light::Emitter`]): its sample points and its share above a plane |
 //! | [`segment`] | exact open-segment–triangle test (`f64`): blocked or not, and where it crosses |
 //! | [`receiver_view`] | the exact receiver view: a triangle's image on the light's plane clipped to the slab between receiver and light, and the exact fraction of a light a set of triangles hides (`f64`) |
 //!
@@ -28,6 +29,7 @@ pub(crate) mod eft;
 pub mod falloff;
 pub mod footprint;
 pub(crate) mod lanes;
+pub mod light;
 pub mod linear_light;
 pub mod predicate;
 pub mod receiver_view;

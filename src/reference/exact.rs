@@ -63,8 +63,9 @@
 //! [`orient3d`]: crate::kernel::predicate::orient3d
 
 use crate::bvh::Bvh;
-use crate::kernel::receiver_view::{self, AreaView, Fraction, SegmentView};
-use crate::scene::{Emitter, Light, ReceiverError};
+use crate::kernel::light::{Emitter, ReceiverError};
+use crate::kernel::receiver_view::{self, Fraction, Occluders};
+use crate::scene::Light;
 use glam::DVec3;
 
 /// Reusable buffers for [`visibility_with`]: one per thread avoids all
@@ -111,13 +112,7 @@ pub fn visibility_many(
     light: &Light,
     points: &[DVec3],
 ) -> Vec<Result<f64, ReceiverError>> {
-    use rayon::prelude::*;
-    points
-        .par_iter()
-        .map_init(Scratch::default, |scratch, &p| {
-            visibility_with(bvh, light, p, scratch)
-        })
-        .collect()
+    many(points, |p, scratch| visibility_with(bvh, light, p, scratch))
 }
 
 /// [`visibility`] with caller-provided buffers.
@@ -130,11 +125,23 @@ pub fn visibility_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<f64, ReceiverError> {
+    in_range(bvh, light, p, |e| emitter_visibility(bvh, e, p, scratch))
+}
+
+/// `answer` of the emitter `light` presents to `p`; an error where it
+/// presents none ([`Light::emitter`]) or where the determinants could
+/// overflow ([`ReceiverError::OutOfRange`]).
+fn in_range<T>(
+    bvh: &Bvh,
+    light: &Light,
+    p: DVec3,
+    answer: impl FnOnce(&Emitter) -> T,
+) -> Result<T, ReceiverError> {
     let emitter = light.emitter(p)?;
     if domain(bvh, &emitter, p) == Domain::Overflow {
         return Err(ReceiverError::OutOfRange);
     }
-    Ok(emitter_visibility(bvh, &emitter, p, scratch))
+    Ok(answer(&emitter))
 }
 
 /// Where a receiver lies against the exact reference's domain (module
@@ -158,14 +165,8 @@ const DOMAIN: f64 = 1e90;
 /// occluders, and of the emitter's points (centre plus extent, per
 /// coordinate).
 pub(crate) fn magnitudes(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> (f64, f64) {
-    let m = |v: DVec3| v.abs().max_element();
-    let l = match emitter {
-        Emitter::Disk(d) => m(d.center()) + d.radius(),
-        Emitter::Rect(r) => m(r.center()) + m(r.u()) + m(r.v()),
-        Emitter::Segment(s) => m(s.a()).max(m(s.b())),
-        Emitter::Point(x) => m(x.position()),
-    };
-    (bvh.max_coordinate().max(m(p)), l)
+    let l = emitter.magnitude();
+    (bvh.max_coordinate().max(p.abs().max_element()), l)
 }
 
 /// Where `p` lies against the domain, for the scene of `bvh` and the
@@ -191,25 +192,8 @@ pub fn emitter_visibility(bvh: &Bvh, emitter: &Emitter, p: DVec3, scratch: &mut 
     let Scratch { candidates, view } = scratch;
     // The views refuse only receivers `Light::emitter` refuses (in the
     // light's plane, on the light): then nothing is hidden.
-    let hidden = match *emitter {
-        Emitter::Point(x) => {
-            if bvh.segment_unoccluded(p, x.position()) {
-                0.0
-            } else {
-                1.0
-            }
-        }
-        Emitter::Segment(s) => SegmentView::new(p, s.a(), s.b()).map_or(0.0, |v| {
-            v.occluded_fraction(culled(bvh, &v.hull(), candidates), view)
-        }),
-        Emitter::Disk(d) => AreaView::disk(p, d.center(), d.normal(), d.radius())
-            .map_or(0.0, |v| {
-                v.occluded_fraction(culled(bvh, &v.hull(), candidates), view)
-            }),
-        Emitter::Rect(r) => AreaView::rect(p, r.center(), r.u(), r.v()).map_or(0.0, |v| {
-            v.occluded_fraction(culled(bvh, &v.hull(), candidates), view)
-        }),
-    };
+    let hidden = receiver_view::occluded::<false>(emitter, p, Culled { bvh, candidates }, view)
+        .map_or(0.0, |f| f.value);
     (1.0 - hidden).clamp(0.0, 1.0)
 }
 
@@ -229,12 +213,21 @@ pub fn visibility_many_bounded(
     light: &Light,
     points: &[DVec3],
 ) -> Vec<Result<Bounded, ReceiverError>> {
+    many(points, |p, scratch| {
+        visibility_bounded_with(bvh, light, p, scratch)
+    })
+}
+
+/// `one` of every point, in parallel over the points (rayon's global
+/// pool), one [`Scratch`] per worker.
+fn many<T: Send>(
+    points: &[DVec3],
+    one: impl Fn(DVec3, &mut Scratch) -> Result<T, ReceiverError> + Sync + Send,
+) -> Vec<Result<T, ReceiverError>> {
     use rayon::prelude::*;
     points
         .par_iter()
-        .map_init(Scratch::default, |scratch, &p| {
-            visibility_bounded_with(bvh, light, p, scratch)
-        })
+        .map_init(Scratch::default, |scratch, &p| one(p, scratch))
         .collect()
 }
 
@@ -248,11 +241,9 @@ pub fn visibility_bounded_with(
     p: DVec3,
     scratch: &mut Scratch,
 ) -> Result<Bounded, ReceiverError> {
-    let emitter = light.emitter(p)?;
-    if domain(bvh, &emitter, p) == Domain::Overflow {
-        return Err(ReceiverError::OutOfRange);
-    }
-    Ok(emitter_visibility_bounded(bvh, &emitter, p, scratch))
+    in_range(bvh, light, p, |e| {
+        emitter_visibility_bounded(bvh, e, p, scratch)
+    })
 }
 
 /// [`emitter_visibility`] with its certified bound ([`Bounded`]); outside
@@ -266,27 +257,9 @@ pub fn emitter_visibility_bounded(
     scratch: &mut Scratch,
 ) -> Bounded {
     let Scratch { candidates, view } = scratch;
-    let hidden = match *emitter {
-        Emitter::Point(x) => Fraction {
-            value: if bvh.segment_unoccluded(p, x.position()) {
-                0.0
-            } else {
-                1.0
-            },
-            bound: 0.0,
-        },
-        Emitter::Segment(s) => SegmentView::new(p, s.a(), s.b()).map_or(Fraction::default(), |v| {
-            v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
-        }),
-        Emitter::Disk(d) => AreaView::disk(p, d.center(), d.normal(), d.radius())
-            .map_or(Fraction::default(), |v| {
-                v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
-            }),
-        Emitter::Rect(r) => AreaView::rect(p, r.center(), r.u(), r.v())
-            .map_or(Fraction::default(), |v| {
-                v.occluded_fraction_bounded(culled(bvh, &v.hull(), candidates), view)
-            }),
-    };
+    let hidden: Fraction =
+        receiver_view::occluded::<true>(emitter, p, Culled { bvh, candidates }, view)
+            .unwrap_or_default();
     // 1 − hidden rounds once; clamping to [0, 1] only moves toward V.
     Bounded {
         visibility: (1.0 - hidden.value).clamp(0.0, 1.0),
@@ -300,15 +273,28 @@ pub fn emitter_visibility_bounded(
     }
 }
 
-/// The triangles whose bounds meet the hull of `points`.
-fn culled<'t>(
+/// The scene's triangles near a view: those whose bounds meet the view's
+/// hull, culled by the BVH into `candidates`; a point light's segment
+/// traced through the BVH.
+struct Culled<'t> {
     bvh: &'t Bvh,
-    points: &[DVec3],
     candidates: &'t mut Vec<u32>,
-) -> impl Iterator<Item = &'t [DVec3; 3]> + 't {
-    bvh.triangles_meeting_hull(points, candidates);
-    let triangles = bvh.occluders().triangles();
-    candidates
-        .iter()
-        .filter_map(move |&i| triangles.get(i as usize))
+}
+
+impl<'t> Occluders<'t> for Culled<'t> {
+    fn near<const N: usize>(
+        self,
+        hull: impl FnOnce() -> [DVec3; N],
+    ) -> impl Iterator<Item = &'t [DVec3; 3]> {
+        let Culled { bvh, candidates } = self;
+        bvh.triangles_meeting_hull(&hull(), candidates);
+        let triangles = bvh.occluders().triangles();
+        candidates
+            .iter()
+            .filter_map(move |&i| triangles.get(i as usize))
+    }
+
+    fn block(self, p: DVec3, x: DVec3) -> bool {
+        !self.bvh.segment_unoccluded(p, x)
+    }
 }

@@ -1,142 +1,22 @@
-//! Lights: the five kinds of [visibility](crate::definitions#visibility), validated at construction, and
-//! the emitting measure each presents to a receiver.
+//! The scene's light: one of the five shapes of
+//! [visibility](crate::definitions#visibility) ([`Light`]), named by its
+//! kind ([`LightKind`]).
 //!
-//! `V(p)` is the fraction of a light's emitting measure visible from `p`:
-//!
-//! | light | measure |
-//! |---|---|
-//! | [`Light::Sphere`] | the area of the *facing disk*: centre `c`, radius `r`, normal `(c − p)/‖c − p‖` |
-//! | [`Light::Disk`] | its area |
-//! | [`Light::Rect`] | its area (centre and half-axes `u`, `v`) |
-//! | [`Light::Segment`] | its length |
-//! | [`Light::Point`] | a single point: `V ∈ {0, 1}` |
-//!
-//! Constructors return [`LightError`] for non-finite or degenerate input;
-//! [`Light::emitter`] returns [`ReceiverError`] for a receiver inside a
-//! sphere light or in the plane of a disk or rect light ([visibility](crate::definitions#visibility): an
-//! error, not a NaN).
+//! The shapes, their emitting measures ([`Emitter`]) and their errors are
+//! the light's geometry, defined in [`kernel::light`](crate::kernel::light)
+//! and named here too. Constructors return [`LightError`] for non-finite
+//! or degenerate input; [`Light::emitter`] returns [`ReceiverError`] for a
+//! receiver inside a sphere light or in the plane of a disk or rect light
+//! ([visibility](crate::definitions#visibility): an error, not a NaN).
 
 use crate::kernel::eft;
-use crate::kernel::predicate::{orient2d, Sign};
 use crate::kernel::receiver_view;
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 use std::fmt;
 
-pub use super::emitter::Emitter;
-
-/// Why a light could not be built. A constructor checks every argument
-/// and reports each one that is invalid: one fault as its own variant,
-/// several as [`LightError::Several`].
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum LightError {
-    /// A coordinate or the radius is NaN or infinite; the field is named.
-    NonFinite {
-        /// The offending field (`"center"`, `"radius"`, `"normal"`, …).
-        field: &'static str,
-    },
-    /// The radius is zero or negative.
-    NonPositiveRadius {
-        /// The radius given.
-        radius: f64,
-    },
-    /// A disk's normal is zero (any other finite normal is accepted,
-    /// however long or short).
-    ZeroNormal,
-    /// A rect's half-axes are zero or parallel (no area; an area beyond
-    /// the range of `f64`, large or small, is accepted).
-    DegenerateRect,
-    /// A segment's endpoints coincide.
-    ZeroLengthSegment,
-    /// More than one of the above, in the order of the constructor's
-    /// arguments (never nested, never fewer than two).
-    Several(Vec<LightError>),
-}
-
-impl LightError {
-    /// Each fault, in the order of the constructor's arguments: this one,
-    /// or the list of [`LightError::Several`].
-    #[must_use]
-    pub fn faults(&self) -> &[LightError] {
-        match self {
-            LightError::Several(all) => all,
-            one => std::slice::from_ref(one),
-        }
-    }
-
-    /// The faults found, as one error: `Ok` for none.
-    fn from_faults(mut faults: Vec<LightError>) -> Result<(), LightError> {
-        match faults.len() {
-            0 => Ok(()),
-            1 => Err(faults.remove(0)),
-            _ => Err(LightError::Several(faults)),
-        }
-    }
-}
-
-impl fmt::Display for LightError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            LightError::NonFinite { field } => write!(f, "light field `{field}` is not finite"),
-            LightError::NonPositiveRadius { radius } => {
-                write!(f, "light radius must be positive, got {radius}")
-            }
-            LightError::ZeroNormal => write!(f, "disk light normal is zero"),
-            LightError::DegenerateRect => write!(f, "rect light half-axes span no area"),
-            LightError::ZeroLengthSegment => write!(f, "segment light endpoints coincide"),
-            LightError::Several(all) => {
-                for (k, e) in all.iter().enumerate() {
-                    if k > 0 {
-                        f.write_str("; ")?;
-                    }
-                    write!(f, "{e}")?;
-                }
-                Ok(())
-            }
-        }
-    }
-}
-
-impl std::error::Error for LightError {}
-
-/// Why a receiver cannot see a light's measure.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum ReceiverError {
-    /// The receiver has a NaN or infinite coordinate.
-    NonFinite,
-    /// The receiver is inside (or on) a sphere light.
-    InsideSphere,
-    /// The receiver lies in the plane of a disk or rect light (to rounding):
-    /// the light is seen edge-on and its visible fraction is undefined.
-    InLightPlane,
-    /// The receiver is at the point light's position, or on a segment
-    /// light.
-    OnLight,
-    /// The scene around the receiver is beyond a reference's range: the
-    /// exact reference's determinants (products of three coordinate
-    /// differences) would overflow, or, for Monte Carlo, a coordinate
-    /// exceeds its segment test's domain (`10⁹⁰`). See the domains in the
-    /// documentation of `reference::exact` and `reference::monte_carlo`.
-    OutOfRange,
-}
-
-impl fmt::Display for ReceiverError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ReceiverError::NonFinite => write!(f, "receiver position is not finite"),
-            ReceiverError::InsideSphere => write!(f, "receiver is inside the sphere light"),
-            ReceiverError::InLightPlane => write!(f, "receiver lies in the light's plane"),
-            ReceiverError::OnLight => write!(f, "receiver lies on the light"),
-            ReceiverError::OutOfRange => write!(
-                f,
-                "the scene's coordinates around the receiver are beyond the reference's range"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for ReceiverError {}
+pub use crate::kernel::light::{
+    Disk, Emitter, LightError, Point, ReceiverError, Rect, Segment, Sphere,
+};
 
 /// The five kinds of light, for naming and for what a method handles.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash, PartialOrd, Ord)]
@@ -182,246 +62,6 @@ impl fmt::Display for LightKind {
     }
 }
 
-/// A uniform sphere of light, seen from a receiver as its facing disk.
-/// Built only by [`Sphere::new`], so its centre is finite and its radius
-/// finite and positive.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Sphere {
-    center: DVec3,
-    radius: f64,
-}
-
-impl Sphere {
-    /// A sphere light.
-    ///
-    /// # Errors
-    /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`].
-    pub fn new(center: DVec3, radius: f64) -> Result<Sphere, LightError> {
-        let mut faults = Faults::default();
-        faults.finite(center, "center");
-        faults.positive(radius);
-        faults.done()?;
-        Ok(Sphere { center, radius })
-    }
-
-    /// The centre.
-    #[must_use]
-    pub fn center(&self) -> DVec3 {
-        self.center
-    }
-
-    /// The radius, `> 0`.
-    #[must_use]
-    pub fn radius(&self) -> f64 {
-        self.radius
-    }
-}
-
-/// A uniform disk of light (occlusion does not depend on the side it emits
-/// from), also a sphere light's facing disk as a receiver sees it. Built
-/// only by [`Disk::new`]: finite centre, unit normal, finite positive
-/// radius.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Disk {
-    center: DVec3,
-    normal: DVec3,
-    radius: f64,
-}
-
-impl Disk {
-    /// A disk light; `normal` need not be unit length: every finite
-    /// non-zero normal is normalised, `1e-300` or `1e300` long alike
-    /// (scaled by a power of two first, so its squared length cannot
-    /// underflow or overflow; the same bits as `normal.normalize()`
-    /// wherever that is finite).
-    ///
-    /// # Errors
-    /// [`LightError::NonFinite`], [`LightError::NonPositiveRadius`],
-    /// [`LightError::ZeroNormal`]; [`LightError::Several`] for more than
-    /// one.
-    pub fn new(center: DVec3, normal: DVec3, radius: f64) -> Result<Disk, LightError> {
-        let mut faults = Faults::default();
-        faults.finite(center, "center");
-        let unit = faults.finite(normal, "normal").and_then(|n| {
-            let unit = eft::unit(n);
-            faults.check(unit.is_some(), LightError::ZeroNormal);
-            unit
-        });
-        faults.positive(radius);
-        faults.done()?;
-        Ok(Disk {
-            center,
-            normal: unit.unwrap_or(DVec3::Z),
-            radius,
-        })
-    }
-
-    /// The centre.
-    #[must_use]
-    pub fn center(&self) -> DVec3 {
-        self.center
-    }
-
-    /// The unit normal.
-    #[must_use]
-    pub fn normal(&self) -> DVec3 {
-        self.normal
-    }
-
-    /// The radius, `> 0`.
-    #[must_use]
-    pub fn radius(&self) -> f64 {
-        self.radius
-    }
-}
-
-/// A uniform parallelogram of light, `center + s u + t v` for
-/// `s, t ∈ [−1, 1]`. Built only by [`Rect::new`]: finite centre and
-/// half-axes spanning a finite, non-zero area.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Rect {
-    center: DVec3,
-    u: DVec3,
-    v: DVec3,
-}
-
-impl Rect {
-    /// A rect light with half-axes `u`, `v` (any non-parallel pair: the
-    /// light is the parallelogram they span, whatever its area: `u × v` is
-    /// decided on `u` and `v` scaled by powers of two, so an area beyond
-    /// `f64`'s range, `1e400` or `1e-400`, is a rect like any other).
-    ///
-    /// # Errors
-    /// [`LightError::NonFinite`], [`LightError::DegenerateRect`] when `u`
-    /// or `v` is zero or they are parallel (`u × v` rounds to zero);
-    /// [`LightError::Several`] for more than one.
-    pub fn new(center: DVec3, u: DVec3, v: DVec3) -> Result<Rect, LightError> {
-        let mut faults = Faults::default();
-        faults.finite(center, "center");
-        let axes = (faults.finite(u, "u"), faults.finite(v, "v"));
-        if let (Some(u), Some(v)) = axes {
-            faults.check(
-                eft::scaled_cross(u, v).is_some(),
-                LightError::DegenerateRect,
-            );
-        }
-        faults.done()?;
-        Ok(Rect { center, u, v })
-    }
-
-    /// The centre.
-    #[must_use]
-    pub fn center(&self) -> DVec3 {
-        self.center
-    }
-
-    /// The first half-axis.
-    #[must_use]
-    pub fn u(&self) -> DVec3 {
-        self.u
-    }
-
-    /// The second half-axis (not parallel to [`Rect::u`]).
-    #[must_use]
-    pub fn v(&self) -> DVec3 {
-        self.v
-    }
-
-    /// The unit normal `u × v / ‖u × v‖`, for every rect whatever its
-    /// area (computed on `u × v` scaled by a power of two).
-    #[must_use]
-    pub fn normal(&self) -> DVec3 {
-        self.plane_direction().normalize()
-    }
-
-    /// `u × v` times the power of two that puts its largest component in
-    /// `[1, 4)`: the plane's normal direction, never overflowing or
-    /// underflowing (a power of two times `u × v` exactly wherever that is
-    /// a normal vector).
-    pub(crate) fn plane_direction(&self) -> DVec3 {
-        // `Rect::new` refused the rects without one.
-        eft::scaled_cross(self.u, self.v).map_or(DVec3::Z, |(n, _)| n)
-    }
-
-    /// The radius of the disk of equal area, `sqrt(4 ‖u × v‖ / π)`: the
-    /// bits of that formula wherever `u × v` is a normal vector, and
-    /// finite for every rect (`1e200` for half-axes of `1e200`, where
-    /// `u × v` overflows).
-    fn equivalent_radius(&self) -> f64 {
-        let Some((n, mut k)) = eft::scaled_cross(self.u, self.v) else {
-            return 0.0;
-        };
-        let mut length = n.length();
-        // An even exponent comes out of the square root exactly.
-        if k % 2 != 0 {
-            length *= 2.0;
-            k += 1;
-        }
-        eft::times_pow2((4.0 * length / std::f64::consts::PI).sqrt(), -k / 2)
-    }
-}
-
-/// A uniform segment of light from `a` to `b`. Built only by
-/// [`Segment::new`]: finite, distinct ends.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Segment {
-    a: DVec3,
-    b: DVec3,
-}
-
-impl Segment {
-    /// A segment light.
-    ///
-    /// # Errors
-    /// [`LightError::NonFinite`], [`LightError::ZeroLengthSegment`].
-    pub fn new(a: DVec3, b: DVec3) -> Result<Segment, LightError> {
-        let mut faults = Faults::default();
-        let ends = (faults.finite(a, "a"), faults.finite(b, "b"));
-        if let (Some(a), Some(b)) = ends {
-            faults.check(a != b, LightError::ZeroLengthSegment);
-        }
-        faults.done()?;
-        Ok(Segment { a, b })
-    }
-
-    /// One end.
-    #[must_use]
-    pub fn a(&self) -> DVec3 {
-        self.a
-    }
-
-    /// The other end.
-    #[must_use]
-    pub fn b(&self) -> DVec3 {
-        self.b
-    }
-}
-
-/// A point light. Built only by [`Point::new`]: a finite position.
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Point {
-    position: DVec3,
-}
-
-impl Point {
-    /// A point light.
-    ///
-    /// # Errors
-    /// [`LightError::NonFinite`].
-    pub fn new(position: DVec3) -> Result<Point, LightError> {
-        let mut faults = Faults::default();
-        faults.finite(position, "position");
-        faults.done()?;
-        Ok(Point { position })
-    }
-
-    /// The position.
-    #[must_use]
-    pub fn position(&self) -> DVec3 {
-        self.position
-    }
-}
-
 /// A light of one of the five kinds. Each variant holds a struct whose
 /// fields are private, so every light was validated by its constructor:
 /// no light can be built with a NaN, a non-positive radius or a
@@ -444,38 +84,6 @@ pub enum Light {
     Segment(Segment),
     /// A point light.
     Point(Point),
-}
-
-/// The faults a constructor finds, every argument checked.
-#[derive(Default)]
-struct Faults(Vec<LightError>);
-
-impl Faults {
-    /// Records `fault` unless `ok`.
-    fn check(&mut self, ok: bool, fault: LightError) {
-        if !ok {
-            self.0.push(fault);
-        }
-    }
-
-    /// `v` when finite, else a recorded [`LightError::NonFinite`].
-    fn finite(&mut self, v: DVec3, field: &'static str) -> Option<DVec3> {
-        self.check(v.is_finite(), LightError::NonFinite { field });
-        v.is_finite().then_some(v)
-    }
-
-    /// Records why `radius` is not finite and positive, if it is not.
-    fn positive(&mut self, radius: f64) {
-        if !radius.is_finite() {
-            self.0.push(LightError::NonFinite { field: "radius" });
-        } else {
-            self.check(radius > 0.0, LightError::NonPositiveRadius { radius });
-        }
-    }
-
-    fn done(self) -> Result<(), LightError> {
-        LightError::from_faults(self.0)
-    }
 }
 
 impl Light {
@@ -536,11 +144,11 @@ impl Light {
     #[must_use]
     pub fn center(&self) -> DVec3 {
         match self {
-            Light::Sphere(s) => s.center,
-            Light::Disk(d) => d.center,
-            Light::Rect(r) => r.center,
-            Light::Segment(s) => s.a.midpoint(s.b),
-            Light::Point(p) => p.position,
+            Light::Sphere(s) => s.center(),
+            Light::Disk(d) => d.center(),
+            Light::Rect(r) => r.center(),
+            Light::Segment(s) => s.a().midpoint(s.b()),
+            Light::Point(p) => p.position(),
         }
     }
 
@@ -551,10 +159,10 @@ impl Light {
     #[must_use]
     pub fn equivalent_radius(&self) -> f64 {
         match self {
-            Light::Sphere(s) => s.radius,
-            Light::Disk(d) => d.radius,
+            Light::Sphere(s) => s.radius(),
+            Light::Disk(d) => d.radius(),
             Light::Rect(r) => r.equivalent_radius(),
-            Light::Segment(s) => 0.5 * (s.b - s.a).length(),
+            Light::Segment(s) => 0.5 * (s.b() - s.a()).length(),
             Light::Point(_) => 0.0,
         }
     }
@@ -565,7 +173,7 @@ impl Light {
     #[must_use]
     pub fn bounding_radius(&self) -> f64 {
         match self {
-            Light::Rect(r) => eft::length(r.u + r.v).max(eft::length(r.u - r.v)),
+            Light::Rect(r) => eft::length(r.u() + r.v()).max(eft::length(r.u() - r.v())),
             _ => self.equivalent_radius(),
         }
     }
@@ -575,7 +183,7 @@ impl Light {
     #[must_use]
     pub fn plane_normal(&self) -> Option<DVec3> {
         match self {
-            Light::Disk(d) => Some(d.normal),
+            Light::Disk(d) => Some(d.normal()),
             Light::Rect(r) => Some(r.normal()),
             _ => None,
         }
@@ -611,78 +219,20 @@ impl Light {
     /// collinear, decided by the exact predicates, and between its ends) or
     /// at a point light.
     pub fn emitter(&self, p: DVec3) -> Result<Emitter, ReceiverError> {
-        if !p.is_finite() {
-            return Err(ReceiverError::NonFinite);
+        match self {
+            Light::Sphere(s) => s.seen_from(p),
+            Light::Disk(d) => d.seen_from(p),
+            Light::Rect(r) => r.seen_from(p),
+            Light::Segment(s) => s.seen_from(p),
+            Light::Point(x) => x.seen_from(p),
         }
-        match *self {
-            Light::Sphere(Sphere { center, radius }) => {
-                // Halved, so that the difference cannot overflow; then
-                // scaled to its largest component, so that its length
-                // cannot either (a centre 3e300 away is not "inside").
-                let half = center * 0.5 - p * 0.5;
-                let scale = half.abs().max_element();
-                if scale == 0.0 {
-                    return Err(ReceiverError::InsideSphere);
-                }
-                let unit = half / scale;
-                let normal = unit.try_normalize().ok_or(ReceiverError::InsideSphere)?;
-                if unit.length() * scale * 2.0 <= radius {
-                    return Err(ReceiverError::InsideSphere);
-                }
-                Ok(Emitter::Disk(Disk {
-                    center,
-                    normal,
-                    radius,
-                }))
-            }
-            Light::Disk(d) => {
-                off_plane(p, d.center, d.normal)?;
-                Ok(Emitter::Disk(d))
-            }
-            Light::Rect(r) => {
-                off_plane(p, r.center, r.plane_direction())?;
-                Ok(Emitter::Rect(r))
-            }
-            Light::Segment(s) => {
-                let Segment { a, b } = s;
-                // Collinear exactly: all three coordinate projections are.
-                let on_line = [(0, 1), (1, 2), (2, 0)].iter().all(|&(i, j)| {
-                    let q = |v: DVec3| DVec2::new(v[i], v[j]);
-                    orient2d(q(a), q(b), q(p)) == Sign::Zero
-                });
-                let between = (p - a).dot(b - a) >= 0.0 && (p - b).dot(a - b) >= 0.0;
-                if on_line && between {
-                    return Err(ReceiverError::OnLight);
-                }
-                Ok(Emitter::Segment(s))
-            }
-            Light::Point(x) => {
-                if p == x.position {
-                    return Err(ReceiverError::OnLight);
-                }
-                Ok(Emitter::Point(x))
-            }
-        }
-    }
-}
-
-/// `p` must be off the plane through `c` with normal `n`: the computed
-/// `n · (p − c)` must exceed its own rounding bound, `γ(5) |n| · |p − c|`
-/// (the rounded difference, three products and two sums; `γ(k) =
-/// kε/(1 − kε)`, Higham).
-fn off_plane(p: DVec3, c: DVec3, n: DVec3) -> Result<(), ReceiverError> {
-    let d = p - c;
-    let bound = crate::kernel::footprint::f64::gamma(5) * n.abs().dot(d.abs());
-    if n.dot(d).abs() > bound {
-        Ok(())
-    } else {
-        Err(ReceiverError::InLightPlane)
     }
 }
 
 #[cfg(test)]
 mod tests {
     use super::*;
+    use glam::DVec2;
 
     #[test]
     fn constructors_reject_bad_input() {

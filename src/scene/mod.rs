@@ -2,10 +2,13 @@
 //! and (feature `scene-file`) the scene and points files and the built-in
 //! scenes. Without `scene-file` it depends on `glam` alone.
 //!
-//! - [`light`]: the five light kinds of [visibility](crate::definitions#visibility), validated, and the
-//!   emitting measure each presents to a receiver.
-//! - [`emitter`]: that measure as one receiver sees it: uniform-by-area
-//!   sample points and the share above a plane (the horizon bound).
+//! - [`light`]: the scene's light, one of the five shapes of
+//!   [visibility](crate::definitions#visibility), named by its kind; the
+//!   shapes themselves, their errors and the emitting measure each
+//!   presents to a receiver are the kernels' ([`kernel::light`](crate::kernel::light)),
+//!   named here too.
+//! - [`emitter`]: that measure as one receiver sees it
+//!   ([`Emitter`]), named here too.
 //! - [`frame`]: the light frame and the light image plane of §2.
 //! - [`mesh`]: occluder meshes, validated.
 //! - [`receiver`]: a receiver point with its surface normal and object id,

@@ -22,9 +22,10 @@
 //! ```
 //!
 //! For a whole [`Emitter`] (a sphere light's facing disk, a disk, a rect, a
-//! segment or a point), [`occluded_fraction`] chooses the view; and
-//! [`Light::visibility_among`] is `V(p)` of a light among a list of
-//! triangles in one call.
+//! segment or a point), [`occluded_fraction`] chooses the view; the exact
+//! reference makes the same choice over the triangles its BVH culls, and
+//! the scene's `Light::visibility_among` is `V(p)` of a light among a list
+//! of triangles in one call.
 //!
 //! ## The construction
 //!
@@ -177,8 +178,7 @@
 //! [`orient2d_value`]: crate::kernel::predicate::orient2d_value
 //! [`segment_disk_area`]: crate::kernel::disk::f64::segment_disk_area
 //! [`segment_blocked`]: crate::kernel::segment::segment_blocked
-//! [`Emitter`]: crate::scene::Emitter
-//! [`Light::visibility_among`]: crate::scene::Light::visibility_among
+//! [`Emitter`]: crate::kernel::light::Emitter
 
 mod area;
 mod bounded;
@@ -189,8 +189,8 @@ pub use area::{AreaView, Image};
 pub use segment::SegmentView;
 pub use union::Search as UnionSearch;
 
+use crate::kernel::light::Emitter;
 use crate::kernel::segment::segment_blocked;
-use crate::scene::Emitter;
 use glam::DVec3;
 use union::{Tri, UnionScratch};
 
@@ -233,9 +233,10 @@ pub struct Fraction {
 /// point.
 ///
 /// `None` when `p` has no view of the emitter: not finite, in the plane of
-/// a disk or rect, or on a segment or point light
-/// ([`Light::emitter`](crate::scene::Light::emitter) refuses each of these
-/// with a [`ReceiverError`](crate::scene::ReceiverError)).
+/// a disk or rect, or on a segment or point light (the shapes' `seen_from`,
+/// e.g. [`Disk::seen_from`](crate::kernel::light::Disk::seen_from), refuses
+/// each of these with a
+/// [`ReceiverError`](crate::kernel::light::ReceiverError)).
 #[must_use]
 pub fn occluded_fraction<'t>(
     emitter: &Emitter,
@@ -243,19 +244,7 @@ pub fn occluded_fraction<'t>(
     triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
     scratch: &mut Scratch,
 ) -> Option<f64> {
-    match *emitter {
-        Emitter::Disk(d) => Some(
-            AreaView::disk(p, d.center(), d.normal(), d.radius())?
-                .occluded_fraction(triangles, scratch),
-        ),
-        Emitter::Rect(r) => {
-            Some(AreaView::rect(p, r.center(), r.u(), r.v())?.occluded_fraction(triangles, scratch))
-        }
-        Emitter::Segment(s) => {
-            Some(SegmentView::new(p, s.a(), s.b())?.occluded_fraction(triangles, scratch))
-        }
-        Emitter::Point(x) => point_hidden(p, x.position(), triangles),
-    }
+    occluded::<false>(emitter, p, Listed(triangles), scratch).map(|f| f.value)
 }
 
 /// [`occluded_fraction`] with a certified bound on its error
@@ -267,34 +256,78 @@ pub fn occluded_fraction_bounded<'t>(
     triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
     scratch: &mut Scratch,
 ) -> Option<Fraction> {
-    match *emitter {
-        Emitter::Disk(d) => Some(
-            AreaView::disk(p, d.center(), d.normal(), d.radius())?
-                .occluded_fraction_bounded(triangles, scratch),
-        ),
-        Emitter::Rect(r) => Some(
-            AreaView::rect(p, r.center(), r.u(), r.v())?
-                .occluded_fraction_bounded(triangles, scratch),
-        ),
-        Emitter::Segment(s) => {
-            Some(SegmentView::new(p, s.a(), s.b())?.occluded_fraction_bounded(triangles, scratch))
-        }
-        Emitter::Point(x) => {
-            point_hidden(p, x.position(), triangles).map(|value| Fraction { value, bound: 0.0 })
-        }
+    occluded::<true>(emitter, p, Listed(triangles), scratch)
+}
+
+/// Where the triangles a view is computed over come from: a list, or a
+/// culling structure that keeps those near the view.
+pub(crate) trait Occluders<'t> {
+    /// The triangles that may hide part of the light: at least every one
+    /// that meets the convex hull of `hull()`'s points (the view's
+    /// [`AreaView::hull`] or [`SegmentView::hull`]).
+    fn near<const N: usize>(
+        self,
+        hull: impl FnOnce() -> [DVec3; N],
+    ) -> impl Iterator<Item = &'t [DVec3; 3]>;
+
+    /// Whether some triangle blocks the open segment `(p, x)`, decided
+    /// exactly ([`segment_blocked`]).
+    fn block(self, p: DVec3, x: DVec3) -> bool;
+}
+
+/// Every triangle of a list, none culled.
+struct Listed<I>(I);
+
+impl<'t, I: IntoIterator<Item = &'t [DVec3; 3]>> Occluders<'t> for Listed<I> {
+    fn near<const N: usize>(
+        self,
+        _hull: impl FnOnce() -> [DVec3; N],
+    ) -> impl Iterator<Item = &'t [DVec3; 3]> {
+        self.0.into_iter()
+    }
+
+    fn block(self, p: DVec3, x: DVec3) -> bool {
+        self.0.into_iter().any(|t| segment_blocked(p, x, t))
     }
 }
 
-/// 1 if some triangle blocks the open segment `(p, x)`, else 0; `None` for
-/// a non-finite `p` or `p = x`.
-fn point_hidden<'t>(
+/// The one dispatcher over the emitter's kinds: the fraction of `emitter`
+/// that `occluders` hide from `p` by the view the kind calls for, with its
+/// bound if `B` (without, the bound is only what comes free: a segment's,
+/// else 0); `None` when `p` has no view of the emitter
+/// ([`occluded_fraction`]).
+#[inline]
+pub(crate) fn occluded<'t, const B: bool>(
+    emitter: &Emitter,
     p: DVec3,
-    x: DVec3,
-    triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
-) -> Option<f64> {
-    if !p.is_finite() || p == x {
-        return None;
-    }
-    let blocked = triangles.into_iter().any(|t| segment_blocked(p, x, t));
-    Some(if blocked { 1.0 } else { 0.0 })
+    occluders: impl Occluders<'t>,
+    scratch: &mut Scratch,
+) -> Option<Fraction> {
+    let view = match *emitter {
+        Emitter::Disk(d) => AreaView::disk(p, d.center(), d.normal(), d.radius())?,
+        Emitter::Rect(r) => AreaView::rect(p, r.center(), r.u(), r.v())?,
+        Emitter::Segment(s) => {
+            // Its bound costs nothing more than its fraction.
+            let view = SegmentView::new(p, s.a(), s.b())?;
+            let triangles = occluders.near(|| view.hull());
+            return Some(view.occluded_fraction_bounded(triangles, scratch));
+        }
+        Emitter::Point(x) => {
+            let x = x.position();
+            if !p.is_finite() || p == x {
+                return None;
+            }
+            let value = if occluders.block(p, x) { 1.0 } else { 0.0 };
+            return Some(Fraction { value, bound: 0.0 });
+        }
+    };
+    let triangles = occluders.near(|| view.hull());
+    Some(if B {
+        view.occluded_fraction_bounded(triangles, scratch)
+    } else {
+        Fraction {
+            value: view.occluded_fraction(triangles, scratch),
+            bound: 0.0,
+        }
+    })
 }
