@@ -80,6 +80,10 @@
 //! file, in file order. One small part (a light, a camera, a primitive, a
 //! transform, one vertex, triangle or point) is read whole, and holds at
 //! most 65,536 JSON values.
+//!
+//! [`Light`]: crate::scene::Light
+//! [`primitive`]: crate::scene::primitive
+//! [`Transform`]: crate::scene::primitive::Transform
 
 mod error;
 mod input;

@@ -1,6 +1,6 @@
 //! A mesh from the bytes of an OBJ file.
 
-use super::error::*;
+use super::error::{whole, FileError};
 use crate::scene::{Mesh, MeshError};
 use glam::DVec3;
 

@@ -1,12 +1,12 @@
 //! The scene file's parts read whole: the camera, the light, a mesh from
 //! its file or inline, a primitive and a transform.
 
-use super::error::*;
-use super::input::*;
+use super::error::{short_path, FileError, Place};
+use super::input::{read_input, MAX_OBJ_BYTES};
 use super::json::{At, Cx, Json};
-use super::obj::*;
-use super::points::*;
-use super::scene::*;
+use super::obj::obj_mesh;
+use super::points::DOMAIN;
+use super::scene::{MeshParts, Triangles};
 use super::{DEFAULT_SEGMENTS, MAX_IMAGE_SIDE};
 use crate::scene::primitive::{self, axis_name, PrimitiveError, Transform};
 use crate::scene::{Camera, CameraError, Light, LightError, Mesh};

@@ -1,8 +1,8 @@
 //! The points file, and a receiver from its fields.
 
-use super::error::*;
+use super::error::FileError;
 use super::json::{At, Cx, Entries, Json, Object};
-use super::scene::*;
+use super::scene::list;
 use crate::scene::Receiver;
 use glam::DVec3;
 use serde::de::MapAccess;

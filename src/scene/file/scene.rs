@@ -1,7 +1,7 @@
 //! The scene file's structure, streamed: its entries, its meshes' lists
 //! of vertices and triangles.
 
-use super::error::*;
+use super::error::FileError;
 use super::json::{Array, At, Cx, Entries, Items, Json, Object};
 use crate::scene::{Camera, Light, Mesh, Scene};
 use glam::DVec3;
@@ -10,7 +10,7 @@ use std::path::Path;
 
 /// The scene of a scene file, read as a stream: the top-level keys in
 /// file order, each mesh as it comes, its vertex and triangle lists item
-/// by item into the mesh (see [`load_scene`]).
+/// by item into the mesh (see [`load_scene`](super::load_scene)).
 pub(super) fn scene_from<'de, R: serde_json::de::Read<'de>>(
     cx: &Cx<'_>,
     de: &mut serde_json::Deserializer<R>,

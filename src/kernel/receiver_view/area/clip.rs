@@ -1,7 +1,7 @@
 //! The square around the light cut by a triangle's half-planes, and the
 //! lines and crossings it is cut with.
 
-use super::image::*;
+use super::image::Image;
 use glam::DVec2;
 use std::f64::consts::SQRT_2;
 

@@ -11,7 +11,7 @@ pub(super) enum Polygon {
     Clipped(Image),
 }
 
-/// A triangle's image on the light's plane ([`AreaView::image`]): a convex
+/// A triangle's image on the light's plane ([`AreaView::image`](super::AreaView::image)): a convex
 /// polygon of at most eight vertices (the square around the light cut by
 /// four half-planes), counter-clockwise, in the view's coordinates.
 #[derive(Clone, Copy, Debug, PartialEq)]

@@ -1,8 +1,8 @@
 //! A triangle projected onto the light's plane: its corners' images on
 //! the fast path, else its half-planes clipping the square around the light.
 
-use super::clip::*;
-use super::image::*;
+use super::clip::{Clip, Line, On};
+use super::image::{Image, Polygon};
 use super::AreaView;
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use crate::kernel::receiver_view::bounded::{det3_exact, max_abs, Bounded, Cross, Row};

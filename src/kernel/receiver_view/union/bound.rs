@@ -1,7 +1,7 @@
 //! The pieces of the union's error bound: the cuts' errors.
 
-use super::span::*;
-use super::tri::*;
+use super::span::cut_by_edge;
+use super::tri::Tri;
 use crate::kernel::predicate::orient2d_value_bounded;
 use glam::DVec2;
 

@@ -3,17 +3,16 @@
 //! (over the grid or the tree) of the triangles that may cover it, and the
 //! pieces it leaves uncovered.
 
-use super::bound::*;
-use super::cover::*;
-use super::grid::*;
-use super::interior::*;
+use super::bound::{covered_span_bounded, cut_errors};
+use super::cover::Cover;
+use super::grid::{Grid, Level};
+use super::interior::Interior;
 use super::shared_edges::Edges;
-use super::sides::*;
-use super::span::*;
-use super::sum::*;
-use super::tree::Ray;
-use super::tree::{Spans, Tree};
-use super::tri::*;
+use super::sides::{Side, SideSet};
+use super::span::covered_span;
+use super::sum::{add_uncovered, Sum};
+use super::tree::{Ray, Spans, Tree};
+use super::tri::{Measure, Tri};
 use glam::DVec2;
 
 /// [`union_area_sweeping_from`](super::union_area_sweeping_from), with
@@ -360,7 +359,7 @@ pub enum Search {
     Tree,
 }
 
-/// Buffers of [`union_area`].
+/// Buffers of [`union_area`](super::union_area).
 #[derive(Debug, Default)]
 pub(in crate::kernel::receiver_view) struct UnionScratch {
     /// The search the union uses.

@@ -2,7 +2,7 @@
 
 /// The cover of an edge by the spans its search has found so far:
 /// `[0, reach]` is covered, and the spans not within it are kept apart
-/// (`pending`, which [`add_uncovered`] then takes with `(0, reach)`: the
+/// (`pending`, which [`add_uncovered`](super::sum::add_uncovered) then takes with `(0, reach)`: the
 /// same pieces as from every span, since `reach` is the largest end of the
 /// spans it stands for). Each span that extends `reach` takes in the
 /// pending spans it reaches, so the search ends at the span that completes
@@ -18,8 +18,8 @@ pub(super) struct Cover {
 impl Cover {
     /// The most spans of an edge followed span by span (ours: an edge of
     /// the pile of images in `benches/references.rs` collects about 20 at
-    /// 4096 images; at 16384, where edges collect more, 64 cost 13 % more
-    /// time than 128, measured on the first form of this bookkeeping).
+    /// 4096 images; at 16384, where edges collect more, 64 cost more time
+    /// than 128).
     pub(super) const TRACKED: usize = 128;
 
     /// Takes `span` (pending spans in `pending`); whether the edge is now

@@ -1,6 +1,6 @@
 //! The search grid: the triangles binned by their bounds.
 
-use super::tri::*;
+use super::tri::Tri;
 use glam::DVec2;
 
 /// Uniform grids of triangle indices over the square `[−half, half]²`: a
@@ -55,8 +55,8 @@ impl Grid {
 
     /// A triangle whose bounds span more than this many fine cells along
     /// an axis goes to a coarse level (ours: an ordinary image stays in the
-    /// fine grid, as before; the nested and near-coincident images that
-    /// made building it quadratic, each many fine cells wide, go up).
+    /// fine grid; the nested and near-coincident images that would make
+    /// building it quadratic, each many fine cells wide, go up).
     pub(super) const LARGE: f64 = 4.0;
 
     /// The fine grid's cells a side for `n` triangles.

@@ -1,7 +1,7 @@
 //! The raster of the cells inside some triangle, under a deep pile.
 
-use super::grid::*;
-use super::tri::*;
+use super::grid::{cell_of, Grid};
+use super::tri::Tri;
 use glam::DVec2;
 
 /// Under a deep pile of small images (at least [`Interior::FEWEST`]
@@ -43,7 +43,7 @@ use glam::DVec2;
 /// blocks is all marked, so is every cell the walk over the cells would
 /// take in those rows, and that walk is left out of them. On the pile of
 /// 4096 images below, the 25,277 questions (edges, and passages of
-/// [`searched_cells`]) walk 54,030 rows of blocks and 60,948 rows of cells
+/// [`searched_cells`](super::boundary::searched_cells)) walk 54,030 rows of blocks and 60,948 rows of cells
 /// (128,244 when the cells were walked whole wherever a block failed);
 /// at 16384 images 53,238 questions, 166,938 and 18,121 rows.
 ///
@@ -52,7 +52,7 @@ use glam::DVec2;
 /// leaving 31,438 span tests for the covered edges instead of 167,384;
 /// the raster is 768 cells a side (72 KB). The 2,995 edges left are
 /// searched only in the fine cells whose passage the raster does not cover
-/// ([`searched_cells`]: 5,422 of the 21,452 in their ranges), which takes
+/// ([`searched_cells`](super::boundary::searched_cells): 5,422 of the 21,452 in their ranges), which takes
 /// their candidates from 451,561 to 133,994 and their span tests from
 /// 99,215 to 58,849. A shallow pile gains nothing
 /// (1024 images, depth 1: 2.8 → 3.6 ms), hence the thresholds, which no

@@ -28,18 +28,18 @@ pub(super) use tri::{Measure, Tri};
 /// binned in grids over it (a fine grid, and coarse levels for the large
 /// triangles) so that an edge is tested only against triangles sharing a
 /// cell with its bounds. An edge's search ends as soon as the spans it has
-/// found cover it whole ([`Cover`]), so the order of the search decides
+/// found cover it whole ([`Cover`](cover::Cover)), so the order of the search decides
 /// only how soon; an edge that is not covered collects the span of every
 /// triangle it meets (its covered start as one interval), the same union
 /// in any order, so the area does not depend on it. A span test computes
 /// its signed areas two and four at a time
-/// ([`orient2d_values_finite`], each lane the one-at-a-time value). An
+/// ([`orient2d_values_finite`](crate::kernel::predicate::orient2d_values_finite), each lane the one-at-a-time value). An
 /// edge whose reverse is an edge of another triangle
 /// (two images sharing a mesh edge, their corners the same bits) lies
-/// between the two and is dropped before any search ([`Edges`]), as the
+/// between the two and is dropped before any search ([`Edges`](shared_edges::Edges)), as the
 /// search would find: on a mesh's images most edges are shared. Under a
 /// deep pile of images, so is an edge whose every point lies in a cell of
-/// a raster marked as inside some image ([`Interior`]), and the fine grid
+/// a raster marked as inside some image ([`Interior`](interior::Interior)), and the fine grid
 /// lists its images by decreasing area.
 ///
 /// An edge lying on a side of the clip square can be covered only by the

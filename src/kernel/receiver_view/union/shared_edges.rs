@@ -1,7 +1,7 @@
 //! The table of the triangles' directed edges that finds an edge's reverse.
 
-use super::sides::*;
-use super::tri::*;
+use super::sides::Side;
+use super::tri::Tri;
 use glam::DVec2;
 
 /// The triangles' distinct directed edges, hashed by their ends, to find
@@ -27,18 +27,14 @@ impl Edges {
     pub(super) const EMPTY: u32 = u32::MAX;
 
     /// The most triangles the table is built for (a bound on its memory:
-    /// 32 MiB of slots at most). It was once 2¹⁶, since on images that
-    /// share no edge the table cost more than the search it was to save
-    /// (10⁵ near-coincident copies of a triangle, an earlier hash: a fifth
-    /// more); but a convex polygon given as a fan of 10⁵ slivers, every
-    /// inner edge shared, then went to the search edge by edge and took
-    /// minutes for one answer, against about 0.1 s with the table
-    /// (`examples/union_depth.rs`, `one fan0 100000`).
+    /// 32 MiB of slots at most): a convex polygon given as a fan of 10⁵
+    /// slivers, every inner edge shared, needs it, or each of its edges
+    /// goes to the search (`examples/union_depth.rs`, `one fan0 100000`).
     const MOST: usize = 1 << 20;
 
     /// The fewest triangles the table is built for: below, the search is
-    /// short, and the table cost more than it saved where no edge is
-    /// shared (16 random images, an earlier hash: 3 % slower with it).
+    /// short, and the table costs more than it saves where no edge is
+    /// shared (16 random images).
     pub(super) const FEWEST: usize = 32;
 
     /// The table of `tris`' edges, but for those on a side of the clip

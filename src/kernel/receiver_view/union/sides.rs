@@ -1,7 +1,7 @@
 //! The sweep of the edges lying on a side of the clip square.
 
-use super::sum::*;
-use super::tri::*;
+use super::sum::Sum;
+use super::tri::Measure;
 use glam::DVec2;
 
 /// A side of the clip square.

@@ -1,6 +1,6 @@
 //! The span of an edge that a triangle covers.
 
-use super::tri::*;
+use super::tri::Tri;
 use crate::kernel::predicate::orient2d_values_finite;
 use glam::DVec2;
 

@@ -1,6 +1,6 @@
 //! The uncovered pieces of an edge and their compensated sum.
 
-use super::tri::*;
+use super::tri::Measure;
 use glam::DVec2;
 
 /// Adds the pieces of `a → b` outside every interval of `intervals`.

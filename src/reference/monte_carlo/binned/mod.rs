@@ -560,6 +560,9 @@ struct View {
 }
 
 /// What a candidate's image is, from [`View::image`].
+// Made and matched at once in the inlined loop, never stored: boxing the
+// image would cost an allocation a candidate.
+#[allow(clippy::large_enum_variant)]
 enum Candidate {
     /// It hides no sample (not finite, coplanar with `p`, behind `p` or
     /// beyond the light).
