@@ -9,7 +9,7 @@ use glam::DVec3;
 /// `name` is used in error messages only.
 ///
 /// # Errors
-/// [`FileError`] (place [`Place::Whole`]) for an OBJ syntax error (tobj's
+/// [`FileError`] (place [`Place::Whole`](super::Place::Whole)) for an OBJ syntax error (tobj's
 /// message: it gives no line), a vertex that is not finite, and a
 /// file without faces.
 pub fn mesh_from_obj(name: &str, bytes: &[u8]) -> Result<Mesh, FileError> {
