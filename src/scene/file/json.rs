@@ -10,7 +10,7 @@
 //! [`FileError`] naming the file and the place. What the scene and points
 //! files hold is read in the parent module.
 
-use super::{FileError, Place};
+use super::error::{whole, FileError, Place};
 use glam::DVec3;
 use serde::de::{self, DeserializeSeed, Deserializer, IgnoredAny, MapAccess, SeqAccess, Visitor};
 use std::cell::{Cell, RefCell};
@@ -468,7 +468,7 @@ impl Cx<'_> {
             if let Some(kept) = self.stash.borrow_mut().take() {
                 kept
             } else if e.is_eof() && !self.started.get() {
-                super::whole(self.file, "file is empty".to_owned())
+                whole(self.file, "file is empty".to_owned())
             } else {
                 self.json_error(&e)
             }
@@ -546,7 +546,7 @@ impl Cx<'_> {
         if e.classify() == serde_json::error::Category::Io {
             // A read error (or invalid UTF-8 found by the reader, which
             // says where) has no position of serde's.
-            return super::whole(self.file, message);
+            return whole(self.file, message);
         }
         FileError {
             file: self.file.to_owned(),

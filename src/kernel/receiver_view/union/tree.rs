@@ -18,7 +18,7 @@
 //! and the union of the spans — hence every piece and every bit of the
 //! area — is that of testing every triangle.
 
-use super::Tri;
+use super::tri::Tri;
 use glam::DVec2;
 
 /// The most triangles a leaf holds.

@@ -1,0 +1,418 @@
+//! The square around the light cut by a triangle's half-planes, and the
+//! lines and crossings it is cut with.
+
+use super::image::Image;
+use glam::DVec2;
+use std::f64::consts::SQRT_2;
+
+/// The largest error, in half-widths of the square, of a vertex computed
+/// from its two lines alone (beyond it, as where two lines are nearly
+/// parallel, the vertex is the crossing on the edge being cut).
+pub(super) const WELL_PLACED: f64 = 1.0 / (1u64 << 30) as f64;
+
+/// A half-plane `a X + b Y + c ≥ 0` of the light's plane (view
+/// coordinates), and a bound on how far its line may lie from the exact
+/// one over the square.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct Line {
+    pub(super) a: f64,
+    pub(super) b: f64,
+    pub(super) c: f64,
+    pub(super) err: f64,
+}
+
+impl Line {
+    fn at(&self, q: DVec2) -> f64 {
+        self.a * q.x + self.b * q.y + self.c
+    }
+}
+
+/// The line a clipped image's edge lies on: a side of the square (bottom,
+/// right, top, left), the plane through `p` and the edge opposite a corner,
+/// or the triangle's own plane.
+#[derive(Clone, Copy, Debug, PartialEq, Eq)]
+pub(super) enum On {
+    Side(u8),
+    Cone(u8),
+    Plane,
+}
+
+/// The square cut by half-planes, each vertex computed from the two lines
+/// it lies on — a line and a side of the square from the line's
+/// coefficients, two planes through `p` at their common corner's image —
+/// never from the segment being cut, so that two triangles sharing an edge
+/// (the same line, bit for bit) and a corner get the same vertices: their
+/// shared edges are exactly reverse and drop out of the union. Each vertex
+/// carries a bound on its error.
+pub(super) struct Clip {
+    image: Image,
+    /// The line of the edge from each vertex to the next.
+    on: [On; Image::CAP],
+    /// The lines cut by so far (cone planes 0–2, the plane 3).
+    lines: [Option<Line>; 4],
+    half: f64,
+    /// The allowance of a thin image within its lines' errors of being
+    /// cut away whole (see [`Image::extra`]).
+    extra: f64,
+}
+
+impl Clip {
+    pub(super) fn new(h: f64) -> Clip {
+        let z = DVec2::ZERO;
+        let image = Image {
+            v: [
+                DVec2::new(-h, -h),
+                DVec2::new(h, -h),
+                DVec2::new(h, h),
+                DVec2::new(-h, h),
+                z,
+                z,
+                z,
+                z,
+            ],
+            len: 4,
+            ..Image::EMPTY
+        };
+        let mut on = [On::Plane; Image::CAP];
+        on[..4].copy_from_slice(&[On::Side(0), On::Side(1), On::Side(2), On::Side(3)]);
+        Clip {
+            image,
+            on,
+            lines: [None; 4],
+            half: h,
+            extra: 0.0,
+        }
+    }
+
+    /// Cuts by the half-plane `s · line ≥ 0` (`s = ±1`), or by a line that
+    /// misses the square (`Err(inside)`: keep all or none); whether
+    /// anything is left. `corner(k)` is the image of the triangle's corner
+    /// `k` (where two cone planes meet), if it lies in front of `p`.
+    /// Sutherland–Hodgman: nothing is left when no vertex is strictly
+    /// inside (the rest has no area: a triangle lying in the light's own
+    /// plane hides nothing, as the open segment says).
+    pub(super) fn cut(
+        &mut self,
+        id: On,
+        line: Result<Line, bool>,
+        s: f64,
+        mut corner: impl FnMut(usize) -> Option<(DVec2, f64)>,
+    ) -> bool {
+        let line = match line {
+            Ok(l) => Line {
+                a: s * l.a,
+                b: s * l.b,
+                c: s * l.c,
+                err: l.err,
+            },
+            Err(inside) => {
+                if (s > 0.0) != inside {
+                    self.image.len = 0;
+                }
+                return self.image.len > 0;
+            }
+        };
+        let slot = match id {
+            On::Cone(i) => usize::from(i),
+            _ => 3,
+        };
+        self.lines[slot] = Some(line);
+        let n = self.image.len;
+        let mut f = [0.0; Image::CAP];
+        let (mut any_in, mut all_in) = (false, true);
+        for (fk, &v) in f.iter_mut().zip(&self.image.v[..n]) {
+            *fk = line.at(v);
+            any_in |= *fk > 0.0;
+            all_in &= *fk >= 0.0;
+        }
+        if !any_in {
+            // The exact image may still be a sliver within the lines'
+            // errors of the vertices left.
+            let norm = line.a.abs().max(line.b.abs());
+            let (most, err) = (0..n).fold((f64::NEG_INFINITY, 0.0_f64), |(m, e), k| {
+                (m.max(f[k] / norm), e.max(self.image.err[k]))
+            });
+            if most > -(line.err + err) * 2.0 {
+                self.extra += 2.0 * (line.err + err) * 2.0 * SQRT_2 * self.half;
+            }
+            self.image.len = 0;
+            return false;
+        }
+        if all_in {
+            return true;
+        }
+        // The new polygon, into local arrays (copied back at the end).
+        let mut v = [DVec2::ZERO; Image::CAP];
+        let mut errs = [0.0; Image::CAP];
+        let mut on = [On::Plane; Image::CAP];
+        let mut len = 0;
+        let mut push = |q: DVec2, err: f64, id: On| {
+            if len < Image::CAP {
+                (v[len], errs[len], on[len]) = (q, err, id);
+                len += 1;
+            }
+        };
+        for k in 0..n {
+            // The next vertex, without a division.
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            let (fa, fb) = (f[k], f[j]);
+            if fa >= 0.0 {
+                push(self.image.v[k], self.image.err[k], self.on[k]);
+            }
+            if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
+                let (a, b) = (self.image.v[k], self.image.v[j]);
+                let (mut q, mut err) = self.meet(id, self.on[k], &mut corner);
+                // Where the two lines are so nearly parallel (or the
+                // corner so ill-placed) that their meeting point falls off
+                // the edge being cut, the crossing on the edge: within its
+                // ends' and the line's errors over the sine of the angle,
+                // and the edge's length.
+                let (lo, hi) = (a.min(b), a.max(b));
+                let slack = WELL_PLACED * self.half;
+                let on_edge = q.cmpge(lo - slack).all() && q.cmple(hi + slack).all();
+                if !(err <= slack && on_edge) {
+                    q = crossing(a, fa, b, fb);
+                    err = err.min(
+                        (b - a).abs().max_element() + self.image.err[k].max(self.image.err[j]),
+                    );
+                }
+                // Leaving: the boundary follows the new line; entering: the
+                // rest of the edge.
+                push(q, err, if fa > 0.0 { id } else { self.on[k] });
+            }
+        }
+        self.image.v[..len].copy_from_slice(&v[..len]);
+        self.image.err[..len].copy_from_slice(&errs[..len]);
+        self.on[..len].copy_from_slice(&on[..len]);
+        self.image.len = len;
+        len >= 3
+    }
+
+    /// The image with each vertex's distance from its edges' computed
+    /// lines (a posteriori, in place of the construction's errors), and
+    /// each edge's area allowance: an edge on a line whose error is `δ`
+    /// (a side of the square: 0), its ends within `ρ` of their lines, lies
+    /// within `δ + ρ` of the exact image's edge on that line, which may run
+    /// on past either end by `(δ_in + δ_out + 2ρ) / sin θ` (`θ` the angle of
+    /// the two lines there, at most the square's diagonal): a band of twice
+    /// `δ + ρ` along that length holds what the two images differ by near
+    /// the edge. A line passing within its error of a vertex without
+    /// cutting the image adds a band along the square's diagonal
+    /// ([`Image::extra`]).
+    pub(super) fn finish<const B: bool>(mut self) -> Image {
+        let n = self.image.len;
+        let mut image = self.image;
+        image.extra = self.extra;
+        if n < 3 {
+            image.len = 0;
+            return image;
+        }
+        if !B {
+            return image;
+        }
+        let diagonal = 2.0 * SQRT_2 * self.half;
+        let line = |id: On| match id {
+            On::Cone(i) => self.lines[usize::from(i)],
+            On::Plane => self.lines[3],
+            On::Side(_) => None,
+        };
+        // Per edge: its line, the line's error and normal.
+        let mut lines = [None; Image::CAP];
+        let mut delta = [0.0; Image::CAP];
+        let mut normal = [DVec2::ZERO; Image::CAP];
+        for k in 0..n {
+            let id = self.on[k];
+            lines[k] = line(id);
+            (delta[k], normal[k]) = match (id, lines[k]) {
+                (On::Side(0 | 2), _) => (0.0, DVec2::Y),
+                (On::Side(_), _) => (0.0, DVec2::X),
+                (_, Some(l)) => (l.err, DVec2::new(l.a, l.b)),
+                (_, None) => (0.0, DVec2::ZERO),
+            };
+        }
+        // On a side, a vertex is exactly on it (its coordinate ±half is
+        // kept exactly by every construction).
+        let dist = |q: DVec2, l: &Option<Line>| l.as_ref().map_or(0.0, |l| distance(l, q));
+        let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
+        let mut rho = [0.0; Image::CAP];
+        for (k, (r, &q)) in rho.iter_mut().zip(&image.v[..n]).enumerate() {
+            *r = dist(q, &lines[prev(k)]).max(dist(q, &lines[k]));
+        }
+        let mut ext = [0.0; Image::CAP];
+        for k in 0..n {
+            let (a, b) = (prev(k), k);
+            let (na, nb) = (normal[a], normal[b]);
+            let sin = na.perp_dot(nb).abs() / (na.length() * nb.length());
+            let e = (delta[a] + delta[b] + 2.0 * rho[k]) / sin;
+            ext[k] = if e < diagonal { e } else { diagonal };
+        }
+        for k in 0..n {
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            image.err[k] = rho[k];
+            image.w[k] = match self.on[k] {
+                On::Side(_) => 0.0,
+                _ => {
+                    let width = delta[k] + rho[k].max(rho[j]);
+                    let length = (image.v[j] - image.v[k]).length() + ext[k] + ext[j];
+                    2.0 * width
+                        * length.min(diagonal + ext[k] + ext[j])
+                        * (1.0 + 8.0 * f64::EPSILON)
+                }
+            };
+        }
+        let most_rho = rho[..n].iter().fold(0.0_f64, |m, &r| m.max(r));
+        for (slot, l) in self.lines.iter().enumerate() {
+            let Some(l) = l else { continue };
+            let id = if slot == 3 {
+                On::Plane
+            } else {
+                On::Cone(slot as u8)
+            };
+            if self.on[..n].contains(&id) {
+                continue;
+            }
+            let near = image.v[..n]
+                .iter()
+                .map(|&q| {
+                    let norm = l.a.abs().max(l.b.abs());
+                    let terms = (l.a * q.x).abs() + (l.b * q.y).abs() + l.c.abs();
+                    (l.at(q) - 4.0 * f64::EPSILON * terms) / norm
+                })
+                .fold(f64::INFINITY, f64::min);
+            if near < (l.err + most_rho) * 2.0 {
+                image.extra += 2.0 * (l.err + most_rho) * diagonal;
+            }
+        }
+        self.image = image;
+        self.image
+    }
+
+    /// The point where the lines `l` and `e` meet, and a bound on its
+    /// error, from the two lines alone.
+    fn meet(
+        &self,
+        l: On,
+        e: On,
+        corner: &mut impl FnMut(usize) -> Option<(DVec2, f64)>,
+    ) -> (DVec2, f64) {
+        let line = |id: On| match id {
+            On::Cone(i) => self.lines[usize::from(i)],
+            On::Plane => self.lines[3],
+            On::Side(_) => None,
+        };
+        match (l, e) {
+            (On::Side(s), other) | (other, On::Side(s)) => match line(other) {
+                Some(m) => side_crossing(&m, s, self.half),
+                // Two sides meet at a corner of the square.
+                None => (square_corner(l, e, self.half), 0.0),
+            },
+            (On::Cone(i), On::Cone(j)) => {
+                // The planes through p and two edges meet along the ray
+                // through their common corner.
+                let k = 3 - usize::from(i) - usize::from(j);
+                match corner(k) {
+                    Some(at) => at,
+                    None => cramer(&line(l).expect("cut"), &line(e).expect("cut")),
+                }
+            }
+            _ => cramer(&line(l).expect("cut"), &line(e).expect("cut")),
+        }
+    }
+}
+
+/// A bound on the distance from `q` to the line: the rounded value over
+/// the larger coefficient (at most the gradient's length), its rounding
+/// included.
+pub(super) fn distance(line: &Line, q: DVec2) -> f64 {
+    let norm = line.a.abs().max(line.b.abs());
+    let terms = (line.a * q.x).abs() + (line.b * q.y).abs() + line.c.abs();
+    ((line.at(q).abs() + 4.0 * f64::EPSILON * terms) / norm) * (1.0 + 4.0 * f64::EPSILON)
+}
+
+/// Where the line crosses side `s` of the square `|X|, |Y| ≤ h` (bottom,
+/// right, top, left), from its coefficients alone (the same bits for the
+/// line negated), clamped to the side; and a bound on its error: the
+/// line's own moved along the side (by `|(a, b)| / |b|` for a vertical
+/// side), and the rounding of the quotient.
+pub(super) fn side_crossing(m: &Line, s: u8, h: f64) -> (DVec2, f64) {
+    let (fixed, along_x) = match s {
+        0 => (-h, true),
+        1 => (h, false),
+        2 => (h, true),
+        _ => (-h, false),
+    };
+    // On a horizontal side y = fixed: x = −(b·fixed + c) / a; on a vertical
+    // one x = fixed: y = −(a·fixed + c) / b.
+    let (num, den, across) = if along_x {
+        (m.b * fixed + m.c, m.a, m.b)
+    } else {
+        (m.a * fixed + m.c, m.b, m.a)
+    };
+    let t = (-num / den).clamp(-h, h);
+    let err = m.err * (den.abs() + across.abs()) / den.abs()
+        + 2.0 * f64::EPSILON * ((across * fixed).abs() + m.c.abs()) / den.abs()
+        + f64::EPSILON * t.abs();
+    let q = if along_x {
+        DVec2::new(t, fixed)
+    } else {
+        DVec2::new(fixed, t)
+    };
+    (q, if err.is_finite() { err } else { f64::INFINITY })
+}
+
+/// The corner of the square where the sides `l` and `e` meet.
+pub(super) fn square_corner(l: On, e: On, h: f64) -> DVec2 {
+    let mut q = DVec2::ZERO;
+    for id in [l, e] {
+        match id {
+            On::Side(0) => q.y = -h,
+            On::Side(1) => q.x = h,
+            On::Side(2) => q.y = h,
+            On::Side(3) => q.x = -h,
+            _ => {}
+        }
+    }
+    q
+}
+
+/// Where two lines meet (Cramer's rule), and a bound on its error: the
+/// lines' own over the sine of their angle, and the roundings of the
+/// three 2×2 determinants.
+pub(super) fn cramer(l1: &Line, l2: &Line) -> (DVec2, f64) {
+    let det = l1.a * l2.b - l2.a * l1.b;
+    let q = DVec2::new(
+        (l1.b * l2.c - l2.b * l1.c) / det,
+        (l1.c * l2.a - l2.c * l1.a) / det,
+    );
+    let n1 = l1.a.abs() + l1.b.abs();
+    let n2 = l2.a.abs() + l2.b.abs();
+    let perm = (l1.a * l2.b).abs() + (l2.a * l1.b).abs();
+    let err = (l1.err + l2.err) * n1 * n2 / det.abs()
+        + 4.0
+            * f64::EPSILON
+            * ((l1.b * l2.c).abs()
+                + (l2.b * l1.c).abs()
+                + (l1.c * l2.a).abs()
+                + (l2.c * l1.a).abs()
+                + q.abs().max_element() * perm)
+            / det.abs();
+    if q.is_finite() && err.is_finite() {
+        (q, err)
+    } else {
+        (DVec2::ZERO, f64::INFINITY)
+    }
+}
+
+/// The point where the segment `a b` crosses a line with values `fa`,
+/// `fb` of strictly opposite signs at its ends; symmetric in its
+/// arguments. Measured from the end nearer the line (`t ≤ ½`), so that the
+/// rounding is relative to the distance from that end.
+pub(super) fn crossing(a: DVec2, fa: f64, b: DVec2, fb: f64) -> DVec2 {
+    let (a, fa, b, fb) = if fa.abs() <= fb.abs() {
+        (a, fa, b, fb)
+    } else {
+        (b, fb, a, fa)
+    };
+    let t = (fa / (fa - fb)).clamp(0.0, 1.0);
+    a + (b - a) * t
+}

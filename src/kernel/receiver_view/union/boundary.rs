@@ -1,0 +1,383 @@
+//! The walk over every triangle's edges that keeps the pieces of the
+//! union's boundary: what settles an edge before any search, the search
+//! (over the grid or the tree) of the triangles that may cover it, and the
+//! pieces it leaves uncovered.
+
+use super::bound::{covered_span_bounded, cut_errors};
+use super::cover::Cover;
+use super::grid::{Grid, Level};
+use super::interior::Interior;
+use super::shared_edges::Edges;
+use super::sides::{Side, SideSet};
+use super::span::covered_span;
+use super::sum::{add_uncovered, Sum};
+use super::tree::{Ray, Spans, Tree};
+use super::tri::{Measure, Tri};
+use glam::DVec2;
+
+/// [`union_area_sweeping_from`](super::union_area_sweeping_from), with
+/// `DEEP` whether [`Interior`] is built (and the grid lists the fine level
+/// by area). The helpers it calls per edge, per candidate and per triangle
+/// are `#[inline(always)]`: with two copies of this loop the compiler kept
+/// them out of line, and the built-in scenes' exact frames took up to 4 %
+/// more instructions.
+///
+/// The bound (`B`) sums: each edge's allowance unless it is shared (an
+/// edge and its exact reverse move together, both sides covered) or
+/// covered whole by the raster with a margin far above its width — the
+/// exact union's boundary lies within those bands of the computed one;
+/// for each piece kept on the boundary, the error of its ends where they
+/// are cuts by other edges (`|e| Δt`: the pieces' areas move by at most
+/// the distance their ends move, the disk's and the square's pieces being
+/// 1-Lipschitz in their ends in the view's coordinates) and the area
+/// kernel's (`3 ε` a piece for the unit disk; the square's `½ a × b`
+/// likewise); and the compensated sum's (`2 ε` of the sum and `4 n ε²` of
+/// the terms' magnitudes).
+pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    measure: Measure,
+    half: f64,
+    scratch: &mut UnionScratch,
+    sweep_from: usize,
+) -> (f64, f64) {
+    scratch.grid.build::<DEEP>(tris, half);
+    scratch.edges.build(tris, half);
+    scratch.stamp.clear();
+    scratch.stamp.resize(tris.len(), u32::MAX);
+    let UnionScratch {
+        grid,
+        edges,
+        stamp,
+        intervals,
+        sides,
+        interior,
+        searched,
+        bounded,
+        ..
+    } = scratch;
+    let (grid, interior) = (&*grid, &*interior);
+    let settle = Settle {
+        sides,
+        edges,
+        interior,
+    };
+    let mut edge_id = 0_u32;
+    let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
+        let (lo, hi) = (a.min(b), a.max(b));
+        intervals.clear();
+        if B {
+            bounded.clear();
+        }
+        let mut cover = Cover::default();
+        let mut whole = false;
+        let (fx0, fy0, fx1, fy1) = grid.fine.range(lo, hi, half);
+        if DEEP {
+            let cells = (fx0, fy0, fx1, fy1);
+            whole = searched_cells(&grid.fine, interior, (a, b), cells, half, searched, |u| {
+                if B {
+                    // A covered passage: its ends are never a piece's.
+                    bounded.push([u.0, u.1, 0.0, 0.0]);
+                }
+                cover.add(u, intervals)
+            });
+        }
+        let searched = &*searched;
+        let keep = |x: usize, y: usize| !DEEP || searched[(y - fy0) * (fx1 - fx0 + 1) + x - fx0];
+        grid.for_each_near(lo, hi, keep, |j| {
+            let j = j as usize;
+            if j == i || stamp[j] == edge_id {
+                return true;
+            }
+            stamp[j] = edge_id;
+            // Spans that together cover the edge settle it: nothing of it
+            // is on the boundary. Most edges are covered whole, and their
+            // search ends at the span that completes the cover (see
+            // [`Cover`]).
+            if let Some(span) = span_of::<B>(a, b, i, j, tris, (lo, hi), bounded) {
+                whole = cover.add(span, intervals);
+            }
+            !whole
+        });
+        edge_id = edge_id.wrapping_add(1);
+        if !whole {
+            // The covered start as one interval: the same pieces.
+            if cover.reach > 0.0 {
+                intervals.push((0.0, cover.reach));
+            }
+            add_uncovered(a, b, intervals, measure, sum);
+            if B {
+                *bound += cut_errors(a, b, bounded);
+            }
+        }
+    };
+    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
+}
+
+/// [`union_area_in`] with the edges' searches in a [`Tree`] instead of the
+/// grids: the same spans' union for every edge (the tree leaves out only
+/// triangles whose spans lie inside the cover already found; see
+/// [`tree`](super::tree)), so the same pieces, summed in the same order:
+/// the same area and bound, bit for bit. The side sweep, the table of
+/// shared edges and the raster of a deep pile settle the same edges first
+/// ([`walk_edges`]).
+pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    measure: Measure,
+    half: f64,
+    scratch: &mut UnionScratch,
+    sweep_from: usize,
+) -> (f64, f64) {
+    scratch.tree.build(tris, half);
+    scratch.edges.build(tris, half);
+    let UnionScratch {
+        tree,
+        spans,
+        edges,
+        sides,
+        interior,
+        bounded,
+        ..
+    } = scratch;
+    let settle = Settle {
+        sides,
+        edges,
+        interior,
+    };
+    let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
+        if B {
+            bounded.clear();
+        }
+        let (lo, hi) = (a.min(b), a.max(b));
+        spans.clear();
+        let whole = tree.search(&Ray::new(a, b), spans, |j| {
+            span_of::<B>(a, b, i, j as usize, tris, (lo, hi), bounded)
+        });
+        if !whole {
+            add_uncovered(a, b, &mut spans.list, measure, sum);
+            if B {
+                *bound += cut_errors(a, b, bounded);
+            }
+        }
+    };
+    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
+}
+
+/// What settles an edge before any search: the sweep of the square's
+/// sides, the table of shared edges, and (`DEEP`) the raster of a deep
+/// pile.
+struct Settle<'s> {
+    sides: &'s mut [SideSet; 4],
+    edges: &'s Edges,
+    interior: &'s Interior,
+}
+
+/// The loop of both searches over every triangle's edges: each edge on a
+/// swept side of the square goes to its side's sweep, an edge whose
+/// reverse is another triangle's or (`DEEP`) that the raster covers is
+/// dropped, and every other edge goes to `search`, which adds its pieces
+/// on the boundary to the sum (and with `B`, their cuts' errors to the
+/// bound); with `B`, the bound's allowances of [`union_area_in`] too.
+#[inline(always)]
+fn walk_edges<const DEEP: bool, const B: bool>(
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    measure: Measure,
+    half: f64,
+    settle: Settle<'_>,
+    sweep_from: usize,
+    mut search: impl FnMut(usize, DVec2, DVec2, &mut Sum, &mut f64),
+) -> (f64, f64) {
+    let Settle {
+        sides,
+        edges,
+        interior,
+    } = settle;
+    let widest = prepare_sides_and_bands::<DEEP, B>(tris, weights, half, sides, sweep_from);
+    let mut sum = Sum::default();
+    let mut bound = 0.0;
+    for (i, ti) in tris.iter().enumerate() {
+        #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.
+        for k in 0..3 {
+            let (a, b) = ti.edge(k);
+            if let Some(side) = Side::of(a, b, half) {
+                let set = &mut sides[side as usize];
+                if set.active {
+                    // On a side of the square exactly: no allowance.
+                    set.add_uncovered(side, a, b, half, measure, &mut sum);
+                    continue;
+                }
+            }
+            if edges.has_reverse(tris, a, b) {
+                continue;
+            }
+            if DEEP && interior.covers(a, b) {
+                // Covered whole, as the search would find (see
+                // [`Interior`]), with a margin: if the edge's band is far
+                // narrower, the exact edge is covered too.
+                if B && (widest >= 0.25 * interior.margin() || widest.is_nan()) {
+                    bound += weights[i][k];
+                }
+                continue;
+            }
+            if B {
+                bound += weights[i][k];
+            }
+            search(i, a, b, &mut sum, &mut bound);
+        }
+    }
+    if B {
+        bound += sum.bound();
+    }
+    (sum.value(), bound)
+}
+
+/// The common start of [`union_area_in`] and [`union_area_tree`]: each
+/// side of the square swept if it holds `sweep_from` edges or more, and
+/// (with `B` under a deep pile) the widest band of any edge — each
+/// allowance is at least twice its width times its length: the raster's
+/// margin covers an edge's exact position only if the covering
+/// triangle's and its own are within it.
+pub(super) fn prepare_sides_and_bands<const DEEP: bool, const B: bool>(
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    half: f64,
+    sides: &mut [SideSet; 4],
+    sweep_from: usize,
+) -> f64 {
+    let mut counts = [0usize; 4];
+    for t in tris {
+        for k in 0..3 {
+            let (a, b) = t.edge(k);
+            if let Some(side) = Side::of(a, b, half) {
+                counts[side as usize] += 1;
+            }
+        }
+    }
+    for (set, &count) in sides.iter_mut().zip(&counts) {
+        set.clear();
+        set.active = count >= sweep_from;
+    }
+    if B && DEEP {
+        tris.iter()
+            .zip(weights)
+            .flat_map(|(t, w)| {
+                (0..3).map(move |k| {
+                    let (a, b) = t.edge(k);
+                    w[k] / (2.0 * (b - a).length())
+                })
+            })
+            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
+    } else {
+        0.0
+    }
+}
+
+/// Under a deep pile ([`Interior`]), which fine cells of the range
+/// `x0..=x1, y0..=y1` (row by row) the search of the edge `a → b` must look
+/// in, into `searched`; the passage of each other one ([`Level::passage`]),
+/// if any, goes to `covered` (which returns whether the edge is now covered
+/// whole: then so is the answer). A cell is left out where the edge does
+/// not pass through it, or where [`Interior::covers`] the passage.
+///
+/// That changes no bit of the area. Every point of a covered passage lies
+/// in a marked cell, so inside some triangle whose span covers it with
+/// `2⁻³¹` of the parameter to spare (the argument of [`Interior`]): the
+/// passage lies within the union of the search's spans. A triangle listed
+/// only in left-out cells has its span inside their passages (its points,
+/// and the points within rounding of them, lie in cells it is listed in,
+/// and a passage takes every such point): leaving it out changes no point
+/// of the union. And no end of a covered passage becomes an end of a
+/// piece: the triangle covering the points just past it has them in a cell
+/// whose passage is not covered, and that cell is searched.
+pub(super) fn searched_cells(
+    fine: &Level,
+    interior: &Interior,
+    (a, b): (DVec2, DVec2),
+    (x0, y0, x1, y1): (usize, usize, usize, usize),
+    half: f64,
+    searched: &mut Vec<bool>,
+    mut covered: impl FnMut((f64, f64)) -> bool,
+) -> bool {
+    searched.clear();
+    let mut whole = false;
+    for y in y0..=y1 {
+        for x in x0..=x1 {
+            let search = fine.passage(x, y, a, b, half).is_some_and(|(u0, u1)| {
+                let (p, q) = (a + (b - a) * u0, a + (b - a) * u1);
+                if interior.covers(p, q) {
+                    whole |= covered((u0, u1));
+                    false
+                } else {
+                    true
+                }
+            });
+            searched.push(search);
+        }
+    }
+    whole
+}
+
+/// The span of the edge `a → b` (of triangle `i`, its bounds `lo..hi`)
+/// that triangle `j` covers, as the grid's search finds it; with `B`, the
+/// same span with its ends' errors pushed to `bounded`.
+#[inline(always)]
+pub(super) fn span_of<const B: bool>(
+    a: DVec2,
+    b: DVec2,
+    i: usize,
+    j: usize,
+    tris: &[Tri],
+    (lo, hi): (DVec2, DVec2),
+    bounded: &mut Vec<[f64; 4]>,
+) -> Option<(f64, f64)> {
+    let tj = &tris[j];
+    if j == i || tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
+        return None;
+    }
+    let span = covered_span(a, b, tj, j < i);
+    if B && span.is_some() {
+        bounded.extend(covered_span_bounded(a, b, tj, j < i));
+    }
+    span
+}
+
+/// How an edge finds the triangles that may cover it: the two designs,
+/// kept side by side so that they can be compared (the same area, bit for
+/// bit; see `union_area_tree`).
+#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
+pub enum Search {
+    /// Uniform grids of the triangles' bounds (fine, and coarse levels for
+    /// large triangles), every triangle sharing a cell with the edge tested
+    /// until the edge is covered whole.
+    #[default]
+    Grid,
+    /// A hierarchy of bounding boxes, each node holding its subtree's
+    /// largest triangle, searched with the edge's cover so far: subtrees
+    /// whose part of the edge is covered already are left out.
+    Tree,
+}
+
+/// Buffers of [`union_area`](super::union_area).
+#[derive(Debug, Default)]
+pub(in crate::kernel::receiver_view) struct UnionScratch {
+    /// The search the union uses.
+    pub(in crate::kernel::receiver_view) search: Search,
+    tree: Tree,
+    spans: Spans,
+    pub(super) grid: Grid,
+    edges: Edges,
+    /// The last edge each triangle was tested against.
+    stamp: Vec<u32>,
+    intervals: Vec<(f64, f64)>,
+    /// Per side of the clip square, the swept edges so far.
+    sides: [SideSet; 4],
+    /// The cells inside some triangle, under a deep pile.
+    pub(super) interior: Interior,
+    /// Under [`Interior`], per fine cell of the searched edge's range,
+    /// whether the search looks in it ([`searched_cells`]).
+    searched: Vec<bool>,
+    /// The spans with their ends' errors ([`cut_errors`]).
+    bounded: Vec<[f64; 4]>,
+}

@@ -1,0 +1,519 @@
+//! The raster of the cells inside some triangle, under a deep pile.
+
+use super::grid::{cell_of, Grid};
+use super::tri::Tri;
+use glam::DVec2;
+
+/// Under a deep pile of small images (at least [`Interior::FEWEST`]
+/// triangles, their areas summing to at least [`Interior::DEPTH`] times
+/// their common bounds, their mean width within [`Grid::LARGE`] cells of
+/// the fine grid), a raster over the square `[−half, half]²` of the cells
+/// that lie inside some triangle with a margin: an edge whose every point
+/// is in such a cell is covered whole, and is dropped before any search
+/// ([`Interior::covers`]).
+///
+/// That is the search's own answer, so the area is the same bit for bit. A
+/// marked cell is closed and lies at least `μ = 2⁻²⁰ w / √2` (`w` the
+/// cell's width) inside each edge line of some triangle `j`, and `j` is not
+/// the searched edge's own (whose points are on its boundary). So every
+/// point of the edge is at least `μ` inside a triangle whose bounds meet
+/// the edge's, which the search tests: the span it finds contains that
+/// point's parameter with `μ / |b − a|` to spare on either side (at least
+/// `2⁻³¹` of the parameter range, the square's diagonal being `2.9 half`
+/// and the cells at least `half / 512` wide), against a few units in the
+/// last place of rounding in the span's ends. The spans then overlap and
+/// cover `[0, 1]`, and the search ends with no piece on the boundary.
+///
+/// The arithmetic that marks a cell and walks an edge is rounded, and
+/// its errors are absorbed by margins at least `2¹⁸` times wider. A cell
+/// must be `2⁻²⁰ w` inside (in the edge function, `2⁻²⁰ w |d|∞`, `d` the
+/// edge's direction): along a row, where the edge's line crosses it moved
+/// by `2⁻²⁰ |d|∞ / |d.y| ≥ 2⁻²¹ (1 + |β|)` cells, `β = d.x / d.y`. That
+/// crossing is computed as `α + β r` cells in row `r`, with an error of a
+/// few units in the last place of `(1 + |β|) n`, at most `2⁻³⁹ (1 + |β|)`
+/// cells (`n ≤ 1024` cells a side). A walk takes every cell within `10⁻⁶
+/// (1 + |s|)` cells of the edge's computed course (`s` the slope against
+/// `y`, which multiplies the error in a row's `y`), against errors of a few
+/// units in the last place of `half` or of the cell index, about `2⁻⁴²` of
+/// a cell.
+///
+/// The walk goes a row of blocks at a time ([`Interior::course_covered`];
+/// blocks of [`Interior::BLOCK`] cells a side, those all marked listed in
+/// [`Interior::full`]): where every block along the course in a row of
+/// blocks is all marked, so is every cell the walk over the cells would
+/// take in those rows, and that walk is left out of them. On the pile of
+/// 4096 images below, the 25,277 questions (edges, and passages of
+/// [`searched_cells`](super::boundary::searched_cells)) walk 54,030 rows of blocks and 60,948 rows of cells
+/// (128,244 when the cells were walked whole wherever a block failed);
+/// at 16384 images 53,238 questions, 166,938 and 18,121 rows.
+///
+/// Measured on the pile of 4096 images in `benches/references.rs`: of its
+/// 12,138 edges, 9,143 of the 10,336 covered whole are dropped here,
+/// leaving 31,438 span tests for the covered edges instead of 167,384;
+/// the raster is 768 cells a side (72 KB). The 2,995 edges left are
+/// searched only in the fine cells whose passage the raster does not cover
+/// ([`searched_cells`](super::boundary::searched_cells): 5,422 of the 21,452 in their ranges), which takes
+/// their candidates from 451,561 to 133,994 and their span tests from
+/// 99,215 to 58,849. A shallow pile gains nothing
+/// (1024 images, depth 1: 2.8 → 3.6 ms), hence the thresholds, which no
+/// built-in scene's receiver reaches (`large-light` has the most images
+/// per receiver, up to 960, at most about two deep).
+#[derive(Debug, Default)]
+pub(super) struct Interior {
+    /// Cells a side, a multiple of 64 (0: not built).
+    pub(super) n: usize,
+    half: f64,
+    /// The cells' width, and its inverse.
+    pub(super) w: f64,
+    inv_w: f64,
+    /// Row-major, `n / 64` words a row: bit `k % 64` of word `k / 64` of
+    /// row `r` for the cell `[−half + k w, −half + (k + 1) w] × [−half +
+    /// r w, −half + (r + 1) w]`.
+    bits: Vec<u64>,
+    /// The blocks of [`Interior::BLOCK`] cells a side all marked, in the
+    /// same layout: `n / BLOCK` blocks a side, a row's bits in whole words.
+    full: Vec<u64>,
+}
+
+impl Interior {
+    /// The fewest triangles the raster is built for.
+    pub(super) const FEWEST: usize = 256;
+
+    /// The least depth (summed area over the area of the common bounds)
+    /// it is built for (ours: the pile of `benches/references.rs`, about
+    /// one deep per 1000 images, at 2048, 2400, 2800 and 4096 images: 7.9
+    /// → 8.2, 9.97 → 10.1, 12.1 → 11.0 and 21.2 → 13.6 ms with it).
+    const DEPTH: f64 = 2.5;
+
+    /// Cells across the mean width of a triangle's bounds (ours: 16, 24,
+    /// 32 and 48 put the pile of 4096 images at 15.1, 14.3, 14.0 and 17.5
+    /// ms: finer cells drop more edges but cost more to mark and walk).
+    const ACROSS: f64 = 32.0;
+
+    /// The most cells a side.
+    const MOST: usize = 1024;
+
+    /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
+    pub(super) const BLOCK: usize = 8;
+
+    /// The triangles the depth is estimated from (ours: 64 put the pile of
+    /// 2048 images, 2 deep, above 2.5).
+    const SAMPLES: usize = 256;
+
+    /// Marks the cells inside `tris`' triangles, if the pile is deep;
+    /// whether it is (else [`Interior::covers`] is not to be called).
+    pub(super) fn build(&mut self, tris: &[Tri], half: f64) -> bool {
+        self.n = 0;
+        if tris.len() < Interior::FEWEST {
+            return false;
+        }
+        // The depth and mean width from an even sample of the triangles
+        // (a pass over all of them cost 1 % of the instructions of the
+        // built-in scenes, whose piles are shallow).
+        let step = tris.len() / Interior::SAMPLES;
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(-f64::INFINITY));
+        let (mut area, mut width) = (0.0, 0.0);
+        for t in tris.iter().step_by(step).take(Interior::SAMPLES) {
+            (lo, hi) = (lo.min(t.lo), hi.max(t.hi));
+            area += 0.5 * t.doubled_area();
+            width += (t.hi - t.lo).max_element();
+        }
+        let bounds = (hi - lo).x * (hi - lo).y;
+        let scale = tris.len() as f64 / Interior::SAMPLES as f64;
+        if area * scale < Interior::DEPTH * bounds {
+            return false;
+        }
+        let mean = width / Interior::SAMPLES as f64;
+        // Large images go to the grid's coarse levels, where an edge meets
+        // the largest first and its search ends soon: the raster saves
+        // little there, and marking costs as much (ours: near-coincident
+        // and nested images of `benches/references.rs`'s `degenerate`
+        // group, 2.7 to 4.2 times the time with it).
+        if mean * Grid::side(tris.len()) as f64 > Grid::LARGE * 2.0 * half {
+            return false;
+        }
+        let want = (2.0 * half / mean * Interior::ACROSS).clamp(64.0, Interior::MOST as f64);
+        // `want` is at least 64 (a NaN clamps to 64 too).
+        let n = (want as usize).div_ceil(64) * 64;
+        self.n = n;
+        self.half = half;
+        self.w = 2.0 * half / n as f64;
+        self.inv_w = n as f64 / (2.0 * half);
+        self.bits.clear();
+        self.bits.resize(n * (n / 64), 0);
+        let margin = self.w / f64::from(1_u32 << 20);
+        let last = n as f64;
+        'tris: for t in tris {
+            // The edges' lines as bounds on the cells of a row inside them.
+            let mut bounds = RowBounds::default();
+            for e in 0..3 {
+                let (p, q) = t.edge(e);
+                let d = q - p;
+                let m = margin * d.abs().max_element();
+                if d.y == 0.0 {
+                    bounds.flat[bounds.flats] = (p.y, d.x, m);
+                    bounds.flats += 1;
+                    continue;
+                }
+                // Inside (counter-clockwise): `f = d.x (y − p.y) − d.y (x −
+                // p.x) ≥ m` at the cell's corner of least `f`, whose `y` is
+                // the row's bottom where `d.x > 0`, its top else, and whose
+                // `x` is the cell's left where `d.y < 0`, its right else.
+                // `f = m` at `x = p.x + (d.x (y − p.y) − m) / d.y`: in cells,
+                // at that corner's `y` in row `r`, `α + β r`.
+                let beta = d.x / d.y;
+                let s = if d.x > 0.0 { 0.0 } else { 1.0 };
+                let alpha =
+                    (p.x + half - m / d.y) * self.inv_w + beta * (s - (p.y + half) * self.inv_w);
+                if !(alpha.abs() < 1e200 && beta.abs() < 1e200) {
+                    // An edge within `10⁻²⁰⁰` of level: its triangle marks
+                    // nothing (never met in practice; fewer marks are
+                    // always safe).
+                    continue 'tris;
+                }
+                // The first free slot (`α` finite where taken): a triangle
+                // has at most two edges on a side, the differences `d.y`
+                // of its corners having their exact signs.
+                let side = if d.y < 0.0 {
+                    &mut bounds.left
+                } else {
+                    &mut bounds.right
+                };
+                side[usize::from(side[0].0.is_finite())] = (alpha, beta);
+            }
+            for r in self.cell(t.lo.y)..=self.cell(t.hi.y) {
+                let y0 = -half + r as f64 * self.w;
+                let outside = bounds.flat[..bounds.flats].iter().any(|&(p, d, m)| {
+                    let y = if d > 0.0 { y0 } else { y0 + self.w };
+                    d * (y - p) < m
+                });
+                if outside {
+                    continue;
+                }
+                // The cells `k0..=k1` of the row inside each edge's line:
+                // the cell's left `k ≥ v` past the left edges (the first
+                // such `k` is at most `floor(v) + 1`, by truncation of `v +
+                // 1 ≥ 0`), its right `k + 1 ≤ v` short of the right ones.
+                let at = |(alpha, beta): (f64, f64)| alpha + beta * r as f64;
+                let v0 = at(bounds.left[0]).max(at(bounds.left[1]));
+                let v1 = at(bounds.right[0]).min(at(bounds.right[1]));
+                let k0 = (v0.max(-1.0).min(last) + 1.0) as i64;
+                let k1 = v1.max(0.0).min(last) as i64 - 1;
+                if k0 <= k1 {
+                    self.mark(r, k0 as usize, k1 as usize);
+                }
+            }
+        }
+        self.find_full_blocks();
+        true
+    }
+
+    /// How far inside some triangle every point of a marked cell lies:
+    /// `2⁻²⁰ w / √2` (see [`Interior`]).
+    pub(super) fn margin(&self) -> f64 {
+        self.w / f64::from(1_u32 << 20) * std::f64::consts::FRAC_1_SQRT_2
+    }
+
+    /// Fills [`Interior::full`] from the marks.
+    fn find_full_blocks(&mut self) {
+        const B: usize = Interior::BLOCK;
+        let (words, blocks) = (self.n / 64, self.n / B);
+        let block_words = self.block_words();
+        self.full.clear();
+        self.full.resize(blocks * block_words, 0);
+        let group = u64::MAX >> (64 - B);
+        for br in 0..blocks {
+            for i in 0..words {
+                let rows = (B * br..B * br + B).map(|r| self.bits[r * words + i]);
+                let all = rows.fold(u64::MAX, |x, y| x & y);
+                for g in 0..64 / B {
+                    if (all >> (B * g)) & group == group {
+                        let k = 64 / B * i + g;
+                        self.full[br * block_words + k / 64] |= 1 << (k % 64);
+                    }
+                }
+            }
+        }
+    }
+
+    /// Words a row of [`Interior::full`].
+    fn block_words(&self) -> usize {
+        (self.n / Interior::BLOCK).div_ceil(64)
+    }
+
+    /// Row `r` of [`Interior::full`] (the blocks over the rows `BLOCK r..
+    /// BLOCK (r + 1)` of cells).
+    pub(super) fn block_row(&self, r: usize) -> &[u64] {
+        let words = self.block_words();
+        &self.full[r * words..(r + 1) * words]
+    }
+
+    /// The row or column of the coordinate `v` (clamped).
+    fn cell(&self, v: f64) -> usize {
+        cell_of(v, self.half, self.inv_w, self.n)
+    }
+
+    /// Row `r` of the marks.
+    pub(super) fn row(&self, r: usize) -> &[u64] {
+        let words = self.n / 64;
+        &self.bits[r * words..(r + 1) * words]
+    }
+
+    fn mark(&mut self, r: usize, k0: usize, k1: usize) {
+        let words = self.n / 64;
+        let row = &mut self.bits[r * words..(r + 1) * words];
+        let (i0, i1, first, last) = span_masks(k0, k1);
+        if i0 == i1 {
+            row[i0] |= first & last;
+        } else {
+            row[i0] |= first;
+            row[i0 + 1..i1].fill(u64::MAX);
+            row[i1] |= last;
+        }
+    }
+
+    /// Whether every cell the edge `a → b` may pass through is marked
+    /// ([`Interior::course_covered`]).
+    pub(super) fn covers(&self, a: DVec2, b: DVec2) -> bool {
+        self.course(a, b).is_some_and(|c| self.course_covered(&c))
+    }
+
+    /// The edge `a → b` in cells, `None` where it leaves the square.
+    #[inline(always)]
+    pub(super) fn course(&self, a: DVec2, b: DVec2) -> Option<Course> {
+        if a.abs().max_element() > self.half || b.abs().max_element() > self.half {
+            return None;
+        }
+        let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
+        let to = |v: f64| (v + self.half) * self.inv_w;
+        let (lx, ly, hx, hy) = (to(lo.x), to(lo.y), to(hi.x), to(hi.y));
+        let top = self.n - 1;
+        let cell = |v: f64| (v.max(0.0) as usize).min(top);
+        Some(Course {
+            lo: DVec2::new(lx, ly),
+            hi: DVec2::new(hx, hy),
+            rows: (cell(ly - Course::EPS), cell(hy + Course::EPS)),
+        })
+    }
+
+    /// Whether every cell within `10⁻⁶ (1 + |s|)` of the course is marked
+    /// (`s` its slope against `y`): the answer of [`Walk`] over the cells
+    /// from the first row to the last, found row of blocks by row of
+    /// blocks. In each row of blocks, [`Walk`] over the blocks (the course
+    /// scaled to them) takes the blocks within `10⁻⁶ (1 + |s|)` blocks of
+    /// the course — [`Interior::BLOCK`] times the margin the cells need —
+    /// so each cell the walk over the cells takes in those rows lies in a
+    /// block taken. Where those blocks are all marked, so are those cells,
+    /// and the walk over the cells is left out of that row of blocks.
+    #[inline(always)]
+    pub(super) fn course_covered(&self, c: &Course) -> bool {
+        const B: usize = Interior::BLOCK;
+        let in_blocks = c.in_blocks();
+        let mut blocks = Walk::new(&in_blocks, self.n / B);
+        // Set up where a row of blocks first fails (most questions the
+        // blocks settle never need it).
+        let mut cells = None;
+        for block_row in in_blocks.rows.0..=in_blocks.rows.1 {
+            let (k0, k1) = blocks.step(block_row);
+            if all_set(self.block_row(block_row), k0, k1) {
+                continue;
+            }
+            let cells = cells.get_or_insert_with(|| Walk::new(c, self.n));
+            let rows = c.rows.0.max(B * block_row)..=c.rows.1.min(B * block_row + B - 1);
+            cells.enter(*rows.start());
+            for r in rows {
+                let (k0, k1) = cells.step(r);
+                if !all_set(self.row(r), k0, k1) {
+                    return false;
+                }
+            }
+        }
+        true
+    }
+
+    /// Whether the blocks along the course are all marked: the walk of
+    /// [`Walk`] over the blocks, the course scaled to them, whole.
+    #[cfg(test)]
+    pub(super) fn blocks_cover(&self, c: &Course) -> bool {
+        walk_covers(&c.in_blocks(), self.n / Interior::BLOCK, |r| {
+            self.block_row(r)
+        })
+    }
+
+    /// Whether every cell within `10⁻⁶ (1 + |s|)` of the course is marked,
+    /// the walk over the cells whole.
+    #[cfg(test)]
+    pub(super) fn cells_cover(&self, c: &Course) -> bool {
+        walk_covers(c, self.n, |r| self.row(r))
+    }
+}
+
+/// A triangle's edges as [`Interior::build`] bounds the cells of a row
+/// inside them: where its left edges' lines cross row `r`, `α + β r` in
+/// cells from the square's left side (a missing edge at `−∞`), where its
+/// right edges' lines do (`+∞`), and its level edges, from height `p`
+/// running `d` along `x` with the margin `m`, each of which takes a whole
+/// row or none of it.
+#[derive(Clone, Copy, Debug)]
+pub(super) struct RowBounds {
+    left: [(f64, f64); 2],
+    right: [(f64, f64); 2],
+    flat: [(f64, f64, f64); 3],
+    flats: usize,
+}
+
+impl Default for RowBounds {
+    fn default() -> RowBounds {
+        RowBounds {
+            left: [(f64::NEG_INFINITY, 0.0); 2],
+            right: [(f64::INFINITY, 0.0); 2],
+            flat: [(0.0, 0.0, 0.0); 3],
+            flats: 0,
+        }
+    }
+}
+
+/// Whether every cell [`Walk`] takes along the course `c` (in a raster `n`
+/// cells a side) is set in its row (`row(r)`, bit `k` for the column `k`),
+/// from its first row to its last.
+#[cfg(test)]
+pub(super) fn walk_covers<'a>(c: &Course, n: usize, row: impl Fn(usize) -> &'a [u64]) -> bool {
+    let mut walk = Walk::new(c, n);
+    (c.rows.0..=c.rows.1).all(|r| {
+        let (k0, k1) = walk.step(r);
+        all_set(row(r), k0, k1)
+    })
+}
+
+/// A walk along a [`Course`] (in a raster `n` cells a side) row by row
+/// from its first row: in each, the columns within `10⁻⁶ (1 + |s|)` of the
+/// course (`s` its slope against `y`), clamped to the raster.
+pub(super) struct Walk {
+    lo: DVec2,
+    hi: DVec2,
+    /// The first row.
+    first: usize,
+    level: bool,
+    slope: f64,
+    eps: f64,
+    top: i64,
+    /// The course's `x` where it enters the next row.
+    x_in: f64,
+}
+
+impl Walk {
+    #[inline(always)]
+    pub(super) fn new(c: &Course, n: usize) -> Walk {
+        let (lo, hi, first) = (c.lo, c.hi, c.rows.0);
+        let level = hi.y <= lo.y;
+        let slope = if level {
+            0.0
+        } else {
+            (hi.x - lo.x) / (hi.y - lo.y)
+        };
+        Walk {
+            lo,
+            hi,
+            first,
+            level,
+            slope,
+            eps: Course::EPS * (1.0 + slope.abs()),
+            top: (n - 1) as i64,
+            x_in: lo.x,
+        }
+    }
+
+    /// Where the course leaves row `r` (at `y = r + 1`, at `y = hi.y` in
+    /// the last row); a level course's whole `x` range is `lo.x..hi.x`.
+    #[inline(always)]
+    fn exit(&self, r: usize) -> f64 {
+        if self.level {
+            self.hi.x
+        } else {
+            self.lo.x + (((r + 1) as f64).min(self.hi.y) - self.lo.y) * self.slope
+        }
+    }
+
+    /// Starts the next [`Walk::step`] at row `r` (the first row, or any
+    /// later one): the course's `x` where it enters `r` is where it leaves
+    /// `r − 1`, as a step through every row before would have carried it.
+    #[inline(always)]
+    pub(super) fn enter(&mut self, r: usize) {
+        self.x_in = if r == self.first || self.level {
+            self.lo.x
+        } else {
+            self.exit(r - 1)
+        };
+    }
+
+    /// The columns `k0..=k1` taken in row `r`, the row after the last step
+    /// (or the one entered).
+    #[inline(always)]
+    pub(super) fn step(&mut self, r: usize) -> (usize, usize) {
+        let x_out = self.exit(r);
+        let (x0, x1) = if self.x_in <= x_out {
+            (self.x_in, x_out)
+        } else {
+            (x_out, self.x_in)
+        };
+        if !self.level {
+            self.x_in = x_out;
+        }
+        let k0 = ((x0 - self.eps) as i64).clamp(0, self.top) as usize;
+        let k1 = ((x1 + self.eps) as i64).clamp(0, self.top) as usize;
+        (k0, k1)
+    }
+}
+
+/// An edge over the cells of an [`Interior`], in cells from the square's
+/// corner `(−half, −half)`.
+pub(super) struct Course {
+    /// The end of least `y`, and the other.
+    pub(super) lo: DVec2,
+    pub(super) hi: DVec2,
+    /// The rows within [`Course::EPS`] of its ends (clamped).
+    pub(super) rows: (usize, usize),
+}
+
+impl Course {
+    /// The margin, in cells, for the rounding of the course.
+    pub(super) const EPS: f64 = 1e-6;
+
+    /// The course over the blocks of [`Interior::BLOCK`] cells a side: its
+    /// ends scaled to them, its rows those of blocks holding its rows.
+    #[inline(always)]
+    pub(super) fn in_blocks(&self) -> Course {
+        const B: usize = Interior::BLOCK;
+        let scale = 1.0 / B as f64;
+        Course {
+            lo: self.lo * scale,
+            hi: self.hi * scale,
+            rows: (self.rows.0 / B, self.rows.1 / B),
+        }
+    }
+}
+
+/// The words `i0..=i1` of a row holding its bits `k0..=k1` (`k0 ≤ k1`),
+/// and the masks of those bits in the first word and in the last.
+#[inline(always)]
+pub(super) fn span_masks(k0: usize, k1: usize) -> (usize, usize, u64, u64) {
+    (
+        k0 / 64,
+        k1 / 64,
+        u64::MAX << (k0 % 64),
+        u64::MAX >> (63 - k1 % 64),
+    )
+}
+
+/// Whether the bits `k0..=k1` (`k0 ≤ k1`) of the row `words` are all set.
+#[inline(always)]
+pub(super) fn all_set(words: &[u64], k0: usize, k1: usize) -> bool {
+    let (i0, i1, first, last) = span_masks(k0, k1);
+    if i0 == i1 {
+        words[i0] & first & last == first & last
+    } else {
+        words[i0] & first == first
+            && words[i0 + 1..i1].iter().all(|&w| w == u64::MAX)
+            && words[i1] & last == last
+    }
+}

@@ -1,0 +1,344 @@
+//! The two searches against each other and against independent areas.
+
+use super::*;
+
+/// The union's area with the search `search`, and its bound with the
+/// weights `w` (one per edge).
+fn area_by(
+    search: Search,
+    tris: &[Tri],
+    w: &[[f64; 3]],
+    measure: Measure,
+    h: f64,
+    scratch: &mut UnionScratch,
+) -> [(f64, f64); 2] {
+    scratch.search = search;
+    [
+        union_area::<false>(tris, w, measure, h, scratch),
+        union_area::<true>(tris, w, measure, h, scratch),
+    ]
+}
+
+/// Homothets of one triangle: `n` copies scaled by `1 + k s` about
+/// `centre` (inside: nested; outside: stacked layers seen from a
+/// receiver), clamped to the square.
+fn homothets(t: [DVec2; 3], centre: DVec2, n: usize, s: f64, h: f64) -> Vec<Tri> {
+    (0..n)
+        .filter_map(|k| {
+            let f = 1.0 + k as f64 * s;
+            let m = |v: DVec2| (centre + (v - centre) * f).clamp(DVec2::splat(-h), DVec2::splat(h));
+            Tri::new(m(t[0]), m(t[1]), m(t[2]))
+        })
+        .collect()
+}
+
+/// A convex polygon (a circle's chords) as a fan of `n` slivers from
+/// `apex`, every sliver sharing its corners with its neighbours,
+/// clamped to the square.
+fn fan(apex: DVec2, centre: DVec2, r: f64, n: usize, h: f64) -> Vec<Tri> {
+    let on = |v: DVec2| v.clamp(DVec2::splat(-h), DVec2::splat(h));
+    let ring: Vec<DVec2> = (0..n)
+        .map(|k| {
+            let a = k as f64 * std::f64::consts::TAU / n as f64;
+            on(centre + DVec2::new(a.cos(), a.sin()) * r)
+        })
+        .collect();
+    (0..n)
+        .filter_map(|k| Tri::new(on(apex), ring[k], ring[(k + 1) % n]))
+        .collect()
+}
+
+/// Case `case` of the families the two searches are compared on, and
+/// its square's half-width: random piles deep and shallow, on a
+/// lattice, triangles along the square's sides, nested, stacked
+/// (homothets about a point outside), exact and near-coincident copies,
+/// and fans of slivers.
+fn family(case: usize, rng: &mut Rng) -> (f64, Vec<Tri>) {
+    let h = if case % 2 == 0 { 1.5 } else { 1.0 };
+    let corner = |rng: &mut Rng| DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
+    match case % 9 {
+        0 => deep_case(case, rng, 600),
+        1 => {
+            let n = 1 + rng.below(200) as usize;
+            let depth = rng.uniform(0.3, 2.0);
+            (h, pile(case / 9, rng, n, depth, h))
+        }
+        2 => {
+            let n = 1 + rng.below(150) as usize;
+            (h, clipped_like(rng, n, h))
+        }
+        3 => {
+            let t = [corner(rng), corner(rng), corner(rng)].map(|v| v * 0.3);
+            let c = (t[0] + t[1] + t[2]) / 3.0;
+            (
+                h,
+                homothets(
+                    t,
+                    c,
+                    50 + rng.below(300) as usize,
+                    rng.uniform(1e-4, 1e-2),
+                    h,
+                ),
+            )
+        }
+        4 => {
+            let t = [corner(rng), corner(rng), corner(rng)];
+            let outside = DVec2::new(rng.uniform(2.0, 4.0) * h, rng.uniform(-h, h));
+            let n = 50 + rng.below(300) as usize;
+            (h, homothets(t, outside, n, rng.uniform(1e-5, 1e-3), h))
+        }
+        5 => {
+            let t = [corner(rng), corner(rng), corner(rng)];
+            let mut tris: Vec<Tri> = (0..1 + rng.below(40))
+                .filter_map(|_| Tri::new(t[0], t[1], t[2]))
+                .collect();
+            let more = rng.below(20) as usize;
+            tris.extend(clipped_like(rng, more, h));
+            (h, tris)
+        }
+        6 => {
+            let t = [corner(rng), corner(rng), corner(rng)];
+            let step = rng.uniform(1e-15, 1e-9);
+            let tris = (0..2 + rng.below(100))
+                .filter_map(|k| {
+                    let d = DVec2::new(step * k as f64, 0.0);
+                    Tri::new(t[0] + d, t[1] + d, t[2] + d)
+                })
+                .collect();
+            (h, tris)
+        }
+        7 => {
+            let apex = corner(rng) * rng.uniform(0.0, 2.0);
+            let c = corner(rng) * 0.5;
+            (
+                h,
+                fan(
+                    apex,
+                    c,
+                    rng.uniform(0.1, 3.0),
+                    3 + rng.below(2000) as usize,
+                    h,
+                ),
+            )
+        }
+        _ => {
+            // Two fans and a pile over them.
+            let mut tris = fan(corner(rng), corner(rng) * 0.3, 0.7, 300, h);
+            tris.extend(fan(corner(rng), corner(rng) * 0.3, 0.5, 200, h));
+            tris.extend(pile(case / 9, rng, 200, 1.5, h));
+            (h, tris)
+        }
+    }
+}
+
+/// The tree's search gives the grid's area and bound bit for bit, on both measures, over every family of
+/// [`family`] (the bound since [`cut_errors`] takes the largest error
+/// among spans starting at one point: before, the first found).
+#[test]
+fn the_tree_search_gives_the_grid_area_bit_for_bit() {
+    let mut rng = Rng::new(61);
+    let mut scratch = UnionScratch::default();
+    let mut nonzero = 0;
+    for case in 0..270 {
+        let (h, tris) = family(case, &mut rng);
+        let w: Vec<[f64; 3]> = tris
+            .iter()
+            .map(|t| {
+                let mut w = [0.0; 3];
+                for (k, wk) in w.iter_mut().enumerate() {
+                    let (a, b) = t.edge(k);
+                    *wk = 1e-16 * rng.unit() * (b - a).length();
+                }
+                w
+            })
+            .collect();
+        for measure in [Measure::Disk(1.0), Measure::Square] {
+            let grid = area_by(Search::Grid, &tris, &w, measure, h, &mut scratch);
+            for search in [Search::Tree] {
+                let other = area_by(search, &tris, &w, measure, h, &mut scratch);
+                for (g, t) in grid.iter().zip(&other) {
+                    assert_eq!(
+                        g.0.to_bits(),
+                        t.0.to_bits(),
+                        "case {case}, {} triangles, {measure:?}: grid {g:?}, {search:?} {t:?}",
+                        tris.len()
+                    );
+                    assert_eq!(
+                        g.1.to_bits(),
+                        t.1.to_bits(),
+                        "case {case}: bounds {} and {}",
+                        g.1,
+                        t.1
+                    );
+                }
+            }
+            nonzero += usize::from(grid[0].0 > 0.0);
+        }
+    }
+    assert!(nonzero > 500, "{nonzero} unions of positive area");
+}
+
+/// The area of the union of `tris` by brute force: the plane cut into
+/// vertical slabs at every corner and every crossing of two edges, in
+/// each of which the union's section is a fixed set of trapezoids, so
+/// its length is linear in `x` and the midpoint rule is exact.
+fn slab_area(tris: &[Tri]) -> f64 {
+    let edges: Vec<(DVec2, DVec2)> = tris
+        .iter()
+        .flat_map(|t| (0..3).map(|k| t.edge(k)))
+        .collect();
+    let mut xs: Vec<f64> = tris.iter().flat_map(|t| t.v.map(|v| v.x)).collect();
+    for (i, &(a, b)) in edges.iter().enumerate() {
+        for &(c, d) in &edges[i + 1..] {
+            let (r, s) = (b - a, d - c);
+            let den = r.perp_dot(s);
+            if den == 0.0 {
+                continue;
+            }
+            let t = (c - a).perp_dot(s) / den;
+            let u = (c - a).perp_dot(r) / den;
+            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+                xs.push(a.x + t * r.x);
+            }
+        }
+    }
+    xs.sort_by(f64::total_cmp);
+    xs.dedup();
+    let mut area = 0.0;
+    let mut sections = Vec::new();
+    for w in xs.windows(2) {
+        let x = 0.5 * (w[0] + w[1]);
+        sections.clear();
+        for t in tris {
+            let ys: Vec<f64> = (0..3)
+                .filter_map(|k| {
+                    let (a, b) = t.edge(k);
+                    let (lo, hi) = (a.x.min(b.x), a.x.max(b.x));
+                    (lo < x && x < hi).then(|| a.y + (b.y - a.y) * (x - a.x) / (b.x - a.x))
+                })
+                .collect();
+            if ys.len() == 2 {
+                sections.push((ys[0].min(ys[1]), ys[0].max(ys[1])));
+            }
+        }
+        sections.sort_by(|p, q| p.0.total_cmp(&q.0));
+        let (mut length, mut reach) = (0.0, f64::NEG_INFINITY);
+        for &(lo, hi) in &sections {
+            if hi > reach {
+                length += hi - lo.max(reach);
+                reach = hi;
+            }
+        }
+        area += (w[1] - w[0]) * length;
+    }
+    area
+}
+
+/// The area of `∪ tris ∩ unit disk` by inclusion–exclusion: each
+/// subset's intersection a convex polygon (the triangles clipped by
+/// each other), its area within the disk by `polygon_disk_area`.
+fn inclusion_exclusion_disk_area(tris: &[Tri]) -> f64 {
+    use crate::kernel::disk::f64::polygon_disk_area;
+    let n = tris.len();
+    let mut total = 0.0;
+    for set in 1_u32..1 << n {
+        let first = set.trailing_zeros() as usize;
+        let mut poly: Vec<DVec2> = tris[first].v.to_vec();
+        for (k, t) in tris.iter().enumerate().skip(first + 1) {
+            if set >> k & 1 == 0 {
+                continue;
+            }
+            for e in 0..3 {
+                let (a, b) = t.edge(e);
+                let side = |p: DVec2| (b - a).perp_dot(p - a);
+                let mut out = Vec::new();
+                for i in 0..poly.len() {
+                    let (p, q) = (poly[i], poly[(i + 1) % poly.len()]);
+                    let (sp, sq) = (side(p), side(q));
+                    if sp >= 0.0 {
+                        out.push(p);
+                    }
+                    if (sp > 0.0 && sq < 0.0) || (sp < 0.0 && sq > 0.0) {
+                        out.push(p + (q - p) * (sp / (sp - sq)));
+                    }
+                }
+                poly = out;
+            }
+        }
+        let sign = if set.count_ones() % 2 == 1 { 1.0 } else { -1.0 };
+        total += sign * polygon_disk_area(1.0, &poly);
+    }
+    total
+}
+
+/// The union's area (both searches) against brute force on small
+/// piles: random, nested, exact and near-coincident copies, stacked
+/// layers, slivers of a fan. Within the square, the slab
+/// decomposition (up to 60 triangles); within the unit disk,
+/// inclusion–exclusion (up to 7).
+#[test]
+fn the_union_is_the_brute_force_area_on_small_piles() {
+    let mut rng = Rng::new(67);
+    let mut scratch = UnionScratch::default();
+    for case in 0..600 {
+        let disk = case % 3 == 0;
+        let (h, most) = if disk { (1.5, 7) } else { (1.0, 60) };
+        let n = 1 + rng.below(most) as usize;
+        let corner = |rng: &mut Rng| DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
+        let t = [corner(&mut rng), corner(&mut rng), corner(&mut rng)];
+        let mut tris: Vec<Tri> = match case % 5 {
+            0 => {
+                let depth = rng.uniform(0.5, 4.0);
+                pile(case, &mut rng, n, depth, h)
+            }
+            1 => {
+                let c = (t[0] + t[1] + t[2]) / 3.0;
+                homothets(t, c, n, rng.uniform(1e-3, 0.3), h)
+            }
+            2 => {
+                // Exact copies and copies 1e-12 apart, some reversed.
+                (0..n)
+                    .filter_map(|k| {
+                        let d = DVec2::new(1e-12 * (k % 3) as f64, 0.0);
+                        if k % 2 == 0 {
+                            Tri::new(t[0] + d, t[1] + d, t[2] + d)
+                        } else {
+                            Tri::new(t[2], t[1], t[0])
+                        }
+                    })
+                    .collect()
+            }
+            3 => {
+                let outside = DVec2::new(rng.uniform(2.0, 4.0) * h, rng.uniform(-h, h));
+                homothets(t.map(|v| v * 0.5), outside, n, rng.uniform(1e-4, 1e-2), h)
+            }
+            _ => fan(
+                corner(&mut rng),
+                corner(&mut rng) * 0.3,
+                rng.uniform(0.2, 1.2),
+                n.max(3),
+                h,
+            ),
+        };
+        tris.truncate(most as usize);
+        let expected = if disk {
+            inclusion_exclusion_disk_area(&tris)
+        } else {
+            slab_area(&tris)
+        };
+        let measure = if disk {
+            Measure::Disk(1.0)
+        } else {
+            Measure::Square
+        };
+        for search in [Search::Grid, Search::Tree] {
+            scratch.search = search;
+            let area = union_area::<false>(&tris, &[], measure, h, &mut scratch).0;
+            assert!(
+                (area - expected).abs() <= 1e-11,
+                "case {case} ({search:?}): {} triangles, {area} against {expected}",
+                tris.len()
+            );
+        }
+    }
+}

@@ -1,0 +1,134 @@
+//! The union's triangles and the area it is measured with.
+
+use crate::kernel::disk::f64::segment_disk_area;
+use crate::kernel::predicate::{orient2d, Sign};
+use glam::DVec2;
+
+/// A projected triangle, counter-clockwise, with its bounds; its corners
+/// are finite (the orientation of a non-finite point is zero, so
+/// [`Tri::new`] refuses it).
+#[derive(Clone, Copy, Debug)]
+pub(in crate::kernel::receiver_view) struct Tri {
+    pub(super) v: [DVec2; 3],
+    pub(super) lo: DVec2,
+    pub(super) hi: DVec2,
+}
+
+impl Tri {
+    /// The triangle oriented counter-clockwise; `None` when it is
+    /// degenerate (decided exactly).
+    pub(in crate::kernel::receiver_view) fn new(a: DVec2, b: DVec2, c: DVec2) -> Option<Tri> {
+        let v = match orient2d(a, b, c) {
+            Sign::Positive => [a, b, c],
+            Sign::Negative => [a, c, b],
+            Sign::Zero => return None,
+        };
+        Some(Tri {
+            v,
+            lo: a.min(b).min(c),
+            hi: a.max(b).max(c),
+        })
+    }
+
+    /// Whether the triangle's first edge runs `a → b` (it was given
+    /// counter-clockwise, not reversed).
+    pub(in crate::kernel::receiver_view) fn first_edge_is(&self, a: DVec2, b: DVec2) -> bool {
+        self.v[0] == a && self.v[1] == b
+    }
+
+    pub(super) fn edge(&self, k: usize) -> (DVec2, DVec2) {
+        (self.v[k], self.v[(k + 1) % 3])
+    }
+
+    /// Twice the area, rounded (positive, or zero where it underflows).
+    pub(super) fn doubled_area(&self) -> f64 {
+        let [a, b, c] = self.v;
+        (b - a).perp_dot(c - a)
+    }
+}
+
+/// What area the union is measured with.
+#[derive(Clone, Copy, Debug)]
+pub(in crate::kernel::receiver_view) enum Measure {
+    /// The disk of this radius about the origin.
+    Disk(f64),
+    /// The square `[−1, 1]²`, inside which every projected triangle lies.
+    Square,
+}
+
+impl Measure {
+    /// The half-width of the measure's box.
+    pub(in crate::kernel::receiver_view) fn radius(self) -> f64 {
+        match self {
+            Measure::Disk(r) => r,
+            Measure::Square => 1.0,
+        }
+    }
+
+    /// The signed area the directed boundary piece `a → b` contributes.
+    pub(super) fn piece(self, a: DVec2, b: DVec2) -> f64 {
+        match self {
+            Measure::Disk(r) => segment_disk_area(r, a, b),
+            Measure::Square => 0.5 * a.perp_dot(b),
+        }
+    }
+
+    /// Whether the triangle certainly misses the measure (bounds apart).
+    /// Whether the triangle misses the measure's interior (the disk: the
+    /// centre outside it and every edge at least `r` away; so a lit
+    /// receiver gets `V = 1` exactly, with no boundary pieces to sum).
+    pub(in crate::kernel::receiver_view) fn misses(self, t: &Tri) -> bool {
+        let r = match self {
+            Measure::Disk(r) => r,
+            Measure::Square => 1.0,
+        };
+        if t.lo.x >= r || t.lo.y >= r || t.hi.x <= -r || t.hi.y <= -r {
+            return true;
+        }
+        let Measure::Disk(r) = self else {
+            return false;
+        };
+        let centre_outside = (0..3).any(|k| {
+            let (a, b) = t.edge(k);
+            orient2d(a, b, DVec2::ZERO) == Sign::Negative
+        });
+        centre_outside
+            && (0..3).all(|k| {
+                let (a, b) = t.edge(k);
+                let d = b - a;
+                let s = (-a.dot(d) / d.length_squared()).clamp(0.0, 1.0);
+                (a + d * s).length_squared() >= r * r
+            })
+    }
+
+    /// Whether the triangle alone covers the whole measure.
+    pub(in crate::kernel::receiver_view) fn covered_by(self, t: &Tri) -> bool {
+        self.covered_by_convex(&t.v)
+    }
+
+    /// Whether the convex polygon `v` (counter-clockwise) alone covers the
+    /// whole measure: the disk's centre at least `r` inside every edge, or
+    /// every corner of the square on the inner side of every edge.
+    pub(in crate::kernel::receiver_view) fn covered_by_convex(self, v: &[DVec2]) -> bool {
+        let n = v.len();
+        if n < 3 {
+            return false;
+        }
+        let edges = (0..n).map(|k| (v[k], v[(k + 1) % n]));
+        match self {
+            Measure::Disk(r) => edges.clone().all(|(a, b)| {
+                let d = b - a;
+                // Signed distance of the centre from the edge's line.
+                d.perp_dot(-a) >= r * d.length()
+            }),
+            Measure::Square => [(-1.0, -1.0), (1.0, -1.0), (1.0, 1.0), (-1.0, 1.0)]
+                .iter()
+                .all(|&(x, y)| {
+                    let c = DVec2::new(x, y);
+                    edges
+                        .clone()
+                        .all(|(a, b)| orient2d(a, b, c) != Sign::Negative)
+                }),
+        }
+    }
+}
