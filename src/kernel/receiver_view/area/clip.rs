@@ -2,6 +2,7 @@
 //! lines and crossings it is cut with.
 
 use super::image::Image;
+use crate::kernel::receiver_view::union::Measure;
 use glam::DVec2;
 use std::f64::consts::SQRT_2;
 
@@ -51,13 +52,16 @@ pub(super) struct Clip {
     /// The lines cut by so far (cone planes 0–2, the plane 3).
     lines: [Option<Line>; 4],
     half: f64,
+    /// The light in the view's coordinates: a disk of this radius, or
+    /// (`None`) the square `[−1, 1]²`.
+    disk: Option<f64>,
     /// The allowance of a thin image within its lines' errors of being
     /// cut away whole (see [`Image::extra`]).
     extra: f64,
 }
 
 impl Clip {
-    pub(super) fn new(h: f64) -> Clip {
+    pub(super) fn new(h: f64, measure: Measure) -> Clip {
         let z = DVec2::ZERO;
         let image = Image {
             v: [
@@ -80,6 +84,10 @@ impl Clip {
             on,
             lines: [None; 4],
             half: h,
+            disk: match measure {
+                Measure::Disk(r) => Some(r),
+                Measure::Square => None,
+            },
             extra: 0.0,
         }
     }
@@ -133,7 +141,8 @@ impl Clip {
                 (m.max(f[k] / norm), e.max(self.image.err[k]))
             });
             if most > -(line.err + err) * 2.0 {
-                self.extra += 2.0 * (line.err + err) * 2.0 * SQRT_2 * self.half;
+                let band = self.band(&self.image.v[..n], &line, 1.0, line.err, err);
+                self.extra += band.min(self.wedge(slot, &line, 1.0, 0.0));
             }
             self.image.len = 0;
             return false;
@@ -280,11 +289,130 @@ impl Clip {
                 })
                 .fold(f64::INFINITY, f64::min);
             if near < (l.err + most_rho) * 2.0 {
-                image.extra += 2.0 * (l.err + most_rho) * diagonal;
+                let band = self.band(&image.v[..n], l, -1.0, l.err, most_rho);
+                image.extra += band.min(self.wedge(slot, l, -1.0, most_rho));
             }
         }
         self.image = image;
         self.image
+    }
+
+    /// The area the exact image may differ by near a line that the
+    /// convex polygon `v` (vertices within `e` of the exact ones) lies
+    /// within `2(δ + e)` of without being cut by it (`σ = 1`: `v` on the
+    /// line's negative side, the image may be a sliver across it; `σ = −1`:
+    /// `v` on its positive side, the exact line may cut a sliver off), the
+    /// line within `δ` of the exact one over the square: a band of width
+    /// `2(δ + e)` along the part `Q` of `v` where `σ · line ≥ −2(δ + e)`
+    /// (in units of its larger coefficient), that part grown by `e`;
+    /// nothing where `Q` so grown misses the light. `Q` lies in the box of
+    /// the vertices in that slab and the edges' crossings of its side,
+    /// each crossing within the rounding of its parameter (the lines'
+    /// values are within `4u` of their terms, as in [`distance`]).
+    fn band(&self, v: &[DVec2], line: &Line, sigma: f64, delta: f64, e: f64) -> f64 {
+        const U4: f64 = 4.0 * f64::EPSILON;
+        let level = -2.0 * (delta + e);
+        let norm = line.a.abs().max(line.b.abs());
+        let value = |q: DVec2| {
+            let terms = (line.a * q.x).abs() + (line.b * q.y).abs() + line.c.abs();
+            (sigma * line.at(q) / norm, U4 * terms / norm)
+        };
+        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
+        let mut margin = 0.0_f64;
+        let n = v.len();
+        for k in 0..n {
+            let j = if k + 1 == n { 0 } else { k + 1 };
+            let ((ga, ea), (gb, eb)) = (value(v[k]), value(v[j]));
+            let (a_in, b_in) = (ga >= level - ea, gb >= level - eb);
+            if a_in {
+                (lo, hi) = (lo.min(v[k]), hi.max(v[k]));
+            }
+            if a_in != b_in {
+                // The crossing of the slab's side, from the end inside.
+                let ((a, ga), (b, gb)) = if a_in {
+                    ((v[k], ga), (v[j], gb))
+                } else {
+                    ((v[j], gb), (v[k], ga))
+                };
+                let t = ((ga - level) / (ga - gb)).clamp(0.0, 1.0);
+                let q = a + (b - a) * t;
+                let dt = (ea + eb) / (ga - gb).abs() + U4;
+                (lo, hi) = (lo.min(q), hi.max(q));
+                margin = margin.max((b - a).length() * dt + U4 * q.abs().max_element());
+            }
+        }
+        let diagonal = 2.0 * SQRT_2 * self.half;
+        let width = 2.0 * (delta + e);
+        let grow = DVec2::splat(e + margin);
+        let (lo, hi) = (lo - grow, hi + grow);
+        if !(lo.x <= hi.x && lo.y <= hi.y && margin.is_finite()) {
+            // No box (values not finite): the band along the whole square.
+            return width * diagonal;
+        }
+        let misses = match self.disk {
+            Some(r) => DVec2::ZERO.clamp(lo, hi).length() > r * (1.0 + U4),
+            None => lo.x > 1.0 || lo.y > 1.0 || hi.x < -1.0 || hi.y < -1.0,
+        };
+        if misses {
+            return 0.0;
+        }
+        width * (hi - lo).length().min(diagonal) * (1.0 + U4)
+    }
+
+    /// A second bound on the area of [`Clip::band`]'s sliver, from the
+    /// lines alone (the vertices' errors left out, which are large where
+    /// nearly parallel lines meet): the sliver lies where `σ · line ≥ −(δ
+    /// + e)` and, for every other line cut by, `line_j ≥ −(δ_j + e)` (`e`
+    /// the computed vertices' distance from their lines, 0 for the exact
+    /// image) — for one other line nearly opposite to this one, a wedge
+    /// whose width `A + B t` is linear along the line; its area over the
+    /// light's circumscribed disk (radius `ρ`: `|t| ≤ ρ`) is the integral
+    /// of `max(0, A + B t)`. The least over the other lines; infinite where
+    /// none is nearly opposite. The rounding of the normalised lines
+    /// (a few ulps of each term) is added to `A`.
+    fn wedge(&self, slot: usize, line: &Line, sigma: f64, e: f64) -> f64 {
+        const SLACK: f64 = 64.0 * f64::EPSILON;
+        let rho = match self.disk {
+            Some(r) => r,
+            None => SQRT_2,
+        };
+        let unit = |l: &Line, s: f64| {
+            let h = l.a.hypot(l.b);
+            (DVec2::new(s * l.a / h, s * l.b / h), s * l.c / h)
+        };
+        let (n, c) = unit(line, sigma);
+        let delta = line.err + e;
+        let mut least = f64::INFINITY;
+        for (j, other) in self.lines.iter().enumerate() {
+            let Some(other) = other.filter(|_| j != slot) else {
+                continue;
+            };
+            let (m, d) = unit(&other, 1.0);
+            // m = μ n + ν n⊥; x = s n + t n⊥: s ≥ −c − δ and
+            // μ s + ν t ≥ −d − δⱼ, so for μ < 0 the width in s is
+            // (d + δⱼ + ν t) / (−μ) + c + δ.
+            let (mu, nu) = (m.dot(n), -m.perp_dot(n));
+            if !(mu < -0.5) {
+                continue;
+            }
+            let dj = other.err + e;
+            let a = (d + dj) / -mu + c + delta;
+            let b = nu / -mu;
+            let slack = SLACK * ((d.abs() + dj) / -mu + c.abs() + delta + rho * (1.0 + b.abs()));
+            let a = a + slack;
+            let (y0, y1) = (a - b * rho, a + b * rho);
+            let area = if y0 <= 0.0 && y1 <= 0.0 {
+                0.0
+            } else if y0 >= 0.0 && y1 >= 0.0 {
+                2.0 * rho * a
+            } else {
+                y0.max(y1).powi(2) / (2.0 * b.abs())
+            };
+            if area.is_finite() {
+                least = least.min(area * (1.0 + SLACK));
+            }
+        }
+        least
     }
 
     /// The point where the lines `l` and `e` meet, and a bound on its

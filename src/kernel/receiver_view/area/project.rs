@@ -313,7 +313,7 @@ impl AreaView {
         }
         lines[3] = (line, sigma);
         // Every line leaves some of the light: cut the square by each.
-        let mut clip = Clip::new(self.half);
+        let mut clip = Clip::new(self.half, self.measure);
         for (i, &(line, s)) in lines[..3].iter().enumerate() {
             if !clip.cut(On::Cone(i as u8), line, s, |corner| {
                 *corners[corner].get_or_insert_with(|| {
