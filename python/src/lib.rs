@@ -895,11 +895,10 @@ fn score<'py>(
 /// `options` (one line per option: what it accepts, its default),
 /// `default_run` (the settings the default run compares, on each light
 /// kind of `lights`) and `compare` (the settings a report compares).
-/// Methods of the design not built yet are left out.
 #[pyfunction]
 fn methods(py: Python<'_>) -> PyResult<Bound<'_, PyList>> {
     let out = PyList::empty(py);
-    for e in REGISTRY.iter().filter(|e| e.is_built()) {
+    for e in REGISTRY {
         let d = PyDict::new(py);
         d.set_item("name", e.name)?;
         d.set_item("usage", e.usage())?;

@@ -236,13 +236,6 @@ pub enum ParseError {
         /// The available methods, as [`registry::available`](super::registry::available) lists them.
         available: String,
     },
-    /// A method of the design that is not built yet.
-    NotBuilt {
-        /// Its base name.
-        base: &'static str,
-        /// The available methods.
-        available: String,
-    },
     /// An option of a known method.
     Option {
         /// The whole name given.
@@ -273,10 +266,6 @@ impl fmt::Display for ParseError {
             ParseError::UnknownMethod { name, available } => {
                 write!(f, "unknown method '{name}'; available: {available}")
             }
-            ParseError::NotBuilt { base, available } => write!(
-                f,
-                "method '{base}' is not built yet; available: {available}"
-            ),
             ParseError::Option {
                 name,
                 error,
@@ -725,20 +714,26 @@ pub fn round_trip<T: Configurable>() -> Result<(), TableError> {
     Ok(())
 }
 
-/// One entry of a method's [`Configurable::FIELDS`] table, on one line:
+/// One entry of a method's [`Configurable::FIELDS`] table, from the field
+/// `f: t` and the option written after it in `method_options!`:
 ///
-/// - `field!(flag "key", field, "doc")`: a `bool` field, on when present;
-/// - `field!(flag "key", !field, "doc")`: a `bool` field on by default,
-///   off when the flag is present (`no-bin-depth`);
-/// - `field!(flag "key", field == ON else OFF, "doc")`: a two-valued field,
-///   `ON` when present;
-/// - `field!(int "key", field: u32, (min, max), "doc")`: an integer field;
-/// - `field!(real "key", field, (min, max), "doc")`: an `f64` field.
+/// - `flag "key"`: a `bool` field, on when present;
+/// - `flag ! "key"`: a `bool` field on by default, off when the flag is
+///   present (`no-bin-depth`);
+/// - `flag "key" == ON, else OFF`: a two-valued field, `ON` when present;
+/// - `int "key", (min, max)`: an integer field;
+/// - `positional int "N", (min, max)`: the integer that stands alone
+///   (`mc:256`);
+/// - `real "key", (min, max)`: an `f64` field;
+/// - `choice "key", ["word" = VALUE, …]`: one of a list of values, each
+///   named by a word;
+///
+/// each followed by `, "doc"`.
 macro_rules! field {
-    (flag $key:literal, !$f:ident, $doc:literal) => {
+    ($f:ident: $t:ty; flag ! $key:literal, $doc:literal) => {
         $crate::method::options::flag($key, $doc, |m| !m.$f, |m, v| m.$f = !v)
     };
-    (flag $key:literal, $f:ident == $on:path, else $off:path, $doc:literal) => {
+    ($f:ident: $t:ty; flag $key:literal == $on:path, else $off:path, $doc:literal) => {
         $crate::method::options::flag(
             $key,
             $doc,
@@ -746,36 +741,142 @@ macro_rules! field {
             |m, v| m.$f = if v { $on } else { $off },
         )
     };
-    (flag $key:literal, $f:ident, $doc:literal) => {
+    ($f:ident: $t:ty; flag $key:literal, $doc:literal) => {
         $crate::method::options::flag($key, $doc, |m| m.$f, |m, v| m.$f = v)
     };
-    (int $key:literal, $f:ident: $t:ty, $r:expr, $doc:literal) => {
+    ($f:ident: $t:ty; positional int $key:literal, $r:expr, $doc:literal) => {
+        $crate::method::options::positional($crate::method::options::field!(
+            $f: $t; int $key, $r, $doc
+        ))
+    };
+    ($f:ident: $t:ty; int $key:literal, $r:expr, $doc:literal) => {
         $crate::method::options::int($key, $doc, $r, |m| m.$f as u64, |m, v| m.$f = v as $t)
     };
-    (real $key:literal, $f:ident, $r:expr, $doc:literal) => {
+    ($f:ident: $t:ty; real $key:literal, $r:expr, $doc:literal) => {
         $crate::method::options::real($key, $doc, $r, |m| m.$f, |m, v| m.$f = v)
+    };
+    ($f:ident: $t:ty; choice $key:literal, [$($word:literal = $v:path),+ $(,)?], $doc:literal) => {
+        $crate::method::options::choice(
+            $key,
+            $doc,
+            &[$($word),+],
+            |m| {
+                [$($v),+]
+                    .iter()
+                    .position(|c| *c == m.$f)
+                    .unwrap_or(usize::MAX)
+            },
+            |m, i| m.$f = [$($v),+][i],
+        )
     };
 }
 pub(crate) use field;
 
-/// Builder methods `with_x(value)` for fields of a method's options, each
-/// documented: `builders!(Pcss { /// With a … map. with_resolution =>
-/// resolution: u32, … })`.
-macro_rules! builders {
-    ($T:ident { $($(#[$doc:meta])* $name:ident => $f:ident: $t:ty),* $(,)? }) => {
-        impl $T {
+/// A method's options declared once: each field with its doc, type and
+/// default, then optionally its command-line option (the forms of
+/// `field!`) and a builder `with_x(value)`; then the method's registry
+/// constants. Yields the struct, its `Default`, the builders and the
+/// [`Configurable`] implementation, whose `FIELDS` list the fields with an
+/// option in declaration order (the order names print them).
+///
+/// ```text
+/// method_options! {
+///     /// Docs of the method.
+///     #[derive(Clone, Copy, Debug, PartialEq)]
+///     pub struct Pcss {
+///         /// Side of the map; default 1024.
+///         pub resolution: u32 = 1024,
+///             option(int "map", (1, 16384), "side of the map (ours)"),
+///             builder(/// With a map of `value × value` texels.
+///                 with_resolution);
+///         …
+///     }
+///     name: "pcss",
+///     summary: "percentage-closer soft shadows (Fernando 2005)",
+///     lights: LightKind::ALL,
+///     default_run: &["pcss"],
+///     compare: &["pcss", "pcss:map=256"],
+/// }
+/// ```
+///
+/// The method's `impl Method` takes its `name()` and `lights()` from
+/// `from_options!`.
+macro_rules! method_options {
+    (
+        $(#[$attr:meta])*
+        pub struct $T:ident {
             $(
-                $(#[$doc])*
+                $(#[$fdoc:meta])*
+                pub $f:ident: $t:ty = $default:expr
+                $(, option($($opt:tt)*))?
+                $(, builder($(#[$bdoc:meta])* $b:ident))?
+                ;
+            )*
+        }
+        name: $name:literal,
+        summary: $summary:expr,
+        lights: $lights:expr,
+        default_run: $run:expr,
+        compare: $compare:expr $(,)?
+    ) => {
+        $(#[$attr])*
+        pub struct $T {
+            $(
+                $(#[$fdoc])*
+                pub $f: $t,
+            )*
+        }
+
+        impl Default for $T {
+            fn default() -> $T {
+                $T {
+                    $($f: $default,)*
+                }
+            }
+        }
+
+        impl $T {
+            $($(
+                $(#[$bdoc])*
                 #[must_use]
-                pub fn $name(mut self, value: $t) -> $T {
+                pub fn $b(mut self, value: $t) -> $T {
                     self.$f = value;
                     self
                 }
-            )*
+            )?)*
+        }
+
+        impl $crate::method::options::Configurable for $T {
+            const NAME: &'static str = $name;
+            const SUMMARY: &'static str = $summary;
+            const LIGHTS: &'static [$crate::scene::LightKind] = $lights;
+            const DEFAULT_RUN: &'static [&'static str] = $run;
+            const COMPARE: &'static [&'static str] = $compare;
+            const FIELDS: &'static [$crate::method::options::Field<$T>] = &[
+                $($(
+                    $crate::method::options::field!($f: $t; $($opt)*),
+                )?)*
+            ];
         }
     };
 }
-pub(crate) use builders;
+pub(crate) use method_options;
+
+/// The items of `impl Method` that a method declared with
+/// `method_options!` takes from its declaration: `name()`, its
+/// [`print`]ed name, and `lights()`, its [`Configurable::LIGHTS`].
+macro_rules! from_options {
+    () => {
+        fn name(&self) -> String {
+            $crate::method::options::print(self)
+        }
+
+        fn lights(&self) -> &'static [$crate::scene::LightKind] {
+            <Self as $crate::method::options::Configurable>::LIGHTS
+        }
+    };
+}
+pub(crate) use from_options;
 
 #[cfg(test)]
 mod tests {
