@@ -7,7 +7,7 @@ use super::plots;
 use super::ReportError;
 use super::{CellRecord, Errors, Results, SceneRecord, GROUPS, SLOW_RUN};
 use crate::method::registry::REGISTRY;
-use crate::render::image::Rgb;
+use crate::output::image::Rgb;
 use crate::scene::file::{read_input, MAX_TEXT_BYTES};
 use std::collections::{HashMap, HashSet};
 use std::fmt::Write as _;
@@ -44,7 +44,7 @@ fn write_file(path: &Path, text: &str) -> Result<(), ReportError> {
         std::fs::create_dir_all(parent).map_err(|e| ReportError::file(parent, e))?;
     }
     // Atomically: a reader never sees half a report, a symlink is replaced.
-    crate::render::image::write_atomically(path, text.as_bytes())
+    crate::output::image::write_atomically(path, text.as_bytes())
         .map_err(|e| ReportError::file(path, e))
 }
 

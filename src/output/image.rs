@@ -5,9 +5,8 @@
 //! Images are 8-bit sRGB, row-major from the top-left, three bytes per
 //! pixel ([`Rgb`]).
 
-use super::frame::{Frame, BACKGROUND};
-use super::Receiver;
 use crate::definitions::in_penumbra;
+use crate::render::{Frame, Receiver, BACKGROUND};
 use crate::scene::{Light, Scene};
 use glam::DVec3;
 use std::fmt;

@@ -15,9 +15,9 @@
 //! background pixels are ignored.
 
 use super::image::ErrorSummary;
-use super::{Frame, Stages, BACKGROUND};
 use crate::definitions::in_penumbra;
 use crate::method::{self, Exact, MethodError};
+use crate::render::{Frame, Stages, BACKGROUND};
 use crate::scene::{Light, Receiver, Scene};
 use std::fmt::Write as _;
 
