@@ -18,10 +18,7 @@ method_options! {
     pub struct HardShadow {
         /// The [horizon bound](Horizon), `min(V, V_h)`; default off (ours, not
         /// a paper's).
-        pub horizon: bool = false,
-            option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"),
-            builder(/// With or without the horizon bound.
-                with_horizon);
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
     }
     name: "hard",
     summary: "hard shadows: the point light at the light's centre",

@@ -55,48 +55,30 @@ method_options! {
     pub struct Pcss {
         /// Side of the square light-view depth map, in texels, `1..=16384`;
         /// default [`Pcss::DEFAULT_RESOLUTION`].
-        pub resolution: u32 = Pcss::DEFAULT_RESOLUTION,
-            option(int "map", (1, MAX_RESOLUTION as u64), "side of the depth map in texels (ours)"),
-            builder(/// With a depth map of `value × value` texels.
-                with_resolution);
+        pub resolution: u32 = Pcss::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the depth map in texels (ours)"), builder(with_resolution);
         /// Points read in the blocker search, `1..=4096`; default
         /// [`Pcss::DEFAULT_BLOCKER_SAMPLES`].
-        pub blocker_samples: u32 = Pcss::DEFAULT_BLOCKER_SAMPLES,
-            option(int "search", (1, 4096), "points read in the blocker search (ours)"),
-            builder(/// With `value` blocker-search samples.
-                with_blocker_samples);
+        pub blocker_samples: u32 = Pcss::DEFAULT_BLOCKER_SAMPLES, option(int "search", (1, 4096), "points read in the blocker search (ours)"), builder(with_blocker_samples);
         /// Points read by the filter, `1..=4096`; default
         /// [`Pcss::DEFAULT_FILTER_SAMPLES`].
-        pub filter_samples: u32 = Pcss::DEFAULT_FILTER_SAMPLES,
-            option(int "filter", (1, 4096), "points read by the filter (ours)"),
-            builder(/// With `value` filter samples.
-                with_filter_samples);
+        pub filter_samples: u32 = Pcss::DEFAULT_FILTER_SAMPLES, option(int "filter", (1, 4096), "points read by the filter (ours)"), builder(with_filter_samples);
         /// Which depth a texel is compared with; default
         /// [`PcssBias::ReceiverPlane`] (ours: the known improvement on the
         /// constant bias).
-        pub bias: PcssBias = PcssBias::ReceiverPlane,
-            option(flag "constant" == PcssBias::Constant, else PcssBias::ReceiverPlane,
-                "compare texels with the receiver's own depth, not its tangent plane's"),
-            builder(/// With the depth comparison `value`.
-                with_bias);
+        pub bias: PcssBias = PcssBias::ReceiverPlane, option(flag "constant" == PcssBias::Constant, else PcssBias::ReceiverPlane, "compare texels with the receiver's own depth, not its tangent plane's"), builder(with_bias);
         /// The margin below that depth, relative to the receiver's depth `z_p`,
         /// for rounding and curvature, in `[0, 1]`; default
         /// [`Pcss::DEFAULT_BIAS_RELATIVE`].
-        pub bias_relative: f64 = Pcss::DEFAULT_BIAS_RELATIVE,
-            option(real "relative", (0.0, 1.0), "depth margin relative to the receiver's depth (ours)");
+        pub bias_relative: f64 = Pcss::DEFAULT_BIAS_RELATIVE, option(real "relative", (0.0, 1.0), "depth margin relative to the receiver's depth (ours)");
         /// The margin below that depth in texels, in `[0, 1000]`:
         /// `bias_texels · t · z_p`, `t` the texel's side on the light image
         /// plane (so `t · z_p` is its width at the receiver); covers a faceted
         /// or curved receiver leaving its tangent plane within the texel the
         /// sample falls in; default [`Pcss::DEFAULT_BIAS_TEXELS`].
-        pub bias_texels: f64 = Pcss::DEFAULT_BIAS_TEXELS,
-            option(real "texels", (0.0, 1000.0), "depth margin in texels at the receiver (ours)");
+        pub bias_texels: f64 = Pcss::DEFAULT_BIAS_TEXELS, option(real "texels", (0.0, 1000.0), "depth margin in texels at the receiver (ours)");
         /// The [horizon bound](super::Horizon), `min(V, V_h)`; default off
         /// (ours).
-        pub horizon: bool = false,
-            option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"),
-            builder(/// With or without the horizon bound.
-                with_horizon);
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
     }
     name: "pcss",
     summary: "percentage-closer soft shadows (Fernando 2005)",

@@ -19,9 +19,7 @@ method_options! {
     pub struct Exact {
         /// The largest certified bound accepted, in `(0, 1]`; 1 accepts every
         /// answer. Default 1.
-        pub tolerance: f64 = Exact.tolerance,
-            option(real "tolerance", (f64::MIN_POSITIVE, 1.0),
-                "refuse any receiver whose certified bound on |V - V_true| exceeds X; 1 refuses nothing (ours)");
+        pub tolerance: f64 = Exact.tolerance, option(real "tolerance", (f64::MIN_POSITIVE, 1.0), "refuse any receiver whose certified bound on |V - V_true| exceeds X; 1 refuses nothing (ours)");
     }
     name: "exact",
     summary: "the exact reference: the union of the occluders' images on the light, with a certified bound",
@@ -81,15 +79,10 @@ method_options! {
     pub struct MonteCarlo {
         /// Samples per receiver, from [`MIN_SAMPLES`](monte_carlo::MIN_SAMPLES)
         /// to `u32::MAX`; default [`MonteCarlo::DEFAULT_SAMPLES`].
-        pub samples: u32 = MonteCarlo::DEFAULT_SAMPLES,
-            option(positional int "N", (monte_carlo::MIN_SAMPLES as u64, u32::MAX as u64),
-                "samples per receiver");
+        pub samples: u32 = MonteCarlo::DEFAULT_SAMPLES, option(positional int "N", (monte_carlo::MIN_SAMPLES as u64, u32::MAX as u64), "samples per receiver");
         /// The seed of the sample sequences; default
         /// [`monte_carlo::DEFAULT_SEED`].
-        pub seed: u64 = monte_carlo::DEFAULT_SEED,
-            option(int "seed", (0, u64::MAX), "the seed of the sample sequences"),
-            builder(/// With the seed `value`.
-                with_seed);
+        pub seed: u64 = monte_carlo::DEFAULT_SEED, option(int "seed", (0, u64::MAX), "the seed of the sample sequences"), builder(with_seed);
     }
     name: "mc",
     summary: "Monte Carlo light sampling: N stratified samples per receiver, with a standard error",

@@ -86,52 +86,28 @@ method_options! {
     pub struct Oess {
         /// Side of the two endpoint maps, `1..=16384`; default
         /// [`Oess::DEFAULT_RESOLUTION`] (the paper measured up to 800²).
-        pub resolution: u32 = Oess::DEFAULT_RESOLUTION,
-            option(int "map", (1, MAX_RESOLUTION as u64), "side of the endpoint maps (the paper: up to 800)"),
-            builder(/// With endpoint maps of `value × value` texels.
-                with_resolution);
+        pub resolution: u32 = Oess::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the endpoint maps (the paper: up to 800)"), builder(with_resolution);
         /// Occluding edges by the tilt of fragments (§3.2, strategy 1);
         /// default on.
-        pub tilt: bool = true,
-            option(flag ! "no-tilt", "without the tilt strategy (§3.2, strategy 1)"),
-            builder(/// With or without the tilt strategy.
-                with_tilt);
+        pub tilt: bool = true, option(flag ! "no-tilt", "without the tilt strategy (§3.2, strategy 1)"), builder(with_tilt);
         /// Occluding edges by the corresponding pixels (§3.2, strategy 2);
         /// default on.
-        pub corresponding: bool = true,
-            option(flag ! "no-corr", "without the corresponding-pixels strategy (§3.2, strategy 2)"),
-            builder(/// With or without the corresponding-pixels strategy.
-                with_corresponding);
+        pub corresponding: bool = true, option(flag ! "no-corr", "without the corresponding-pixels strategy (§3.2, strategy 2)"), builder(with_corresponding);
         /// Penumbra only where the receiver is the surface the map sees
         /// (§3.4, substep 4.1's first approach); default off.
-        pub depth_check: bool = false,
-            option(flag "depth-check", "penumbra only where the map sees the receiver (§3.4, first approach)"),
-            builder(/// With or without the depth check.
-                with_depth_check);
+        pub depth_check: bool = false, option(flag "depth-check", "penumbra only where the map sees the receiver (§3.4, first approach)"), builder(with_depth_check);
         /// The paper's eq. 1 as printed instead of the stable construction;
         /// default off.
-        pub law_of_sines: bool = false,
-            option(flag "law-of-sines", "the paper's eq. 1 instead of the stable construction"),
-            builder(/// With or without the paper's eq. 1.
-                with_law_of_sines);
+        pub law_of_sines: bool = false, option(flag "law-of-sines", "the paper's eq. 1 instead of the stable construction"), builder(with_law_of_sines);
         /// The relative depth margin of "hidden from the other end" and "seen
         /// by an end", `[0, 1]`; default [`Oess::DEFAULT_BIAS`] (ours).
-        pub bias: f64 = Oess::DEFAULT_BIAS,
-            option(real "bias", (0.0, 1.0), "relative depth margin of the visibility tests (ours: 0.001)"),
-            builder(/// With the relative depth margin `value`.
-                with_bias);
+        pub bias: f64 = Oess::DEFAULT_BIAS, option(real "bias", (0.0, 1.0), "relative depth margin of the visibility tests (ours: 0.001)"), builder(with_bias);
     }
     name: "oess",
     summary: "occluding edges soft shadows for segment lights (Reimann & Dreier 2016)",
     lights: &[LightKind::Segment],
     default_run: &["oess"],
-    compare: &[
-        "oess",
-        "oess:no-tilt",
-        "oess:no-corr",
-        "oess:depth-check",
-        "oess:law-of-sines",
-    ],
+    compare: &["oess", "oess:no-tilt", "oess:no-corr", "oess:depth-check", "oess:law-of-sines"],
 }
 
 impl Oess {

@@ -101,81 +101,44 @@ method_options! {
     pub struct SingleSample {
         /// Side of the light's depth and id maps, `1..=16384`; default
         /// [`SingleSample::DEFAULT_RESOLUTION`] (the paper's §5).
-        pub resolution: u32 = SingleSample::DEFAULT_RESOLUTION,
-            option(int "map", (1, MAX_RESOLUTION as u64), "side of the depth and id maps (§5: 256)"),
-            builder(/// With light maps of `value × value` texels.
-                with_resolution);
+        pub resolution: u32 = SingleSample::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the depth and id maps (§5: 256)"), builder(with_resolution);
         /// `r_scale`, texels per unit of light depth, `[0, 10⁶]`; `0` (the
         /// default): 20 texels at the frame's farthest receiver (ours).
-        pub r_scale: f64 = 0.0,
-            option(real "r-scale", (0.0, 1e6), "texels per unit depth; 0: 20 texels at the farthest receiver (ours)"),
-            builder(/// With `r_scale` (`0`: derived).
-                with_r_scale);
+        pub r_scale: f64 = 0.0, option(real "r-scale", (0.0, 1e6), "texels per unit depth; 0: 20 texels at the farthest receiver (ours)"), builder(with_r_scale);
         /// `r_bias`, texels, `[0, 10⁶]`; default 0 (ours).
-        pub r_bias: f64 = 0.0,
-            option(real "r-bias", (0.0, 1e6), "texels added to the search radius (§3.2)"),
-            builder(/// With `r_bias`.
-                with_r_bias);
+        pub r_bias: f64 = 0.0, option(real "r-bias", (0.0, 1e6), "texels added to the search radius (§3.2)"), builder(with_r_bias);
         /// `r_shrink`, per unit of light depth, `[0, 10⁶]`; `0` (the default):
         /// the reciprocal of the frame's farthest receiver depth (ours).
-        pub r_shrink: f64 = 0.0,
-            option(real "r-shrink", (0.0, 1e6), "per unit depth gap; 0: 1/farthest depth (ours)"),
-            builder(/// With `r_shrink` (`0`: derived).
-                with_r_shrink);
+        pub r_shrink: f64 = 0.0, option(real "r-shrink", (0.0, 1e6), "per unit depth gap; 0: 1/farthest depth (ours)"), builder(with_r_shrink);
         /// Where the inner and outer penumbrae meet, `[0, 1]`; default 0.5
         /// (§3.3: "0.5 (or some user defined constant)").
-        pub meet: f64 = 0.5,
-            option(real "meet", (0.0, 1.0), "where inner and outer penumbrae meet (§3.3)"),
-            builder(/// Where the penumbrae meet.
-                with_meet);
+        pub meet: f64 = 0.5, option(real "meet", (0.0, 1.0), "where inner and outer penumbrae meet (§3.3)"), builder(with_meet);
         /// The adaptive interpolation of §4.3 on camera frames; default on
         /// (the paper's).
-        pub interpolate: bool = true,
-            option(flag ! "no-interpolate", "search every pixel (without §4.3's interpolation)"),
-            builder(/// With or without the adaptive interpolation.
-                with_interpolation);
+        pub interpolate: bool = true, option(flag ! "no-interpolate", "search every pixel (without §4.3's interpolation)"), builder(with_interpolation);
         /// The object-id test of §3.2; default on (the paper's).
-        pub id_test: bool = true,
-            option(flag ! "no-id", "without the object-id test (§3.2)"),
-            builder(/// With or without the object-id test.
-                with_id_test);
+        pub id_test: bool = true, option(flag ! "no-id", "without the object-id test (§3.2)"), builder(with_id_test);
         /// The light-aware radii (ours, the paper's future work); default off.
-        pub light_aware: bool = false,
-            option(flag "light-aware", "radii from the light's footprint (ours; §6's future work)"),
-            builder(/// With or without the light-aware radii.
-                with_light_aware);
+        pub light_aware: bool = false, option(flag "light-aware", "radii from the light's footprint (ours; §6's future work)"), builder(with_light_aware);
         /// The ramp's falloff; default [`Falloff::Linear`] (the paper's linear
         /// intensity).
-        pub falloff: Falloff = Falloff::Linear,
-            option(choice "falloff", ["linear" = Falloff::Linear, "exact" = Falloff::Exact, "bernstein" = Falloff::Bernstein],
-                "the ramp's falloff (exact: ours)"),
-            builder(/// With the falloff `value`.
-                with_falloff);
+        pub falloff: Falloff = Falloff::Linear, option(choice "falloff", ["linear" = Falloff::Linear, "exact" = Falloff::Exact, "bernstein" = Falloff::Bernstein], "the ramp's falloff (exact: ours)"), builder(with_falloff);
         /// The depth test's margin relative to the receiver's depth, `[0, 1]`;
         /// default `1e-3` (PCSS's).
-        pub bias_relative: f64 = 1e-3,
-            option(real "relative", (0.0, 1.0), "depth margin relative to the receiver's depth (PCSS's)");
+        pub bias_relative: f64 = 1e-3, option(real "relative", (0.0, 1.0), "depth margin relative to the receiver's depth (PCSS's)");
         /// The depth test's margin in texels at the receiver, `[0, 1000]`;
         /// default 1 (PCSS's).
-        pub bias_texels: f64 = 1.0,
-            option(real "texels", (0.0, 1000.0), "depth margin in texels at the receiver (PCSS's)");
+        pub bias_texels: f64 = 1.0, option(real "texels", (0.0, 1000.0), "depth margin in texels at the receiver (PCSS's)");
         /// The [horizon bound](Horizon); default off (ours).
-        pub horizon: bool = false,
-            option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"),
-            builder(/// With or without the horizon bound.
-                with_horizon);
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
     }
     name: "single-sample",
     summary: "single-sample soft shadows (Brabec & Seidel 2002)",
     lights: &[LightKind::Sphere, LightKind::Disk, LightKind::Rect],
     default_run: &["single-sample"],
-    compare: &[
-        "single-sample",
-        "single-sample:light-aware",
-        "single-sample:light-aware,falloff=exact",
-        "single-sample:no-interpolate",
-        "single-sample:horizon",
-    ],
+    compare: &["single-sample", "single-sample:light-aware",
+        "single-sample:light-aware,falloff=exact", "single-sample:no-interpolate",
+        "single-sample:horizon"],
 }
 
 impl SingleSample {

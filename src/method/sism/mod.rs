@@ -206,43 +206,27 @@ method_options! {
     pub struct Sism {
         /// Which edges are processed; default [`EdgeSource::Silhouettes`]
         /// (§2.1).
-        pub edges: EdgeSource = EdgeSource::Silhouettes,
-            option(flag "all-edges" == EdgeSource::AllEdges, else EdgeSource::Silhouettes,
-                "every triangle edge instead of the silhouettes (§2.1's fallback)"),
-            builder(/// With the edges of `value`.
-                with_edges);
+        pub edges: EdgeSource = EdgeSource::Silhouettes, option(flag "all-edges" == EdgeSource::AllEdges, else EdgeSource::Silhouettes, "every triangle edge instead of the silhouettes (§2.1's fallback)"), builder(with_edges);
         /// How occlusion is combined; default [`Composition::Independent`]
         /// (eq. 4, `C = 0`, §5.2).
-        pub composition: Composition = Composition::Independent,
-            option(flag "exact-union" == Composition::ExactUnion, else Composition::Independent,
-                "the union of the occluders in the footprint instead of C = 0 (§5.2, computed)"),
-            builder(/// With the composition `value`.
-                with_composition);
+        pub composition: Composition = Composition::Independent, option(flag "exact-union" == Composition::ExactUnion, else Composition::Independent, "the union of the occluders in the footprint instead of C = 0 (§5.2, computed)"), builder(with_composition);
         /// Which quad/wedge selects receivers; default [`Bound::Paper`] (§2.2).
-        pub bound: Bound = Bound::Paper,
-            option(flag "conservative" == Bound::Conservative, else Bound::Paper,
-                "the kernel's rigorous quad and wedge (changes the work, not the values)"),
-            builder(/// With the receiver bound `value`.
-                with_bound);
+        pub bound: Bound = Bound::Paper, option(flag "conservative" == Bound::Conservative, else Bound::Paper, "the kernel's rigorous quad and wedge (changes the work, not the values)"), builder(with_bound);
         /// §2.5's first optimisation, the per-bin maximum receiver depth for the
         /// quad width; default `true` (the paper uses it).
-        pub bin_depth: bool = true,
-            option(flag ! "no-bin-depth", "without §2.5's per-bin depth optimisation");
+        pub bin_depth: bool = true, option(flag ! "no-bin-depth", "without §2.5's per-bin depth optimisation");
         /// §2.5's second optimisation, the wedge/column intersection; default
         /// `true` (the paper uses it).
-        pub wedge_column: bool = true,
-            option(flag ! "no-wedge-column", "without §2.5's wedge/column optimisation");
+        pub wedge_column: bool = true, option(flag ! "no-wedge-column", "without §2.5's wedge/column optimisation");
         /// Grid cells per receiver, in `[1e-6, 64]`; default
         /// [`Sism::DEFAULT_CELLS_PER_RECEIVER`] = 1 (ours: the paper sizes its
         /// grid like the light-view image of hard irregular shadow mapping, one
         /// sample per pixel on average, without a figure).
-        pub cells_per_receiver: f64 = Sism::DEFAULT_CELLS_PER_RECEIVER,
-            option(real "cells", (1e-6, 64.0), "grid cells per receiver (ours)");
+        pub cells_per_receiver: f64 = Sism::DEFAULT_CELLS_PER_RECEIVER, option(real "cells", (1e-6, 64.0), "grid cells per receiver (ours)");
         /// Cells per side of a bin, `1..=1024`; default
         /// [`Sism::DEFAULT_BIN_CELLS`] = 16 (ours: the paper's bins are the
         /// Larrabee rasteriser's tiles, Seiler et al. 2008, size not stated).
-        pub bin_cells: u32 = Sism::DEFAULT_BIN_CELLS,
-            option(int "bin", (1, 1024), "cells per side of a bin (ours)");
+        pub bin_cells: u32 = Sism::DEFAULT_BIN_CELLS, option(int "bin", (1, 1024), "cells per side of a bin (ours)");
         /// Depth slices of the perspective grid, `1..=256`; default
         /// [`Sism::DEFAULT_DEPTH_SLICES`] = 8 (ours: Fig. 3 shows a 3D grid
         /// without a count).
@@ -250,29 +234,19 @@ method_options! {
         /// The three grid sizes change only the work, never a value; the grid
         /// lowers them where needed to stay within `2²⁶` keys (512 MiB of
         /// offsets), so no valid option can exhaust memory.
-        pub depth_slices: u32 = Sism::DEFAULT_DEPTH_SLICES,
-            option(int "slices", (1, 256), "depth slices of the grid (ours)");
+        pub depth_slices: u32 = Sism::DEFAULT_DEPTH_SLICES, option(int "slices", (1, 256), "depth slices of the grid (ours)");
         /// The [horizon bound](Horizon), `V ≤ V_h`; default off (ours). With
         /// [`Composition::Independent`] it is `min(V, V_h)`; with
         /// [`Composition::ExactUnion`] the receiver's tangent plane is one more
         /// edge of the union.
-        pub horizon: bool = false,
-            option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"),
-            builder(/// With or without the horizon bound.
-                with_horizon);
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
     }
     name: "sism",
     summary: "soft irregular shadow mapping (Johnson et al. 2009)",
     lights: &[LightKind::Sphere, LightKind::Disk],
     default_run: &["sism"],
-    compare: &[
-        "sism",
-        "sism:exact-union",
-        "sism:horizon",
-        "sism:exact-union,horizon",
-        "sism:all-edges",
-        "sism:conservative",
-    ],
+    compare: &["sism", "sism:exact-union", "sism:horizon", "sism:exact-union,horizon",
+        "sism:all-edges", "sism:conservative"],
 }
 
 impl Sism {

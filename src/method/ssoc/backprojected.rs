@@ -31,56 +31,35 @@ method_options! {
     pub struct BackprojectedSsoc {
         /// Side of the shadow and distortion maps, `1..=16384`; default 1024
         /// (ours, as [`Ssoc`](super::Ssoc)).
-        pub resolution: u32 = super::Ssoc::DEFAULT_RESOLUTION,
-            option(int "map", (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"),
-            builder(/// With maps of `value × value` texels.
-                with_resolution);
+        pub resolution: u32 = super::Ssoc::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"), builder(with_resolution);
         /// The neighbourhood searched for more edges, in texels around the
         /// receiver's: `(2·search + 1)²` texels, `0..=16`; default 1 (ours; the
         /// sketch gives no radius).
-        pub search: u32 = 1,
-            option(int "search", (0, 16), "texels around the receiver's searched for edges (ours: 1, 3×3)"),
-            builder(/// With a neighbourhood of `(2·value + 1)²` texels.
-                with_search);
+        pub search: u32 = 1, option(int "search", (0, 16), "texels around the receiver's searched for edges (ours: 1, 3×3)"), builder(with_search);
         /// Completes the edges found by walking the silhouette from them: each
         /// edge that meets the receiver's footprint adds the edges it shares an
         /// end with (ours: the sketch finds edges by the neighbourhood alone,
         /// which on a silhouette of many short edges misses most of those in a
         /// wide footprint); default off.
-        pub walk: bool = false,
-            option(flag "walk", "complete the edges found along the silhouette, within the footprint (ours)"),
-            builder(/// With or without the walk along the silhouette.
-                with_walk);
+        pub walk: bool = false, option(flag "walk", "complete the edges found along the silhouette, within the footprint (ours)"), builder(with_walk);
         /// The [horizon bound](Horizon): the receiver's tangent plane as one
         /// more edge of the union; default off (ours).
-        pub horizon: bool = false,
-            option(flag "horizon", "the tangent plane as one more edge of the union (ours)"),
-            builder(/// With or without the horizon bound.
-                with_horizon);
+        pub horizon: bool = false, option(flag "horizon", "the tangent plane as one more edge of the union (ours)"), builder(with_horizon);
         /// The maps hold the potential silhouettes of the light's bounding
         /// ball (every edge that is a silhouette from some light point) instead
         /// of the silhouettes from its centre, and each edge a receiver finds
         /// is oriented and weighted by its multiplicity seen from that receiver
         /// (the sketch: extra edges are harmless; an edge that is no silhouette
         /// from the receiver weighs 0); default off.
-        pub potential: bool = false,
-            option(flag "potential", "potential silhouettes of the light's ball, each weighed from the receiver"),
-            builder(/// With or without the potential silhouettes.
-                with_potential);
+        pub potential: bool = false, option(flag "potential", "potential silhouettes of the light's ball, each weighed from the receiver"), builder(with_potential);
     }
     name: "backprojected-ssoc",
     summary: "backprojected soft shadows with an occlusion camera shadow map (Mo & Wyman 2007)",
     lights: &[LightKind::Sphere, LightKind::Disk],
     default_run: &["backprojected-ssoc"],
-    compare: &[
-        "backprojected-ssoc",
-        "backprojected-ssoc:search=0",
-        "backprojected-ssoc:search=2",
-        "backprojected-ssoc:walk",
-        "backprojected-ssoc:walk,horizon",
-        "backprojected-ssoc:potential",
-        "backprojected-ssoc:walk,potential",
-    ],
+    compare: &["backprojected-ssoc", "backprojected-ssoc:search=0", "backprojected-ssoc:search=2",
+        "backprojected-ssoc:walk", "backprojected-ssoc:walk,horizon",
+        "backprojected-ssoc:potential", "backprojected-ssoc:walk,potential"],
 }
 
 impl BackprojectedSsoc {

@@ -131,60 +131,31 @@ method_options! {
     pub struct Ssoc {
         /// Side of the shadow and distortion maps, `1..=16384`; default
         /// [`Ssoc::DEFAULT_RESOLUTION`] (ours).
-        pub resolution: u32 = Ssoc::DEFAULT_RESOLUTION,
-            option(int "map", (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"),
-            builder(/// With maps of `value × value` texels.
-                with_resolution);
+        pub resolution: u32 = Ssoc::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"), builder(with_resolution);
         /// How many edges a receiver's distortion may visit (§3.2.3: "two or
         /// three such steps are generally sufficient"), `1..=8`; default 3.
-        pub lookups: u32 = 3,
-            option(int "lookups", (1, 8), "edges a distortion may visit (§3.2.3: 2 or 3)"),
-            builder(/// With at most `value` edges per receiver.
-                with_lookups);
+        pub lookups: u32 = 3, option(int "lookups", (1, 8), "edges a distortion may visit (§3.2.3: 2 or 3)"), builder(with_lookups);
         /// The test at the distorted point compares the shadow map with the
         /// receiver's own depth less [`bias`](Ssoc::bias) (the paper's reading
         /// of §4, "a rather large bias") instead of with its tangent plane;
         /// default off (ours: steep receivers, see the [module docs](self)).
-        pub constant_bias: bool = false,
-            option(flag "constant", "the distorted point tested at the receiver's depth less bias (§4), not its tangent plane"),
-            builder(/// With or without the constant reading of the test at the distorted
-                /// point.
-                with_constant_bias);
+        pub constant_bias: bool = false, option(flag "constant", "the distorted point tested at the receiver's depth less bias (§4), not its tangent plane"), builder(with_constant_bias);
         /// The relative depth bias of the constant reading
         /// ([`constant_bias`](Ssoc::constant_bias)), `[0, 1]`; default
         /// [`Ssoc::DEFAULT_BIAS`] (ours).
-        pub bias: f64 = Ssoc::DEFAULT_BIAS,
-            option(real "bias", (0.0, 1.0), "relative depth bias of the constant test (§4; ours: 0.02)"),
-            builder(/// With the relative bias `value` of the constant reading.
-                with_bias);
+        pub bias: f64 = Ssoc::DEFAULT_BIAS, option(real "bias", (0.0, 1.0), "relative depth bias of the constant test (§4; ours: 0.02)"), builder(with_bias);
         /// Four lookups blended bilinearly (§5); default off.
-        pub bilinear: bool = false,
-            option(flag "bilinear", "four lookups blended bilinearly (§5)"),
-            builder(/// With or without the bilinear lookups.
-                with_bilinear);
+        pub bilinear: bool = false, option(flag "bilinear", "four lookups blended bilinearly (§5)"), builder(with_bilinear);
         /// The falloff of eq. 1; default [`Falloff::Bernstein`] (§3.2.2).
-        pub falloff: Falloff = Falloff::Bernstein,
-            option(choice "falloff", ["bernstein" = Falloff::Bernstein, "exact" = Falloff::Exact, "linear" = Falloff::Linear],
-                "eq. 1's falloff (§3.2.2: bernstein)"),
-            builder(/// With the falloff `value`.
-                with_falloff);
+        pub falloff: Falloff = Falloff::Bernstein, option(choice "falloff", ["bernstein" = Falloff::Bernstein, "exact" = Falloff::Exact, "linear" = Falloff::Linear], "eq. 1's falloff (§3.2.2: bernstein)"), builder(with_falloff);
         /// The [horizon bound](Horizon); default off (ours).
-        pub horizon: bool = false,
-            option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"),
-            builder(/// With or without the horizon bound.
-                with_horizon);
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
     }
     name: "ssoc",
     summary: "the soft shadow occlusion camera (Mo, Popescu & Wyman 2007)",
     lights: &[LightKind::Sphere, LightKind::Disk],
     default_run: &["ssoc"],
-    compare: &[
-        "ssoc",
-        "ssoc:lookups=1",
-        "ssoc:falloff=exact",
-        "ssoc:bilinear",
-        "ssoc:horizon",
-    ],
+    compare: &["ssoc", "ssoc:lookups=1", "ssoc:falloff=exact", "ssoc:bilinear", "ssoc:horizon"],
 }
 
 impl Ssoc {
