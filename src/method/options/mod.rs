@@ -19,6 +19,11 @@
 //! values and an option given twice (`seed=3,seed=4`, as the scene files
 //! refuse a duplicate key) are [`ParseError`]s that name what the method
 //! accepts.
+//!
+//! The crate's methods declare their options once each (the `declare`
+//! module's `method_options!`): per field its doc, type, default, option and
+//! builder, from which the struct, its `Default`, the builders and the
+//! [`Configurable`] table are made.
 
 mod declare;
 mod error;
