@@ -90,12 +90,7 @@ method_options! {
     /// receiver normals (the depth test's receiver plane) and object ids (the
     /// id test; not with `no-id`).
     ///
-    /// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
-    /// says: to the scene for a frame of points (`Frame::from_receivers`; each
-    /// receiver's `V` independent of the other receivers of the call), to the
-    /// scene and the receivers for a camera image (the real-time practice,
-    /// `render`). A receiver on a closed mesh that faces away from the whole
-    /// light reads `V = 0` ([`Method::hides_back_faces`]).
+    #[doc = crate::method::fitted_maps_doc!()]
     #[derive(Clone, Copy, Debug, PartialEq)]
     #[non_exhaustive]
     pub struct SingleSample {
