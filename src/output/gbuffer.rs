@@ -12,7 +12,8 @@
 //! exact answer `exact` holds, bit for bit.
 
 use crate::method::{self, Exact, MethodError};
-use crate::render::{Frame, Stages, BACKGROUND};
+use crate::render::frame::{Frame, BACKGROUND};
+use crate::render::stages::Stages;
 use crate::scene::{Camera, Receiver, Scene};
 use glam::{DMat4, DVec3, DVec4};
 

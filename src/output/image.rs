@@ -6,8 +6,8 @@
 //! pixel ([`Rgb`]).
 
 use crate::definitions::in_penumbra;
-use crate::render::{Frame, Receiver, BACKGROUND};
-use crate::scene::{Light, Scene};
+use crate::render::frame::{Frame, BACKGROUND};
+use crate::scene::{Light, Receiver, Scene};
 use glam::DVec3;
 use std::fmt;
 use std::io;

@@ -17,7 +17,8 @@
 use super::image::ErrorSummary;
 use crate::definitions::in_penumbra;
 use crate::method::{self, Exact, MethodError};
-use crate::render::{Frame, Stages, BACKGROUND};
+use crate::render::frame::{Frame, BACKGROUND};
+use crate::render::stages::Stages;
 use crate::scene::{Light, Receiver, Scene};
 use std::fmt::Write as _;
 

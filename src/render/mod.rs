@@ -17,7 +17,7 @@
 //! its modules are also reachable here as `render::image`,
 //! `render::gbuffer` and `render::score`.
 
-mod frame;
+pub(crate) mod frame;
 pub mod raster;
 pub(crate) mod stages;
 
