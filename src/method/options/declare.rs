@@ -3,7 +3,7 @@
 //! macros that make the options struct, its `Default`, builders and table
 //! from one declaration per field.
 
-use super::{Field, Kind};
+use super::field::{Field, Kind};
 
 /// A static string (a key, a doc line, a word).
 type Str = &'static str;

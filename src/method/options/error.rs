@@ -1,6 +1,6 @@
 //! What can be wrong with a method's name or its options table.
 
-use super::{real_string, Kind};
+use super::field::{real_string, Kind};
 use std::fmt;
 
 /// What a field accepts.

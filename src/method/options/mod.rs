@@ -27,71 +27,18 @@
 
 mod declare;
 mod error;
+mod field;
 
 pub use declare::{choice, flag, int, positional, real};
 pub(crate) use declare::{field, from_options, method_options};
 pub use error::{Expected, OptionError, ParseError, TableError};
+pub use field::{Field, Kind};
+
+use field::real_string;
 
 use super::Method;
 use crate::scene::LightKind;
 use std::fmt::Write as _;
-
-/// How one field of a method's options is read and written.
-pub enum Kind<T: 'static> {
-    /// A flag: `key` present sets it to `true`; its default is `false`.
-    Flag {
-        /// The field's value.
-        get: fn(&T) -> bool,
-        /// Sets the field.
-        set: fn(&mut T, bool),
-    },
-    /// An integer in `min..=max`.
-    Int {
-        /// The field's value.
-        get: fn(&T) -> u64,
-        /// Sets the field (called with values in range only).
-        set: fn(&mut T, u64),
-        /// The least value accepted.
-        min: u64,
-        /// The greatest value accepted.
-        max: u64,
-    },
-    /// A finite real number in `min..=max`.
-    Real {
-        /// The field's value.
-        get: fn(&T) -> f64,
-        /// Sets the field (called with values in range only).
-        set: fn(&mut T, f64),
-        /// The least value accepted.
-        min: f64,
-        /// The greatest value accepted.
-        max: f64,
-    },
-    /// One of `choices`, by index.
-    Choice {
-        /// The index of the field's value in `choices`.
-        get: fn(&T) -> usize,
-        /// Sets the field to `choices[i]`.
-        set: fn(&mut T, usize),
-        /// The words accepted.
-        choices: &'static [&'static str],
-    },
-}
-
-/// One field of a method's options: its key, what it is, how it is read
-/// and written.
-pub struct Field<T: 'static> {
-    /// The key on the command line (`map`, `exact-union`, …); for the
-    /// positional field, the word its value is described by (`N`).
-    pub key: &'static str,
-    /// One line for `--help`: what the field is, and its source (paper
-    /// and section, or "ours").
-    pub doc: &'static str,
-    /// Whether the value stands alone (`mc:256`), without `key=`.
-    pub positional: bool,
-    /// How it is read and written.
-    pub kind: Kind<T>,
-}
 
 /// A method that has a name and options on the command line: what the
 /// [registry](super::registry) needs to parse, print, list and describe
@@ -130,17 +77,6 @@ fn value_string<T>(field: &Field<T>, m: &T) -> Option<String> {
         Kind::Int { get, .. } => Some(get(m).to_string()),
         Kind::Real { get, .. } => Some(real_string(get(m))),
         Kind::Choice { get, choices, .. } => choices.get(get(m)).map(|c| (*c).to_owned()),
-    }
-}
-
-/// The shortest text that parses back to the same `f64` (Rust's `{:?}`,
-/// which keeps exponents for very small and large values), without a
-/// trailing `.0`: `2`, `0.3`, `1e-300`.
-fn real_string(x: f64) -> String {
-    let s = format!("{x:?}");
-    match s.strip_suffix(".0") {
-        Some(integral) => integral.to_owned(),
-        None => s,
     }
 }
 
