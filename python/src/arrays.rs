@@ -1,16 +1,22 @@
 //! Arrays from Python: float and integer arrays read in place or widened
 //! exactly, their layout and shape checked, and the receivers of a points
-//! array built from them under the points file's rules.
+//! array built from them under the points file's rules; the `ValueError`
+//! every refused argument raises.
 
-use super::value_error;
 use numpy::{
     PyArrayDescrMethods, PyArrayDyn, PyArrayMethods, PyUntypedArray, PyUntypedArrayMethods,
 };
+use pyo3::exceptions::PyValueError;
 use pyo3::prelude::*;
 use rayon::prelude::*;
 use softshadow::glam::DVec3;
 use softshadow::render::Receiver;
 use softshadow::scene::file::{receiver_from, ReceiverField};
+
+/// A `ValueError` with the library's one-line message.
+pub(crate) fn value_error(message: impl Into<String>) -> PyErr {
+    PyValueError::new_err(message.into())
+}
 
 /// A float array read from Python: borrowed in place (C-contiguous
 /// float64) or widened from float32.

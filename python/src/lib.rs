@@ -19,11 +19,9 @@
 
 mod arrays;
 
-use arrays::{as_array, floats, integers, receivers};
+use arrays::{as_array, floats, integers, receivers, value_error};
 use numpy::{PyArray1, PyArrayMethods, PyUntypedArrayMethods};
-use pyo3::exceptions::{
-    PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyRuntimeError, PyValueError,
-};
+use pyo3::exceptions::{PyFileNotFoundError, PyIsADirectoryError, PyOSError, PyRuntimeError};
 use pyo3::prelude::*;
 use pyo3::types::{PyDict, PyList};
 use softshadow::glam::DVec3;
@@ -49,10 +47,6 @@ const MAX_SIDE: usize = 16384;
 
 /// A float64 array handed to Python.
 type Array<'py> = Bound<'py, PyArray1<f64>>;
-
-fn value_error(message: impl Into<String>) -> PyErr {
-    PyValueError::new_err(message.into())
-}
 
 /// An integer argument as `T`: a Python int out of `T`'s range (a negative
 /// seed, say) is a `ValueError` naming it, not an `OverflowError`.
