@@ -127,7 +127,8 @@ pub(crate) use field;
 
 /// A method's options declared once: each field with its doc, type and
 /// default, then optionally its command-line option (the forms of
-/// `field!`) and a builder `with_x(value)`; then the method's registry
+/// `field!`) and a builder `with_x(value)` (its doc generated, linking the
+/// field's), one line a field; then the method's registry
 /// constants. Yields the struct, its `Default`, the builders and the
 /// `Configurable` implementation, whose `FIELDS` list the fields with an
 /// option in declaration order (the order names print them).
@@ -138,10 +139,7 @@ pub(crate) use field;
 ///     #[derive(Clone, Copy, Debug, PartialEq)]
 ///     pub struct Pcss {
 ///         /// Side of the map; default 1024.
-///         pub resolution: u32 = 1024,
-///             option(int "map", (1, 16384), "side of the map (ours)"),
-///             builder(/// With a map of `value × value` texels.
-///                 with_resolution);
+///         pub resolution: u32 = 1024, option(int "map", (1, 16384), "side of the map (ours)"), builder(with_resolution);
 ///         …
 ///     }
 ///     name: "pcss",
