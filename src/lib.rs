@@ -18,8 +18,9 @@
 //! | [`scene`] | — (file and built-ins: `scene-file`) | lights (validated; each receiver's [`Emitter`]), meshes, primitives, the camera and the scene, validated at construction; with `scene-file`, the JSON scene and points files and the built-in scenes |
 //! | `bvh` | `bvh` | the scene's triangles in one flat list ([`Occluders`]) and the BVH over them ([`Bvh`]): conservative occlusion rays, watertight closest hits, culling |
 //! | `reference` | `reference` | the exact and Monte Carlo visibility references and the statistics that compare them ([`reference::agree`]) |
-//! | `render` | `render` | the scalar renderer: receivers from the camera's primary rays or a points file ([`Frame`]), the light-view rasterizer, the lazily built [`Stages`] every method draws on, shading, error heat-maps and summaries ([`ErrorSummary`]), PNG files |
+//! | `render` | `render` | what the methods build on: receivers from the camera's primary rays or a points file ([`Frame`]), the lazily built [`Stages`] every method draws on, the light-view rasterizer |
 //! | `method` | `render` | the shadow methods behind one [`Method`] trait (exact, Monte Carlo, hard shadows, PCSS, SISM, single-sample, SSOC and its backprojected variant, OESS), listed once in `method::registry` with their options, and [`method::run`], which checks a frame once, runs a method on it and times it |
+//! | `output` | `render` | what is done with a method's answers: shading, error heat-maps and summaries ([`ErrorSummary`]), PNG files, scores of images made elsewhere, the G-buffer |
 //! | `report` | `report` | the accuracy-against-run-time report and the stability suite |
 //! | `arbitrary` | `arbitrary` | deterministic generators of near-degenerate input, shared by the property tests, the fuzz targets and the benchmarks |
 //!
@@ -163,6 +164,8 @@ pub mod float_io;
 pub mod kernel;
 #[cfg(feature = "render")]
 pub mod method;
+#[cfg(feature = "render")]
+pub mod output;
 #[cfg(feature = "reference")]
 pub mod reference;
 #[cfg(feature = "render")]
@@ -178,4 +181,6 @@ pub use bvh::{Bvh, Occluders};
 #[cfg(feature = "render")]
 pub use method::Method;
 #[cfg(feature = "render")]
-pub use render::{image::ErrorSummary, Fit, Frame, Stages};
+pub use output::image::ErrorSummary;
+#[cfg(feature = "render")]
+pub use render::{Fit, Frame, Stages};

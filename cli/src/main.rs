@@ -95,7 +95,7 @@ fn writable_dir(flag: &str, dir: &std::path::Path) -> Result<(), String> {
 /// # Errors
 /// One line naming the file.
 fn write_out(path: &std::path::Path, bytes: &[u8], quiet: bool) -> Result<(), String> {
-    softshadow::render::image::write_atomically(path, bytes)
+    softshadow::output::image::write_atomically(path, bytes)
         .map_err(|e| format!("{}: {e}", path.display()))?;
     if !quiet {
         say!("wrote {}", path.display());

@@ -6,10 +6,10 @@ use crate::visibility::{method_with_seed, parse_method, resolve_scene, run_metho
 use softshadow::definitions::in_penumbra;
 use softshadow::float_io::{exr_bytes, npy_bytes_f64};
 use softshadow::method::{self, Exact, Method};
-use softshadow::render::image::{
+use softshadow::output::image::{
     error_heat_map, irradiance_factor, shaded, shaded_by_ends, visibility_image, ErrorRow,
 };
-use softshadow::render::score::Score;
+use softshadow::output::score::Score;
 use softshadow::render::{Frame, Stages, Stats};
 use softshadow::scene::Scene;
 use std::path::{Path, PathBuf};

@@ -9,9 +9,9 @@ use softshadow::float_io::{
     self, exr_bytes, npy_bytes_f64, npy_bytes_i32, read_npy_f64, read_npy_i64, FloatIoError,
 };
 use softshadow::method::{Exact, MethodError};
-use softshadow::render::gbuffer::{frame_from_arrays, CameraModel, GBuffer};
-use softshadow::render::image::{error_heat_map, Rgb};
-use softshadow::render::score::{self as scoring, McOptions, Score};
+use softshadow::output::gbuffer::{frame_from_arrays, CameraModel, GBuffer};
+use softshadow::output::image::{error_heat_map, Rgb};
+use softshadow::output::score::{self as scoring, McOptions, Score};
 use softshadow::render::{Frame, Stages, BACKGROUND};
 use std::path::{Path, PathBuf};
 use std::process::ExitCode;

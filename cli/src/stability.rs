@@ -2,7 +2,7 @@
 //! stability`), written as `stability.md`.
 
 use clap::Args as ClapArgs;
-use softshadow::render::image::write_atomically;
+use softshadow::output::image::write_atomically;
 use softshadow::report::{machine_line, stability};
 use std::io::IsTerminal;
 use std::path::PathBuf;

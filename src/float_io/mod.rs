@@ -1,7 +1,7 @@
 //! Float arrays and images in files (feature `float-io`): NumPy `.npy`
 //! (through `ndarray-npy`), OpenEXR (through `exr`) and PFM, read and
 //! written for the G-buffer and scoring workflow
-//! (`render::gbuffer` and `render::score`, feature `render`).
+//! (`output::gbuffer` and `output::score`, feature `render`).
 //!
 //! # Bad and hostile input
 //!

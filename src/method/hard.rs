@@ -1,44 +1,34 @@
 //! The hard shadow: the point-light answer at the light's centre.
 
-use super::options::{builders, field, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output};
 use crate::render::Needs;
 use crate::scene::LightKind;
 
-/// Hard shadows: `V(p) = 1` when the open segment from `p` to the light's
-/// centre meets no triangle, else `0` — the answer for a point light at the
-/// centre, decided exactly by the BVH ([`Bvh::segment_unoccluded`]), so it
-/// equals the Monte Carlo and exact references for that point light bit for
-/// bit. Any light.
-///
-/// [`Bvh::segment_unoccluded`]: crate::bvh::Bvh::segment_unoccluded
-#[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct HardShadow {
-    /// The [horizon bound](Horizon), `min(V, V_h)`; default off (ours, not
-    /// a paper's).
-    pub horizon: bool,
-}
-
-builders!(HardShadow {
-    /// With or without the horizon bound.
-    with_horizon => horizon: bool,
-});
-
-impl Configurable for HardShadow {
-    const NAME: &'static str = "hard";
-    const SUMMARY: &'static str = "hard shadows: the point light at the light's centre";
-    const LIGHTS: &'static [LightKind] = LightKind::ALL;
-    const DEFAULT_RUN: &'static [&'static str] = &["hard"];
-    const COMPARE: &'static [&'static str] = &["hard", "hard:horizon"];
-    const FIELDS: &'static [Field<HardShadow>] = &[field!(flag "horizon", horizon,
-        "V ≤ the light's share above the receiver's tangent plane (ours)")];
+method_options! {
+    /// Hard shadows: `V(p) = 1` when the open segment from `p` to the light's
+    /// centre meets no triangle, else `0` — the answer for a point light at the
+    /// centre, decided exactly by the BVH ([`Bvh::segment_unoccluded`]), so it
+    /// equals the Monte Carlo and exact references for that point light bit for
+    /// bit. Any light.
+    ///
+    /// [`Bvh::segment_unoccluded`]: crate::bvh::Bvh::segment_unoccluded
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    #[non_exhaustive]
+    pub struct HardShadow {
+        /// The [horizon bound](Horizon), `min(V, V_h)`; default off (ours, not
+        /// a paper's).
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
+    }
+    name: "hard",
+    summary: "hard shadows: the point light at the light's centre",
+    lights: LightKind::ALL,
+    default_run: &["hard"],
+    compare: &["hard", "hard:horizon"],
 }
 
 impl Method for HardShadow {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     fn needs(&self) -> Needs {
         Needs::BVH

@@ -31,6 +31,20 @@
 //! assert_eq!(pcss.name(), "pcss:map=256");
 //! ```
 
+/// The paragraph of the map methods' docs on their fitted light-view maps
+/// and back faces.
+macro_rules! fitted_maps_doc {
+    () => {
+        "Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit) says: \
+         to the scene for a frame of points (`Frame::from_receivers`; each receiver's `V` \
+         independent of the other receivers of the call), to the scene and the receivers for a \
+         camera image (the real-time practice, `render`). A receiver on a closed mesh that \
+         faces away from the whole light reads `V = 0` \
+         ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces))."
+    };
+}
+pub(crate) use fitted_maps_doc;
+
 mod centre;
 mod hard;
 pub mod oess;

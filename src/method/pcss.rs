@@ -2,7 +2,7 @@
 //! Shadows", SIGGRAPH 2005 sketch): the baseline engines ship today.
 
 use super::centre::depth::{margin as depth_margin, DepthTest};
-use super::options::{builders, field, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::MAX_RESOLUTION;
@@ -10,74 +10,76 @@ use crate::render::{FittedMaps, Needs};
 use crate::scene::LightKind;
 use glam::{DVec2, DVec3};
 
-/// Percentage-closer soft shadows over one light-view depth map from the
-/// light's centre, in three steps per receiver `p` (light-frame depth
-/// `z_p`, projection `s` on the light image plane):
-///
-/// 1. **Blocker search**: the depth map is read at
-///    [`blocker_samples`](Pcss::blocker_samples) points of the disk of
-///    radius `r (1/z_min − 1/z_p)` around `s` — the light as seen from `p`,
-///    drawn on the image plane at the least occluder depth `z_min` of the
-///    map (the [footprint radius](crate::definitions#footprint-radius); Fernando's "search width"
-///    `w_light (d_r − d_near)/d_r` in the same units). Texels nearer than the
-///    receiver (see [`PcssBias`]) are blockers; `z_b` is their mean depth.
-///    No blocker: `V = 1`.
-/// 2. **Penumbra estimate**: `w = r (1/z_b − 1/z_p)`, Fernando's
-///    `w_penumbra = (d_r − d_b) w_light / d_b` on the light image plane.
-/// 3. **Percentage-closer filtering**: `V` is the fraction of
-///    [`filter_samples`](Pcss::filter_samples) points of the disk of radius
-///    `w` around `s` whose texel is not a blocker.
-///
-/// For a single planar blocker parallel to the light this is the exact
-/// answer up to sampling; where blockers lie at several depths the mean
-/// `z_b` is the method's known approximation.
-///
-/// `r` is the light's radius: a sphere's or disk's; for a rect the radius
-/// of the disk of equal area; for a segment half its length; `0` for a
-/// point light (PCSS is then a plain shadow-map test). Samples are placed
-/// on a Vogel (golden-angle) spiral, deterministic and the same for every
-/// receiver; the map is point-sampled (nearest texel). Receivers not in
-/// front of the light (light-frame depth at or below the map's near plane)
-/// are outside every shadow map and read `V = 1`.
-///
-/// The paper fixes neither sample counts, resolution nor bias; the defaults
-/// here ([`Pcss::default`]) are ours and documented per field.
-///
-/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
-/// says: to the scene for a frame of points (`Frame::from_receivers`; each
-/// receiver's `V` independent of the other receivers of the call), to the
-/// scene and the receivers for a camera image (the real-time practice,
-/// `render`). A receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces)).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct Pcss {
-    /// Side of the square light-view depth map, in texels, `1..=16384`;
-    /// default [`Pcss::DEFAULT_RESOLUTION`].
-    pub resolution: u32,
-    /// Points read in the blocker search, `1..=4096`; default
-    /// [`Pcss::DEFAULT_BLOCKER_SAMPLES`].
-    pub blocker_samples: u32,
-    /// Points read by the filter, `1..=4096`; default
-    /// [`Pcss::DEFAULT_FILTER_SAMPLES`].
-    pub filter_samples: u32,
-    /// Which depth a texel is compared with; default
-    /// [`PcssBias::ReceiverPlane`] (ours: the known improvement on the
-    /// constant bias).
-    pub bias: PcssBias,
-    /// The margin below that depth, relative to the receiver's depth `z_p`,
-    /// for rounding and curvature, in `[0, 1]`; default
-    /// [`Pcss::DEFAULT_BIAS_RELATIVE`].
-    pub bias_relative: f64,
-    /// The margin below that depth in texels, in `[0, 1000]`:
-    /// `bias_texels · t · z_p`, `t` the texel's side on the light image
-    /// plane (so `t · z_p` is its width at the receiver); covers a faceted
-    /// or curved receiver leaving its tangent plane within the texel the
-    /// sample falls in; default [`Pcss::DEFAULT_BIAS_TEXELS`].
-    pub bias_texels: f64,
-    /// The [horizon bound](super::Horizon), `min(V, V_h)`; default off
-    /// (ours).
-    pub horizon: bool,
+method_options! {
+    /// Percentage-closer soft shadows over one light-view depth map from the
+    /// light's centre, in three steps per receiver `p` (light-frame depth
+    /// `z_p`, projection `s` on the light image plane):
+    ///
+    /// 1. **Blocker search**: the depth map is read at
+    ///    [`blocker_samples`](Pcss::blocker_samples) points of the disk of
+    ///    radius `r (1/z_min − 1/z_p)` around `s` — the light as seen from `p`,
+    ///    drawn on the image plane at the least occluder depth `z_min` of the
+    ///    map (the [footprint radius](crate::definitions#footprint-radius); Fernando's "search width"
+    ///    `w_light (d_r − d_near)/d_r` in the same units). Texels nearer than the
+    ///    receiver (see [`PcssBias`]) are blockers; `z_b` is their mean depth.
+    ///    No blocker: `V = 1`.
+    /// 2. **Penumbra estimate**: `w = r (1/z_b − 1/z_p)`, Fernando's
+    ///    `w_penumbra = (d_r − d_b) w_light / d_b` on the light image plane.
+    /// 3. **Percentage-closer filtering**: `V` is the fraction of
+    ///    [`filter_samples`](Pcss::filter_samples) points of the disk of radius
+    ///    `w` around `s` whose texel is not a blocker.
+    ///
+    /// For a single planar blocker parallel to the light this is the exact
+    /// answer up to sampling; where blockers lie at several depths the mean
+    /// `z_b` is the method's known approximation.
+    ///
+    /// `r` is the light's radius: a sphere's or disk's; for a rect the radius
+    /// of the disk of equal area; for a segment half its length; `0` for a
+    /// point light (PCSS is then a plain shadow-map test). Samples are placed
+    /// on a Vogel (golden-angle) spiral, deterministic and the same for every
+    /// receiver; the map is point-sampled (nearest texel). Receivers not in
+    /// front of the light (light-frame depth at or below the map's near plane)
+    /// are outside every shadow map and read `V = 1`.
+    ///
+    /// The paper fixes neither sample counts, resolution nor bias; the defaults
+    /// here ([`Pcss::default`]) are ours and documented per field.
+    ///
+    #[doc = crate::method::fitted_maps_doc!()]
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[non_exhaustive]
+    pub struct Pcss {
+        /// Side of the square light-view depth map, in texels, `1..=16384`;
+        /// default [`Pcss::DEFAULT_RESOLUTION`].
+        pub resolution: u32 = Pcss::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the depth map in texels (ours)"), builder(with_resolution);
+        /// Points read in the blocker search, `1..=4096`; default
+        /// [`Pcss::DEFAULT_BLOCKER_SAMPLES`].
+        pub blocker_samples: u32 = Pcss::DEFAULT_BLOCKER_SAMPLES, option(int "search", (1, 4096), "points read in the blocker search (ours)"), builder(with_blocker_samples);
+        /// Points read by the filter, `1..=4096`; default
+        /// [`Pcss::DEFAULT_FILTER_SAMPLES`].
+        pub filter_samples: u32 = Pcss::DEFAULT_FILTER_SAMPLES, option(int "filter", (1, 4096), "points read by the filter (ours)"), builder(with_filter_samples);
+        /// Which depth a texel is compared with; default
+        /// [`PcssBias::ReceiverPlane`] (ours: the known improvement on the
+        /// constant bias).
+        pub bias: PcssBias = PcssBias::ReceiverPlane, option(flag "constant" == PcssBias::Constant, else PcssBias::ReceiverPlane, "compare texels with the receiver's own depth, not its tangent plane's"), builder(with_bias);
+        /// The margin below that depth, relative to the receiver's depth `z_p`,
+        /// for rounding and curvature, in `[0, 1]`; default
+        /// [`Pcss::DEFAULT_BIAS_RELATIVE`].
+        pub bias_relative: f64 = Pcss::DEFAULT_BIAS_RELATIVE, option(real "relative", (0.0, 1.0), "depth margin relative to the receiver's depth (ours)");
+        /// The margin below that depth in texels, in `[0, 1000]`:
+        /// `bias_texels · t · z_p`, `t` the texel's side on the light image
+        /// plane (so `t · z_p` is its width at the receiver); covers a faceted
+        /// or curved receiver leaving its tangent plane within the texel the
+        /// sample falls in; default [`Pcss::DEFAULT_BIAS_TEXELS`].
+        pub bias_texels: f64 = Pcss::DEFAULT_BIAS_TEXELS, option(real "texels", (0.0, 1000.0), "depth margin in texels at the receiver (ours)");
+        /// The [horizon bound](super::Horizon), `min(V, V_h)`; default off
+        /// (ours).
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
+    }
+    name: "pcss",
+    summary: "percentage-closer soft shadows (Fernando 2005)",
+    lights: LightKind::ALL,
+    default_run: &["pcss"],
+    compare: &["pcss", "pcss:map=256", "pcss:map=4096", "pcss:horizon"],
 }
 
 /// Which depth PCSS compares a depth-map texel with to decide that it blocks
@@ -130,53 +132,6 @@ impl Pcss {
     }
 }
 
-builders!(Pcss {
-    /// With a depth map of `value × value` texels.
-    with_resolution => resolution: u32,
-    /// With `value` blocker-search samples.
-    with_blocker_samples => blocker_samples: u32,
-    /// With `value` filter samples.
-    with_filter_samples => filter_samples: u32,
-    /// With the depth comparison `value`.
-    with_bias => bias: PcssBias,
-    /// With or without the horizon bound.
-    with_horizon => horizon: bool,
-});
-
-impl Default for Pcss {
-    fn default() -> Pcss {
-        Pcss {
-            resolution: Pcss::DEFAULT_RESOLUTION,
-            blocker_samples: Pcss::DEFAULT_BLOCKER_SAMPLES,
-            filter_samples: Pcss::DEFAULT_FILTER_SAMPLES,
-            bias: PcssBias::ReceiverPlane,
-            bias_relative: Pcss::DEFAULT_BIAS_RELATIVE,
-            bias_texels: Pcss::DEFAULT_BIAS_TEXELS,
-            horizon: false,
-        }
-    }
-}
-
-impl Configurable for Pcss {
-    const NAME: &'static str = "pcss";
-    const SUMMARY: &'static str = "percentage-closer soft shadows (Fernando 2005)";
-    const LIGHTS: &'static [LightKind] = LightKind::ALL;
-    const DEFAULT_RUN: &'static [&'static str] = &["pcss"];
-    const COMPARE: &'static [&'static str] =
-        &["pcss", "pcss:map=256", "pcss:map=4096", "pcss:horizon"];
-    #[rustfmt::skip]
-    const FIELDS: &'static [Field<Pcss>] = &[
-        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the depth map in texels (ours)"),
-        field!(int "search", blocker_samples: u32, (1, 4096), "points read in the blocker search (ours)"),
-        field!(int "filter", filter_samples: u32, (1, 4096), "points read by the filter (ours)"),
-        field!(flag "constant", bias == PcssBias::Constant, else PcssBias::ReceiverPlane,
-            "compare texels with the receiver's own depth, not its tangent plane's"),
-        field!(real "relative", bias_relative, (0.0, 1.0), "depth margin relative to the receiver's depth (ours)"),
-        field!(real "texels", bias_texels, (0.0, 1000.0), "depth margin in texels at the receiver (ours)"),
-        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
-    ];
-}
-
 /// `n` points of the unit disk on a Vogel spiral: radius `√((i + ½)/n)`,
 /// angle `i` golden angles.
 fn vogel(n: u32) -> Vec<DVec2> {
@@ -217,9 +172,7 @@ impl Lookup<'_> {
 }
 
 impl Method for Pcss {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     /// Yes: see the trait's doc (no option of the paper asks otherwise).
     fn hides_back_faces(&self) -> bool {

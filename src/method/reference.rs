@@ -1,24 +1,31 @@
 //! The two references as methods: [`Exact`] and [`MonteCarlo`].
 
-use super::options::{int, positional, real, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{per_receiver, Input, Method, MethodError, Output};
 use crate::reference::{exact, monte_carlo};
 use crate::render::Needs;
 use crate::scene::LightKind;
 
-/// The exact reference ([`crate::reference::exact`]): the answer every
-/// other method is measured against, each value with its certified bound
-/// ([`Output::bound`]: `|V − V_true| ≤ bound`). Any light.
-///
-/// `exact:tolerance=X` refuses any receiver whose bound exceeds `X`
-/// ([`MethodError::Tolerance`]), so that a validation run cannot rest on a
-/// weak answer unawares; the default, 1, refuses nothing (`V` is a
-/// fraction).
-#[derive(Clone, Copy, Debug, PartialEq)]
-pub struct Exact {
-    /// The largest certified bound accepted, in `(0, 1]`; 1 accepts every
-    /// answer. Default 1.
-    pub tolerance: f64,
+method_options! {
+    /// The exact reference ([`crate::reference::exact`]): the answer every
+    /// other method is measured against, each value with its certified bound
+    /// ([`Output::bound`]: `|V − V_true| ≤ bound`). Any light.
+    ///
+    /// `exact:tolerance=X` refuses any receiver whose bound exceeds `X`
+    /// ([`MethodError::Tolerance`]), so that a validation run cannot rest on a
+    /// weak answer unawares; the default, 1, refuses nothing (`V` is a
+    /// fraction).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    pub struct Exact {
+        /// The largest certified bound accepted, in `(0, 1]`; 1 accepts every
+        /// answer. Default 1.
+        pub tolerance: f64 = Exact.tolerance, option(real "tolerance", (f64::MIN_POSITIVE, 1.0), "refuse any receiver whose certified bound on |V - V_true| exceeds X; 1 refuses nothing (ours)");
+    }
+    name: "exact",
+    summary: "the exact reference: the union of the occluders' images on the light, with a certified bound",
+    lights: LightKind::ALL,
+    default_run: &["exact"],
+    compare: &[],
 }
 
 /// The exact reference with its default options (the value of the type
@@ -26,32 +33,8 @@ pub struct Exact {
 #[allow(non_upper_case_globals)]
 pub const Exact: Exact = Exact { tolerance: 1.0 };
 
-impl Default for Exact {
-    fn default() -> Exact {
-        Exact
-    }
-}
-
-impl Configurable for Exact {
-    const NAME: &'static str = "exact";
-    const SUMMARY: &'static str =
-        "the exact reference: the union of the occluders' images on the light, with a certified bound";
-    const LIGHTS: &'static [LightKind] = LightKind::ALL;
-    const DEFAULT_RUN: &'static [&'static str] = &["exact"];
-    const COMPARE: &'static [&'static str] = &[];
-    const FIELDS: &'static [Field<Exact>] = &[real(
-        "tolerance",
-        "refuse any receiver whose certified bound on |V - V_true| exceeds X; 1 refuses nothing (ours)",
-        (f64::MIN_POSITIVE, 1.0),
-        |m| m.tolerance,
-        |m, v| m.tolerance = v,
-    )];
-}
-
 impl Method for Exact {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     fn needs(&self) -> Needs {
         Needs::BVH | Needs::EMITTERS
@@ -87,18 +70,25 @@ impl Method for Exact {
     }
 }
 
-/// Monte Carlo light sampling ([`crate::reference::monte_carlo`]) with a
-/// fixed sample count per receiver; reports each value's standard error.
-/// Any light.
-#[derive(Clone, Copy, Debug, PartialEq, Eq)]
-#[non_exhaustive]
-pub struct MonteCarlo {
-    /// Samples per receiver, from [`MIN_SAMPLES`](monte_carlo::MIN_SAMPLES)
-    /// to `u32::MAX`; default [`MonteCarlo::DEFAULT_SAMPLES`].
-    pub samples: u32,
-    /// The seed of the sample sequences; default
-    /// [`monte_carlo::DEFAULT_SEED`].
-    pub seed: u64,
+method_options! {
+    /// Monte Carlo light sampling ([`crate::reference::monte_carlo`]) with a
+    /// fixed sample count per receiver; reports each value's standard error.
+    /// Any light.
+    #[derive(Clone, Copy, Debug, PartialEq, Eq)]
+    #[non_exhaustive]
+    pub struct MonteCarlo {
+        /// Samples per receiver, from [`MIN_SAMPLES`](monte_carlo::MIN_SAMPLES)
+        /// to `u32::MAX`; default [`MonteCarlo::DEFAULT_SAMPLES`].
+        pub samples: u32 = MonteCarlo::DEFAULT_SAMPLES, option(positional int "N", (monte_carlo::MIN_SAMPLES as u64, u32::MAX as u64), "samples per receiver");
+        /// The seed of the sample sequences; default
+        /// [`monte_carlo::DEFAULT_SEED`].
+        pub seed: u64 = monte_carlo::DEFAULT_SEED, option(int "seed", (0, u64::MAX), "the seed of the sample sequences"), builder(with_seed);
+    }
+    name: "mc",
+    summary: "Monte Carlo light sampling: N stratified samples per receiver, with a standard error",
+    lights: LightKind::ALL,
+    default_run: &["mc:16", "mc:256"],
+    compare: &[],
 }
 
 impl MonteCarlo {
@@ -110,53 +100,13 @@ impl MonteCarlo {
     pub fn new(samples: u32) -> MonteCarlo {
         MonteCarlo {
             samples,
-            seed: monte_carlo::DEFAULT_SEED,
+            ..MonteCarlo::default()
         }
     }
-
-    /// With the seed `seed`.
-    #[must_use]
-    pub fn with_seed(mut self, seed: u64) -> MonteCarlo {
-        self.seed = seed;
-        self
-    }
-}
-
-impl Default for MonteCarlo {
-    fn default() -> MonteCarlo {
-        MonteCarlo::new(MonteCarlo::DEFAULT_SAMPLES)
-    }
-}
-
-impl Configurable for MonteCarlo {
-    const NAME: &'static str = "mc";
-    const SUMMARY: &'static str =
-        "Monte Carlo light sampling: N stratified samples per receiver, with a standard error";
-    const LIGHTS: &'static [LightKind] = LightKind::ALL;
-    const DEFAULT_RUN: &'static [&'static str] = &["mc:16", "mc:256"];
-    const COMPARE: &'static [&'static str] = &[];
-    const FIELDS: &'static [Field<MonteCarlo>] = &[
-        positional(int(
-            "N",
-            "samples per receiver",
-            (monte_carlo::MIN_SAMPLES as u64, u32::MAX as u64),
-            |m| u64::from(m.samples),
-            |m, v| m.samples = v as u32,
-        )),
-        int(
-            "seed",
-            "the seed of the sample sequences",
-            (0, u64::MAX),
-            |m| m.seed,
-            |m, v| m.seed = v,
-        ),
-    ];
 }
 
 impl Method for MonteCarlo {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     fn needs(&self) -> Needs {
         Needs::BVH | Needs::EMITTERS

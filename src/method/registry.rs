@@ -1,8 +1,8 @@
 //! The one list of methods: each registered once, with its name, options,
 //! summary, the light kinds it handles, the settings the default run and
 //! the report compare. [`parse`], `softshadow --help`, the "available: …"
-//! message, [`default_set`] and the refusal of methods not built yet all
-//! read it. Adding a method is one file plus one line of [`REGISTRY`].
+//! message and [`default_set`] all read it. Adding a method is one file
+//! plus one line of [`REGISTRY`].
 //!
 //! | name | handles | what |
 //! |---|---|---|
@@ -37,7 +37,7 @@ pub struct Entry {
     pub default_run: &'static [&'static str],
     /// The settings worth comparing in a report, default first.
     pub compare: &'static [&'static str],
-    build: Option<Build>,
+    build: Build,
     usage: fn() -> String,
     help: fn() -> Vec<String>,
     round_trip: fn() -> Result<(), TableError>,
@@ -48,7 +48,6 @@ impl std::fmt::Debug for Entry {
     fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
         f.debug_struct("Entry")
             .field("name", &self.name)
-            .field("built", &self.is_built())
             .finish_non_exhaustive()
     }
 }
@@ -63,10 +62,6 @@ fn usage<T: Configurable>() -> String {
         Some(f) => format!("{}:{}", T::NAME, f.key),
         None => T::NAME.to_owned(),
     }
-}
-
-fn no_help() -> Vec<String> {
-    Vec::new()
 }
 
 /// Whether `T` has the named (not positional) option `key`.
@@ -84,7 +79,7 @@ impl Entry {
             lights: T::LIGHTS,
             default_run: T::DEFAULT_RUN,
             compare: T::COMPARE,
-            build: Some(build::<T>),
+            build: build::<T>,
             usage: usage::<T>,
             help: options::help::<T>,
             round_trip: options::round_trip::<T>,
@@ -92,43 +87,10 @@ impl Entry {
         }
     }
 
-    /// A method of the design not built yet: [`parse`] names it and says
-    /// so.
-    #[must_use]
-    pub const fn later(
-        name: &'static str,
-        summary: &'static str,
-        lights: &'static [LightKind],
-    ) -> Entry {
-        Entry {
-            name,
-            summary,
-            lights,
-            default_run: &[],
-            compare: &[],
-            build: None,
-            usage: || String::new(),
-            help: no_help,
-            round_trip: || Ok(()),
-            accepts: |_| false,
-        }
-    }
-
-    /// Whether the method is built (else [`parse`] refuses it).
-    #[must_use]
-    pub fn is_built(&self) -> bool {
-        self.build.is_some()
-    }
-
     /// How the name is written alone: `mc:N`, `pcss`.
     #[must_use]
     pub fn usage(&self) -> String {
-        let u = (self.usage)();
-        if u.is_empty() {
-            self.name.to_owned()
-        } else {
-            u
-        }
+        (self.usage)()
     }
 
     /// One line per option: what it accepts, its default, its doc.
@@ -178,7 +140,6 @@ pub static REGISTRY: &[Entry] = &[
 pub fn available() -> String {
     REGISTRY
         .iter()
-        .filter(|e| e.is_built())
         .map(Entry::usage)
         .collect::<Vec<_>>()
         .join(", ")
@@ -195,9 +156,9 @@ pub fn entry(base: &str) -> Option<&'static Entry> {
 /// (`sism:exact-union,slices=4`, `mc:256`).
 ///
 /// # Errors
-/// [`ParseError`], one line: an unknown method (and the available ones), a
-/// method not built yet, or an option that is not understood or given
-/// twice (and what the method accepts).
+/// [`ParseError`], one line: an unknown method (and the available ones),
+/// or an option that is not understood or given twice (and what the method
+/// accepts).
 pub fn parse(name: &str) -> Result<Box<dyn Method>, ParseError> {
     let base = name.split(':').next().unwrap_or(name);
     let Some(entry) = entry(base) else {
@@ -206,14 +167,8 @@ pub fn parse(name: &str) -> Result<Box<dyn Method>, ParseError> {
             available: available(),
         });
     };
-    let Some(build) = entry.build else {
-        return Err(ParseError::NotBuilt {
-            base: entry.name,
-            available: available(),
-        });
-    };
     let items = options::items(name, base).unwrap_or_default();
-    build(name, &items)
+    (entry.build)(name, &items)
 }
 
 /// Why [`parse_with_seed`] refused a name with a seed.
@@ -259,13 +214,13 @@ pub fn parse_with_seed(name: &str, seed: Option<u64>) -> Result<Box<dyn Method>,
         return parse(name).map_err(SeedError::Parse);
     };
     let base = name.split(':').next().unwrap_or(name);
-    let Some(entry) = entry(base).filter(|e| e.is_built()) else {
+    let Some(entry) = entry(base) else {
         return parse(name).map_err(SeedError::Parse);
     };
     if !entry.accepts("seed") {
         let seeded: Vec<String> = REGISTRY
             .iter()
-            .filter(|e| e.is_built() && e.accepts("seed"))
+            .filter(|e| e.accepts("seed"))
             .map(Entry::usage)
             .collect();
         return Err(SeedError::NoSeed {
@@ -289,13 +244,13 @@ fn short(s: &str) -> String {
 }
 
 /// The methods the default run compares for a light of `kind`, in
-/// registry order: every setting of every built method's
+/// registry order: every setting of every method's
 /// [`Entry::default_run`] that handles `kind`.
 #[must_use]
 pub fn default_set(kind: LightKind) -> Vec<Box<dyn Method>> {
     REGISTRY
         .iter()
-        .filter(|e| e.is_built() && e.handles(kind))
+        .filter(|e| e.handles(kind))
         .flat_map(|e| e.default_run.iter())
         .filter_map(|name| parse(name).ok())
         .collect()
@@ -308,13 +263,8 @@ pub fn help() -> String {
     let mut out = String::new();
     for e in REGISTRY {
         let lights: Vec<&str> = e.lights.iter().map(|k| k.name()).collect();
-        let built = if e.is_built() {
-            ""
-        } else {
-            " — not built yet"
-        };
         out.push_str(&format!(
-            "  {:<20} {} [{}]{built}\n",
+            "  {:<20} {} [{}]\n",
             e.usage(),
             e.summary,
             lights.join(", ")

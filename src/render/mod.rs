@@ -1,6 +1,7 @@
-//! The scalar renderer (feature `render`): receivers from the camera, the
-//! light-view rasterizer, the lazily built stages every method draws on, and
-//! image output.
+//! What the methods build on (feature `render`): the receivers a frame
+//! holds, the lazily built stages every method draws on, and the
+//! light-view rasterizer. The data flows scene → these stages → a
+//! [method](crate::method) → [output](crate::output).
 //!
 //! - [`Frame`]: the receivers, one per pixel of a camera image
 //!   ([`Frame::from_camera`], primary rays through the BVH) or one per
@@ -10,22 +11,17 @@
 //! - [`Stages`]: the BVH, mesh topology, light frame and light maps, built
 //!   lazily and once, timed into [`Stats`].
 //! - [`raster`]: the light-view rasterizer every shadow-map method uses.
-//! - [`gbuffer`]: the receivers of a camera as arrays (position, normal,
-//!   object id, exact `V`) and the camera as a rasteriser's matrices.
-//! - [`score`]: an image of `V` made elsewhere scored against the exact
-//!   answer on the same receivers, with the report's statistics.
-//! - [`image`]: [shading](crate::definitions#shading), the error heat-map, error summaries
-//!   and PNG files.
 //!
-//! The methods themselves are in [`crate::method`].
+//! What is done with a method's answers (shading, heat-maps, error
+//! summaries, image files, the G-buffer, scores) is in [`crate::output`];
+//! its modules are also reachable here as `render::image`,
+//! `render::gbuffer` and `render::score`.
 
-mod frame;
-pub mod gbuffer;
-pub mod image;
+pub(crate) mod frame;
 pub mod raster;
-pub mod score;
 pub(crate) mod stages;
 
+pub use crate::output::{gbuffer, image, score};
 pub use crate::scene::Receiver;
 pub use frame::{Fit, Frame, BACKGROUND, RECEIVER_OFFSET};
 pub use stages::{FittedMaps, Needs, Progress, SharedMaps, StageTime, Stages, Stats};

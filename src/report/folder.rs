@@ -18,7 +18,7 @@
 use super::check::quote;
 use super::names::{file_part, picture_size, Names};
 use super::{merge_labelled, write, ReportError, Results};
-use crate::render::image::write_atomically;
+use crate::output::image::write_atomically;
 use crate::scene::file::{read_input, MAX_TEXT_BYTES};
 use std::collections::HashMap;
 use std::path::{Path, PathBuf};

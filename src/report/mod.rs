@@ -83,8 +83,8 @@ pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
 
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
-use crate::render::image::ErrorSummary;
-use crate::render::score::{group_errors, group_masks, scaled, shading_factors};
+use crate::output::image::ErrorSummary;
+use crate::output::score::{group_errors, group_masks, scaled, shading_factors};
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
@@ -101,7 +101,7 @@ pub const SLOW_RUN: f64 = 2.0;
 
 /// The receiver groups, in table order (the renderer's, shared with
 /// `softshadow score`).
-pub use crate::render::score::GROUPS;
+pub use crate::output::score::GROUPS;
 
 /// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
 #[must_use]
@@ -346,7 +346,7 @@ impl ConfigRecord {
 pub fn settings(config: &Config) -> Vec<String> {
     let mut out = vec!["exact".to_owned()];
     if config.methods.is_empty() {
-        for entry in REGISTRY.iter().filter(|e| e.is_built()) {
+        for entry in REGISTRY {
             out.extend(entry.compare.iter().map(|s| (*s).to_owned()));
         }
     } else {
@@ -674,7 +674,7 @@ fn picture(
     config: &Config,
     path: &std::path::Path,
 ) -> Result<(), ReportError> {
-    use crate::render::image::{error_heat_map, shaded, shaded_by_ends};
+    use crate::output::image::{error_heat_map, shaded, shaded_by_ends};
     let stages = Stages::new(&case.scene);
     let run = method::run(method, &stages, &prepared.frame).map_err(|e| {
         ReportError::file(path, format!("the picture's run of {}: {e}", method.name()))
@@ -858,7 +858,7 @@ mod tests {
     fn the_settings_come_from_the_registry() {
         let s = settings(&Config::default());
         assert_eq!(s[0], "exact");
-        for entry in REGISTRY.iter().filter(|e| e.is_built()) {
+        for entry in REGISTRY {
             for c in entry.compare {
                 assert!(s.iter().any(|x| x == c), "{c} missing");
             }

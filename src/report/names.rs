@@ -108,7 +108,7 @@ pub(crate) fn picture_factor(side: u32, pictures: u32, scene: &str) -> u32 {
 /// [`picture_factor`].
 pub(crate) fn picture_size(side: u32, pictures: u32, scene: &str) -> (u32, u32) {
     let f = picture_factor(side, pictures, scene);
-    let (w, h) = crate::render::image::heat_map_size(side, side);
+    let (w, h) = crate::output::image::heat_map_size(side, side);
     let (s, w, h) = (side / f, w / f, h / f);
     (s + super::write::GAP + w, s.max(h))
 }

@@ -4,6 +4,8 @@
 //! one penumbra per scene.
 
 use super::{CellRecord, ConfigRecord, SceneRecord, GROUPS};
+use plotters::coord::combinators::LogCoord;
+use plotters::coord::Shift;
 use plotters::prelude::*;
 
 /// One colour per method (base name), by its place in the registry.
@@ -110,19 +112,26 @@ fn place_label(
     None
 }
 
-/// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, whose
-/// cells are `cells`, as SVG text; `None` when there is nothing to plot.
-///
-/// The exact reference has RMSE 0, off a log axis: it is drawn as a
-/// labelled marker on the axis floor at its time. Method settings are
-/// labelled by name, each label placed where it meets no other label or
-/// point (a leader line to its point when moved off it).
-pub(crate) fn error_against_time(
-    config: &ConfigRecord,
-    scene: &SceneRecord,
-    cells: &[&CellRecord],
-    g: usize,
-) -> Option<String> {
+/// The points of one error-against-time plot.
+struct Points<'a> {
+    /// The method settings, with their `(ms, rmse)`.
+    methods: Vec<(&'a CellRecord, (f64, f64))>,
+    /// The Monte Carlo curve, by increasing time.
+    mc: Vec<(f64, f64)>,
+    /// The exact reference's time (its error is 0 by definition).
+    exact_ms: Option<f64>,
+    /// The Pareto front of the methods' and Monte Carlo's points.
+    front: Vec<(f64, f64)>,
+    /// The axis floor, where RMSE 0 is drawn: below every measured point.
+    floor: f64,
+}
+
+/// The chart of an error-against-time plot: log time against log RMSE.
+type Chart<'a, 'b> = ChartContext<'a, SVGBackend<'b>, Cartesian2d<LogCoord<f64>, LogCoord<f64>>>;
+
+/// The points of `cells` (those that ran) for group `g`, and the plot's
+/// ranges of time and RMSE; `None` when there is nothing to plot.
+fn points<'a>(cells: &[&'a CellRecord], g: usize) -> Option<(Points<'a>, (f64, f64), f64)> {
     let cells: Vec<&CellRecord> = cells.iter().copied().filter(|c| c.status == "ok").collect();
     let point = |c: &CellRecord| -> Option<(f64, f64)> {
         let e = c.errors?[g].rmse;
@@ -140,7 +149,6 @@ pub(crate) fn error_against_time(
         .filter_map(|c| point(c))
         .collect();
     mc.sort_by(|a, b| a.0.total_cmp(&b.0));
-    // The exact reference's time (its error is 0 by definition).
     let exact_ms = cells
         .iter()
         .find(|c| c.base == "exact")
@@ -155,7 +163,7 @@ pub(crate) fn error_against_time(
     if all.is_empty() {
         return None;
     }
-    let (t0, t1) = all
+    let times = all
         .iter()
         .map(|p| p.0)
         .chain(exact_ms)
@@ -163,9 +171,31 @@ pub(crate) fn error_against_time(
     let (e0, e1) = all.iter().fold((f64::INFINITY, 0.0f64), |(a, b), p| {
         (a.min(p.1), b.max(p.1))
     });
-    // The axis floor, where RMSE 0 is drawn: below every measured point.
-    let floor = e0 / 3.0;
-    let front = pareto(&all);
+    let points = Points {
+        methods,
+        mc,
+        exact_ms,
+        front: pareto(&all),
+        floor: e0 / 3.0,
+    };
+    Some((points, times, e1))
+}
+
+/// Error (RMSE of `V` over group `g`) against time (ms) on `scene`, whose
+/// cells are `cells`, as SVG text; `None` when there is nothing to plot.
+///
+/// The exact reference has RMSE 0, off a log axis: it is drawn as a
+/// labelled marker on the axis floor at its time. Method settings are
+/// labelled by name, each label placed where it meets no other label or
+/// point (a leader line to its point when moved off it).
+pub(crate) fn error_against_time(
+    config: &ConfigRecord,
+    scene: &SceneRecord,
+    cells: &[&CellRecord],
+    g: usize,
+) -> Option<String> {
+    let (points, (t0, t1), e1) = self::points(cells, g)?;
+    let floor = points.floor;
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (1100, 720)).into_drawing_area();
@@ -197,72 +227,7 @@ pub(crate) fn error_against_time(
             .y_label_formatter(&|v| short(*v))
             .draw()
             .ok()?;
-        if mc.len() >= 2 {
-            chart
-                .draw_series(LineSeries::new(mc.clone(), BLACK.stroke_width(2)))
-                .ok()?
-                .label(format!(
-                    "Monte Carlo, {} … {} samples",
-                    config.mc.first().copied().unwrap_or(0),
-                    config.mc.last().copied().unwrap_or(0)
-                ))
-                .legend(|(x, y)| {
-                    PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2))
-                });
-            chart
-                .draw_series(mc.iter().map(|&p| Circle::new(p, 3, BLACK.filled())))
-                .ok()?;
-        }
-        if front.len() >= 2 {
-            chart
-                .draw_series(DashedLineSeries::new(
-                    front.clone(),
-                    6,
-                    4,
-                    BLACK.stroke_width(1),
-                ))
-                .ok()?
-                .label("Pareto front (ringed: no point both faster and closer)")
-                .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
-        }
-        chart
-            .draw_series(
-                front
-                    .iter()
-                    .map(|&p| Circle::new(p, 8, BLACK.stroke_width(1))),
-            )
-            .ok()?;
-        if let Some(t) = exact_ms {
-            // A downward triangle standing on the floor at the exact
-            // reference's time.
-            let exact_colour = RGBColor(0, 0, 0);
-            chart
-                .draw_series(std::iter::once(Polygon::new(
-                    vec![
-                        (t / 1.12, floor * 1.22),
-                        (t * 1.12, floor * 1.22),
-                        (t, floor * 1.02),
-                    ],
-                    exact_colour.filled(),
-                )))
-                .ok()?
-                .label("exact reference: RMSE 0, drawn on the floor at its time")
-                .legend(move |(x, y)| {
-                    Polygon::new(
-                        vec![(x + 4, y - 5), (x + 16, y - 5), (x + 10, y + 5)],
-                        exact_colour.filled(),
-                    )
-                });
-        }
-        for (c, p) in &methods {
-            chart
-                .draw_series(std::iter::once(Circle::new(
-                    *p,
-                    4,
-                    colour(&c.base).filled(),
-                )))
-                .ok()?;
-        }
+        draw_points(&mut chart, config, &points)?;
         chart
             .configure_series_labels()
             .position(SeriesLabelPosition::UpperRight)
@@ -270,65 +235,157 @@ pub(crate) fn error_against_time(
             .border_style(BLACK)
             .draw()
             .ok()?;
-        // The labels, placed in pixels: every point and the legend are
-        // obstacles, then each label placed takes its box.
-        let (xr, yr) = chart.plotting_area().get_pixel_range();
-        let area = (xr.start, yr.start, xr.end, yr.end);
-        let at = |p: (f64, f64)| chart.backend_coord(&p);
-        let dot = |(x, y): (i32, i32), r: i32| (x - r, y - r, x + r, y + r);
-        let mut taken: Vec<LabelBox> = methods
-            .iter()
-            .map(|m| dot(at(m.1), 5))
-            .chain(mc.iter().map(|&p| dot(at(p), 4)))
-            .chain(front.iter().map(|&p| dot(at(p), 9)))
-            .collect();
-        // The legend: upper right, up to four lines of about 60 characters.
-        let entries = 2 + i32::from(exact_ms.is_some()) + i32::from(front.len() >= 2);
-        taken.push((area.2 - 440, area.1, area.2, area.1 + 14 + 20 * entries));
-        let font = ("sans-serif", 11).into_font();
-        let mut labels = Vec::new();
-        if let Some(t) = exact_ms {
-            let p = at((t, floor * 1.12));
-            taken.push(dot(p, 7));
-            labels.push((format!("exact: RMSE 0, {} ms", short(t)), p, BLACK));
-        }
-        // Crowded points first: the ones with the most neighbours within
-        // 40 pixels take the nearest places.
-        let mut order: Vec<usize> = (0..methods.len()).collect();
-        let crowd = |k: usize| {
-            let p = at(methods[k].1);
-            methods
-                .iter()
-                .filter(|m| {
-                    let q = at(m.1);
-                    (q.0 - p.0).abs() < 40 && (q.1 - p.1).abs() < 40
-                })
-                .count()
-        };
-        order.sort_by_key(|&k| std::cmp::Reverse(crowd(k)));
-        for k in order {
-            let (c, p) = methods[k];
-            labels.push((c.method.clone(), at(p), colour(&c.base)));
-        }
-        for (text, p, col) in labels {
-            let size = label_size(&text);
-            let Some(b) = place_label(p, size, area, &taken) else {
-                continue;
-            };
-            taken.push(b);
-            // A leader line from the point to the box's nearest side when
-            // the label is not beside it.
-            let (cx, cy) = (p.0.clamp(b.0, b.2), p.1.clamp(b.1, b.3));
-            if (cx - p.0).abs().max((cy - p.1).abs()) > 9 {
-                root.draw(&PathElement::new(vec![p, (cx, cy)], col.mix(0.6)))
-                    .ok()?;
-            }
-            root.draw(&Text::new(text, (b.0 + 1, b.1), font.clone().color(&col)))
-                .ok()?;
-        }
+        draw_labels(&root, &chart, &points)?;
         root.present().ok()?;
     }
     Some(svg)
+}
+
+/// The Monte Carlo curve, the Pareto front, the exact reference's marker
+/// and the methods' points, with their legend entries.
+fn draw_points(
+    chart: &mut Chart<'_, '_>,
+    config: &ConfigRecord,
+    points: &Points<'_>,
+) -> Option<()> {
+    let Points {
+        methods,
+        mc,
+        exact_ms,
+        front,
+        floor,
+    } = points;
+    if mc.len() >= 2 {
+        chart
+            .draw_series(LineSeries::new(mc.clone(), BLACK.stroke_width(2)))
+            .ok()?
+            .label(format!(
+                "Monte Carlo, {} … {} samples",
+                config.mc.first().copied().unwrap_or(0),
+                config.mc.last().copied().unwrap_or(0)
+            ))
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(2)));
+        chart
+            .draw_series(mc.iter().map(|&p| Circle::new(p, 3, BLACK.filled())))
+            .ok()?;
+    }
+    if front.len() >= 2 {
+        chart
+            .draw_series(DashedLineSeries::new(
+                front.clone(),
+                6,
+                4,
+                BLACK.stroke_width(1),
+            ))
+            .ok()?
+            .label("Pareto front (ringed: no point both faster and closer)")
+            .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK));
+    }
+    chart
+        .draw_series(
+            front
+                .iter()
+                .map(|&p| Circle::new(p, 8, BLACK.stroke_width(1))),
+        )
+        .ok()?;
+    if let Some(t) = *exact_ms {
+        // A downward triangle standing on the floor at the exact
+        // reference's time.
+        let exact_colour = RGBColor(0, 0, 0);
+        chart
+            .draw_series(std::iter::once(Polygon::new(
+                vec![
+                    (t / 1.12, floor * 1.22),
+                    (t * 1.12, floor * 1.22),
+                    (t, floor * 1.02),
+                ],
+                exact_colour.filled(),
+            )))
+            .ok()?
+            .label("exact reference: RMSE 0, drawn on the floor at its time")
+            .legend(move |(x, y)| {
+                Polygon::new(
+                    vec![(x + 4, y - 5), (x + 16, y - 5), (x + 10, y + 5)],
+                    exact_colour.filled(),
+                )
+            });
+    }
+    for (c, p) in methods {
+        chart
+            .draw_series(std::iter::once(Circle::new(
+                *p,
+                4,
+                colour(&c.base).filled(),
+            )))
+            .ok()?;
+    }
+    Some(())
+}
+
+/// The labels, placed in pixels: every point and the legend are
+/// obstacles, then each label placed takes its box.
+fn draw_labels(
+    root: &DrawingArea<SVGBackend<'_>, Shift>,
+    chart: &Chart<'_, '_>,
+    points: &Points<'_>,
+) -> Option<()> {
+    let (methods, mc, front) = (&points.methods, &points.mc, &points.front);
+    let (exact_ms, floor) = (points.exact_ms, points.floor);
+    let (xr, yr) = chart.plotting_area().get_pixel_range();
+    let area = (xr.start, yr.start, xr.end, yr.end);
+    let at = |p: (f64, f64)| chart.backend_coord(&p);
+    let dot = |(x, y): (i32, i32), r: i32| (x - r, y - r, x + r, y + r);
+    let mut taken: Vec<LabelBox> = methods
+        .iter()
+        .map(|m| dot(at(m.1), 5))
+        .chain(mc.iter().map(|&p| dot(at(p), 4)))
+        .chain(front.iter().map(|&p| dot(at(p), 9)))
+        .collect();
+    // The legend: upper right, up to four lines of about 60 characters.
+    let entries = 2 + i32::from(exact_ms.is_some()) + i32::from(front.len() >= 2);
+    taken.push((area.2 - 440, area.1, area.2, area.1 + 14 + 20 * entries));
+    let font = ("sans-serif", 11).into_font();
+    let mut labels = Vec::new();
+    if let Some(t) = exact_ms {
+        let p = at((t, floor * 1.12));
+        taken.push(dot(p, 7));
+        labels.push((format!("exact: RMSE 0, {} ms", short(t)), p, BLACK));
+    }
+    // Crowded points first: the ones with the most neighbours within
+    // 40 pixels take the nearest places.
+    let mut order: Vec<usize> = (0..methods.len()).collect();
+    let crowd = |k: usize| {
+        let p = at(methods[k].1);
+        methods
+            .iter()
+            .filter(|m| {
+                let q = at(m.1);
+                (q.0 - p.0).abs() < 40 && (q.1 - p.1).abs() < 40
+            })
+            .count()
+    };
+    order.sort_by_key(|&k| std::cmp::Reverse(crowd(k)));
+    for k in order {
+        let (c, p) = methods[k];
+        labels.push((c.method.clone(), at(p), colour(&c.base)));
+    }
+    for (text, p, col) in labels {
+        let size = label_size(&text);
+        let Some(b) = place_label(p, size, area, &taken) else {
+            continue;
+        };
+        taken.push(b);
+        // A leader line from the point to the box's nearest side when
+        // the label is not beside it.
+        let (cx, cy) = (p.0.clamp(b.0, b.2), p.1.clamp(b.1, b.3));
+        if (cx - p.0).abs().max((cy - p.1).abs()) > 9 {
+            root.draw(&PathElement::new(vec![p, (cx, cy)], col.mix(0.6)))
+                .ok()?;
+        }
+        root.draw(&Text::new(text, (b.0 + 1, b.1), font.clone().color(&col)))
+            .ok()?;
+    }
+    Some(())
 }
 
 /// `V` along the scene's profile row: the exact answer and the default

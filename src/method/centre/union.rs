@@ -107,6 +107,12 @@ pub(crate) struct Scratch {
     angles: Vec<f64>,
 }
 
+/// Whether a layer count is covered: at least one layer (`> ½`, weights
+/// being halves for closed surfaces).
+fn covered(c: f64) -> bool {
+    c > 0.5
+}
+
 /// The covered fraction of the unit disk (see the module docs).
 pub(crate) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scratch) -> f64 {
     let Scratch {
@@ -114,6 +120,40 @@ pub(crate) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scrat
         params,
         angles,
     } = scratch;
+    merge_edges(edges, kept);
+    if kept.is_empty() {
+        return centre_only(c0);
+    }
+    angles.clear();
+    let mut area = 0.0;
+    for i in 0..kept.len() {
+        add_pieces(c0, kept, i, params, angles, &mut area);
+    }
+    add_arcs(c0, kept, angles, &mut area);
+    let share = area / PI;
+    if share.is_finite() {
+        share
+    } else {
+        // Only reachable through overflow in the side tests of edges mapped
+        // absurdly far; the centre's count is then the best answer.
+        centre_only(c0)
+    }
+}
+
+/// The covered fraction from the centre's layer count alone: the whole
+/// disk or none of it.
+fn centre_only(c0: f64) -> f64 {
+    if covered(c0) {
+        1.0
+    } else {
+        0.0
+    }
+}
+
+/// Into `kept`, the edges of `edges` that meet the disk, each once: one
+/// direction per segment, bit-identical copies merged (their weights
+/// added), those of weight 0 left out.
+fn merge_edges(edges: &[MappedEdge], kept: &mut Vec<MappedEdge>) {
     kept.clear();
     kept.extend(
         edges
@@ -138,7 +178,7 @@ pub(crate) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scrat
     // Merge bit-identical segments (an interior edge of the all-edges chain
     // appears once per face, in opposite directions, and cancels; a
     // contour edge appears once per sheet): the chain is the same, and the
-    // arrangement below costs O(k³) in the number of edges.
+    // arrangement costs O(k³) in the number of edges.
     kept.sort_by(|e, f| {
         (e.a.x, e.a.y, e.b.x, e.b.y)
             .partial_cmp(&(f.a.x, f.a.y, f.b.x, f.b.y))
@@ -155,92 +195,92 @@ pub(crate) fn union_occlusion(c0: f64, edges: &[MappedEdge], scratch: &mut Scrat
     }
     kept.truncate(merged);
     kept.retain(|e| e.weight != 0.0);
-    let covered = |c: f64| c > 0.5;
-    if kept.is_empty() {
-        return if covered(c0) { 1.0 } else { 0.0 };
+}
+
+/// Adds to `area` Green's sum over the boundary pieces of edge `kept[i]`
+/// (the edge cut where it crosses the circle and the other edges, each
+/// piece inside the disk kept when covered on one side only), and pushes
+/// the angles where the edge crosses the circle onto `angles`.
+fn add_pieces(
+    c0: f64,
+    kept: &[MappedEdge],
+    i: usize,
+    params: &mut Vec<f64>,
+    angles: &mut Vec<f64>,
+    area: &mut f64,
+) {
+    let e = &kept[i];
+    let d = e.b - e.a;
+    params.clear();
+    params.extend([0.0, 1.0]);
+    let before = params.len();
+    circle_hits(e.a, e.b, params);
+    for &t in &params[before..] {
+        let p = e.a + d * t;
+        angles.push(p.y.atan2(p.x));
     }
-    angles.clear();
-    let mut area = 0.0;
-    for (i, e) in kept.iter().enumerate() {
-        let d = e.b - e.a;
-        params.clear();
-        params.extend([0.0, 1.0]);
-        let before = params.len();
-        circle_hits(e.a, e.b, params);
-        for &t in &params[before..] {
-            let p = e.a + d * t;
-            angles.push(p.y.atan2(p.x));
+    for (j, f) in kept.iter().enumerate() {
+        if i == j {
+            continue;
         }
-        for (j, f) in kept.iter().enumerate() {
-            if i == j {
-                continue;
-            }
-            let g = f.b - f.a;
-            let den = cross(d, g);
-            if den == 0.0 {
-                continue;
-            }
-            let t = cross(f.a - e.a, g) / den;
-            let u = cross(f.a - e.a, d) / den;
-            if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
-                params.push(t);
-            }
+        let g = f.b - f.a;
+        let den = cross(d, g);
+        if den == 0.0 {
+            continue;
         }
-        params.sort_by(f64::total_cmp);
-        let n = d.try_normalize().map_or(DVec2::ZERO, DVec2::perp);
-        for w in params.windows(2) {
-            let (t0, t1) = (w[0], w[1]);
-            if t1 <= t0 {
-                continue;
-            }
-            let m = e.a + d * (0.5 * (t0 + t1));
-            if m.length_squared() >= 1.0 {
-                continue;
-            }
-            let c_left = coverage(c0, kept, m + n * PROBE);
-            let c_right = coverage(c0, kept, m - n * PROBE);
-            let jump = c_left - c_right;
-            if covered(c_left) != covered(c_right) && jump != 0.0 {
-                // Edges lying on top of each other (the front and back
-                // faces of a contour in the all-edges chain) share the
-                // piece: each takes its weight's share of the jump, so the
-                // piece is counted once whatever their number and direction.
-                let (p, q) = (e.a + d * t0, e.a + d * t1);
-                let side = if covered(c_left) { 1.0 } else { -1.0 };
-                area += side * segment_disk_area(1.0, p, q) * (e.weight / jump);
-            }
+        let t = cross(f.a - e.a, g) / den;
+        let u = cross(f.a - e.a, d) / den;
+        if (0.0..=1.0).contains(&t) && (0.0..=1.0).contains(&u) {
+            params.push(t);
         }
     }
-    // The covered arcs of the circle.
+    params.sort_by(f64::total_cmp);
+    let n = d.try_normalize().map_or(DVec2::ZERO, DVec2::perp);
+    for w in params.windows(2) {
+        let (t0, t1) = (w[0], w[1]);
+        if t1 <= t0 {
+            continue;
+        }
+        let m = e.a + d * (0.5 * (t0 + t1));
+        if m.length_squared() >= 1.0 {
+            continue;
+        }
+        let c_left = coverage(c0, kept, m + n * PROBE);
+        let c_right = coverage(c0, kept, m - n * PROBE);
+        let jump = c_left - c_right;
+        if covered(c_left) != covered(c_right) && jump != 0.0 {
+            // Edges lying on top of each other (the front and back
+            // faces of a contour in the all-edges chain) share the
+            // piece: each takes its weight's share of the jump, so the
+            // piece is counted once whatever their number and direction.
+            let (p, q) = (e.a + d * t0, e.a + d * t1);
+            let side = if covered(c_left) { 1.0 } else { -1.0 };
+            *area += side * segment_disk_area(1.0, p, q) * (e.weight / jump);
+        }
+    }
+}
+
+/// Adds to `area` the covered arcs of the circle, `½ Δφ` each, between
+/// the `angles` where edges cross it (sorted here); the whole disk's `π`
+/// when no edge crosses it and it is covered.
+fn add_arcs(c0: f64, kept: &[MappedEdge], angles: &mut [f64], area: &mut f64) {
     let probe = |phi: f64| covered(coverage(c0, kept, DVec2::from_angle(phi) * (1.0 - PROBE)));
     if angles.is_empty() {
         if probe(0.0) {
-            area += PI;
+            *area += PI;
         }
-    } else {
-        angles.sort_by(f64::total_cmp);
-        for k in 0..angles.len() {
-            let a0 = angles[k];
-            let a1 = if k + 1 < angles.len() {
-                angles[k + 1]
-            } else {
-                angles[0] + 2.0 * PI
-            };
-            if a1 > a0 && probe(0.5 * (a0 + a1)) {
-                area += 0.5 * (a1 - a0);
-            }
-        }
+        return;
     }
-    let share = area / PI;
-    if share.is_finite() {
-        share
-    } else {
-        // Only reachable through overflow in the side tests of edges mapped
-        // absurdly far; the centre's count is then the best answer.
-        if covered(c0) {
-            1.0
+    angles.sort_by(f64::total_cmp);
+    for k in 0..angles.len() {
+        let a0 = angles[k];
+        let a1 = if k + 1 < angles.len() {
+            angles[k + 1]
         } else {
-            0.0
+            angles[0] + 2.0 * PI
+        };
+        if a1 > a0 && probe(0.5 * (a0 + a1)) {
+            *area += 0.5 * (a1 - a0);
         }
     }
 }

@@ -59,7 +59,7 @@
 
 mod maps;
 
-use super::options::{builders, field, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{per_receiver, Input, Method, MethodError, Output};
 use crate::kernel::linear_light::f64::{law_of_sines_fraction, visible_part_3d, VisiblePart};
 use crate::kernel::linear_light::OccluderSide;
@@ -71,36 +71,38 @@ use crate::scene::{Light, LightKind};
 use glam::{DVec2, DVec3};
 use maps::{EndMap, EndpointMaps, Strategies};
 
-/// Occluding edges soft shadows: see the [module docs](self). Segment
-/// lights only; needs neither normals nor object ids.
-///
-/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
-/// says: to the scene for a frame of points (`Frame::from_receivers`; each
-/// receiver's `V` independent of the other receivers of the call), to the
-/// scene and the receivers for a camera image (the real-time practice,
-/// `render`). A receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct Oess {
-    /// Side of the two endpoint maps, `1..=16384`; default
-    /// [`Oess::DEFAULT_RESOLUTION`] (the paper measured up to 800²).
-    pub resolution: u32,
-    /// Occluding edges by the tilt of fragments (§3.2, strategy 1);
-    /// default on.
-    pub tilt: bool,
-    /// Occluding edges by the corresponding pixels (§3.2, strategy 2);
-    /// default on.
-    pub corresponding: bool,
-    /// Penumbra only where the receiver is the surface the map sees
-    /// (§3.4, substep 4.1's first approach); default off.
-    pub depth_check: bool,
-    /// The paper's eq. 1 as printed instead of the stable construction;
-    /// default off.
-    pub law_of_sines: bool,
-    /// The relative depth margin of "hidden from the other end" and "seen
-    /// by an end", `[0, 1]`; default [`Oess::DEFAULT_BIAS`] (ours).
-    pub bias: f64,
+method_options! {
+    /// Occluding edges soft shadows: see the [module docs](self). Segment
+    /// lights only; needs neither normals nor object ids.
+    ///
+    #[doc = crate::method::fitted_maps_doc!()]
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[non_exhaustive]
+    pub struct Oess {
+        /// Side of the two endpoint maps, `1..=16384`; default
+        /// [`Oess::DEFAULT_RESOLUTION`] (the paper measured up to 800²).
+        pub resolution: u32 = Oess::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the endpoint maps (the paper: up to 800)"), builder(with_resolution);
+        /// Occluding edges by the tilt of fragments (§3.2, strategy 1);
+        /// default on.
+        pub tilt: bool = true, option(flag ! "no-tilt", "without the tilt strategy (§3.2, strategy 1)"), builder(with_tilt);
+        /// Occluding edges by the corresponding pixels (§3.2, strategy 2);
+        /// default on.
+        pub corresponding: bool = true, option(flag ! "no-corr", "without the corresponding-pixels strategy (§3.2, strategy 2)"), builder(with_corresponding);
+        /// Penumbra only where the receiver is the surface the map sees
+        /// (§3.4, substep 4.1's first approach); default off.
+        pub depth_check: bool = false, option(flag "depth-check", "penumbra only where the map sees the receiver (§3.4, first approach)"), builder(with_depth_check);
+        /// The paper's eq. 1 as printed instead of the stable construction;
+        /// default off.
+        pub law_of_sines: bool = false, option(flag "law-of-sines", "the paper's eq. 1 instead of the stable construction"), builder(with_law_of_sines);
+        /// The relative depth margin of "hidden from the other end" and "seen
+        /// by an end", `[0, 1]`; default [`Oess::DEFAULT_BIAS`] (ours).
+        pub bias: f64 = Oess::DEFAULT_BIAS, option(real "bias", (0.0, 1.0), "relative depth margin of the visibility tests (ours: 0.001)"), builder(with_bias);
+    }
+    name: "oess",
+    summary: "occluding edges soft shadows for segment lights (Reimann & Dreier 2016)",
+    lights: &[LightKind::Segment],
+    default_run: &["oess"],
+    compare: &["oess", "oess:no-tilt", "oess:no-corr", "oess:depth-check", "oess:law-of-sines"],
 }
 
 impl Oess {
@@ -111,58 +113,6 @@ impl Oess {
     /// only the facets of tessellated curved surfaces; on `linear-light`
     /// 0.1 % gave the lowest error of 1 %, 0.3 %, 0.1 % and 0.03 %).
     pub const DEFAULT_BIAS: f64 = 0.001;
-}
-
-impl Default for Oess {
-    fn default() -> Oess {
-        Oess {
-            resolution: Oess::DEFAULT_RESOLUTION,
-            tilt: true,
-            corresponding: true,
-            depth_check: false,
-            law_of_sines: false,
-            bias: Oess::DEFAULT_BIAS,
-        }
-    }
-}
-
-builders!(Oess {
-    /// With endpoint maps of `value × value` texels.
-    with_resolution => resolution: u32,
-    /// With or without the tilt strategy.
-    with_tilt => tilt: bool,
-    /// With or without the corresponding-pixels strategy.
-    with_corresponding => corresponding: bool,
-    /// With or without the depth check.
-    with_depth_check => depth_check: bool,
-    /// With or without the paper's eq. 1.
-    with_law_of_sines => law_of_sines: bool,
-    /// With the relative depth margin `value`.
-    with_bias => bias: f64,
-});
-
-impl Configurable for Oess {
-    const NAME: &'static str = "oess";
-    const SUMMARY: &'static str =
-        "occluding edges soft shadows for segment lights (Reimann & Dreier 2016)";
-    const LIGHTS: &'static [LightKind] = &[LightKind::Segment];
-    const DEFAULT_RUN: &'static [&'static str] = &["oess"];
-    const COMPARE: &'static [&'static str] = &[
-        "oess",
-        "oess:no-tilt",
-        "oess:no-corr",
-        "oess:depth-check",
-        "oess:law-of-sines",
-    ];
-    #[rustfmt::skip]
-    const FIELDS: &'static [Field<Oess>] = &[
-        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the endpoint maps (the paper: up to 800)"),
-        field!(flag "no-tilt", !tilt, "without the tilt strategy (§3.2, strategy 1)"),
-        field!(flag "no-corr", !corresponding, "without the corresponding-pixels strategy (§3.2, strategy 2)"),
-        field!(flag "depth-check", depth_check, "penumbra only where the map sees the receiver (§3.4, first approach)"),
-        field!(flag "law-of-sines", law_of_sines, "the paper's eq. 1 instead of the stable construction"),
-        field!(real "bias", bias, (0.0, 1.0), "relative depth margin of the visibility tests (ours: 0.001)"),
-    ];
 }
 
 /// Everything [`Oess::passes`] computed, per receiver.
@@ -178,9 +128,7 @@ pub struct OessPasses {
 }
 
 impl Method for Oess {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     /// Yes: see the trait's doc (no option of the paper asks otherwise).
     fn hides_back_faces(&self) -> bool {
@@ -193,10 +141,6 @@ impl Method for Oess {
     /// -f %M`); `map=16384` needs about 17 GB.
     fn map_bytes(&self) -> u64 {
         64 * u64::from(self.resolution).pow(2)
-    }
-
-    fn lights(&self) -> &'static [LightKind] {
-        Self::LIGHTS
     }
 
     fn needs(&self) -> Needs {

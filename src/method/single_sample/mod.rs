@@ -70,7 +70,7 @@ mod interpolate;
 mod search;
 
 use super::centre::depth::{self, DepthTest};
-use super::options::{builders, field, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::kernel::falloff::{f64 as falloff, Falloff};
 use crate::kernel::footprint::f64::{self as footprint, project};
@@ -84,52 +84,56 @@ use rayon::prelude::*;
 use search::{Search, Tiles, Want};
 use std::sync::Arc;
 
-/// Single-sample soft shadows: see the [module docs](self). Sphere, disk
-/// and rect lights (the paper's point sample is the light's centre); needs
-/// receiver normals (the depth test's receiver plane) and object ids (the
-/// id test; not with `no-id`).
-///
-/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
-/// says: to the scene for a frame of points (`Frame::from_receivers`; each
-/// receiver's `V` independent of the other receivers of the call), to the
-/// scene and the receivers for a camera image (the real-time practice,
-/// `render`). A receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct SingleSample {
-    /// Side of the light's depth and id maps, `1..=16384`; default
-    /// [`SingleSample::DEFAULT_RESOLUTION`] (the paper's §5).
-    pub resolution: u32,
-    /// `r_scale`, texels per unit of light depth, `[0, 10⁶]`; `0` (the
-    /// default): 20 texels at the frame's farthest receiver (ours).
-    pub r_scale: f64,
-    /// `r_bias`, texels, `[0, 10⁶]`; default 0 (ours).
-    pub r_bias: f64,
-    /// `r_shrink`, per unit of light depth, `[0, 10⁶]`; `0` (the default):
-    /// the reciprocal of the frame's farthest receiver depth (ours).
-    pub r_shrink: f64,
-    /// Where the inner and outer penumbrae meet, `[0, 1]`; default 0.5
-    /// (§3.3: "0.5 (or some user defined constant)").
-    pub meet: f64,
-    /// The adaptive interpolation of §4.3 on camera frames; default on
-    /// (the paper's).
-    pub interpolate: bool,
-    /// The object-id test of §3.2; default on (the paper's).
-    pub id_test: bool,
-    /// The light-aware radii (ours, the paper's future work); default off.
-    pub light_aware: bool,
-    /// The ramp's falloff; default [`Falloff::Linear`] (the paper's linear
-    /// intensity).
-    pub falloff: Falloff,
-    /// The depth test's margin relative to the receiver's depth, `[0, 1]`;
-    /// default `1e-3` (PCSS's).
-    pub bias_relative: f64,
-    /// The depth test's margin in texels at the receiver, `[0, 1000]`;
-    /// default 1 (PCSS's).
-    pub bias_texels: f64,
-    /// The [horizon bound](Horizon); default off (ours).
-    pub horizon: bool,
+method_options! {
+    /// Single-sample soft shadows: see the [module docs](self). Sphere, disk
+    /// and rect lights (the paper's point sample is the light's centre); needs
+    /// receiver normals (the depth test's receiver plane) and object ids (the
+    /// id test; not with `no-id`).
+    ///
+    #[doc = crate::method::fitted_maps_doc!()]
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[non_exhaustive]
+    pub struct SingleSample {
+        /// Side of the light's depth and id maps, `1..=16384`; default
+        /// [`SingleSample::DEFAULT_RESOLUTION`] (the paper's §5).
+        pub resolution: u32 = SingleSample::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the depth and id maps (§5: 256)"), builder(with_resolution);
+        /// `r_scale`, texels per unit of light depth, `[0, 10⁶]`; `0` (the
+        /// default): 20 texels at the frame's farthest receiver (ours).
+        pub r_scale: f64 = 0.0, option(real "r-scale", (0.0, 1e6), "texels per unit depth; 0: 20 texels at the farthest receiver (ours)"), builder(with_r_scale);
+        /// `r_bias`, texels, `[0, 10⁶]`; default 0 (ours).
+        pub r_bias: f64 = 0.0, option(real "r-bias", (0.0, 1e6), "texels added to the search radius (§3.2)"), builder(with_r_bias);
+        /// `r_shrink`, per unit of light depth, `[0, 10⁶]`; `0` (the default):
+        /// the reciprocal of the frame's farthest receiver depth (ours).
+        pub r_shrink: f64 = 0.0, option(real "r-shrink", (0.0, 1e6), "per unit depth gap; 0: 1/farthest depth (ours)"), builder(with_r_shrink);
+        /// Where the inner and outer penumbrae meet, `[0, 1]`; default 0.5
+        /// (§3.3: "0.5 (or some user defined constant)").
+        pub meet: f64 = 0.5, option(real "meet", (0.0, 1.0), "where inner and outer penumbrae meet (§3.3)"), builder(with_meet);
+        /// The adaptive interpolation of §4.3 on camera frames; default on
+        /// (the paper's).
+        pub interpolate: bool = true, option(flag ! "no-interpolate", "search every pixel (without §4.3's interpolation)"), builder(with_interpolation);
+        /// The object-id test of §3.2; default on (the paper's).
+        pub id_test: bool = true, option(flag ! "no-id", "without the object-id test (§3.2)"), builder(with_id_test);
+        /// The light-aware radii (ours, the paper's future work); default off.
+        pub light_aware: bool = false, option(flag "light-aware", "radii from the light's footprint (ours; §6's future work)"), builder(with_light_aware);
+        /// The ramp's falloff; default [`Falloff::Linear`] (the paper's linear
+        /// intensity).
+        pub falloff: Falloff = Falloff::Linear, option(choice "falloff", ["linear" = Falloff::Linear, "exact" = Falloff::Exact, "bernstein" = Falloff::Bernstein], "the ramp's falloff (exact: ours)"), builder(with_falloff);
+        /// The depth test's margin relative to the receiver's depth, `[0, 1]`;
+        /// default `1e-3` (PCSS's).
+        pub bias_relative: f64 = 1e-3, option(real "relative", (0.0, 1.0), "depth margin relative to the receiver's depth (PCSS's)");
+        /// The depth test's margin in texels at the receiver, `[0, 1000]`;
+        /// default 1 (PCSS's).
+        pub bias_texels: f64 = 1.0, option(real "texels", (0.0, 1000.0), "depth margin in texels at the receiver (PCSS's)");
+        /// The [horizon bound](Horizon); default off (ours).
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
+    }
+    name: "single-sample",
+    summary: "single-sample soft shadows (Brabec & Seidel 2002)",
+    lights: &[LightKind::Sphere, LightKind::Disk, LightKind::Rect],
+    default_run: &["single-sample"],
+    compare: &["single-sample", "single-sample:light-aware",
+        "single-sample:light-aware,falloff=exact", "single-sample:no-interpolate",
+        "single-sample:horizon"],
 }
 
 impl SingleSample {
@@ -138,90 +142,6 @@ impl SingleSample {
     pub const DEFAULT_RESOLUTION: u32 = 256;
     /// The paper's search radius, in texels at the farthest receiver.
     pub const PAPER_RADIUS: f64 = 20.0;
-}
-
-impl Default for SingleSample {
-    fn default() -> SingleSample {
-        SingleSample {
-            resolution: SingleSample::DEFAULT_RESOLUTION,
-            r_scale: 0.0,
-            r_bias: 0.0,
-            r_shrink: 0.0,
-            meet: 0.5,
-            interpolate: true,
-            id_test: true,
-            light_aware: false,
-            falloff: Falloff::Linear,
-            bias_relative: 1e-3,
-            bias_texels: 1.0,
-            horizon: false,
-        }
-    }
-}
-
-builders!(SingleSample {
-    /// With light maps of `value × value` texels.
-    with_resolution => resolution: u32,
-    /// With or without the adaptive interpolation.
-    with_interpolation => interpolate: bool,
-    /// With or without the object-id test.
-    with_id_test => id_test: bool,
-    /// With or without the light-aware radii.
-    with_light_aware => light_aware: bool,
-    /// With the falloff `value`.
-    with_falloff => falloff: Falloff,
-    /// Where the penumbrae meet.
-    with_meet => meet: f64,
-    /// With `r_scale` (`0`: derived).
-    with_r_scale => r_scale: f64,
-    /// With `r_bias`.
-    with_r_bias => r_bias: f64,
-    /// With `r_shrink` (`0`: derived).
-    with_r_shrink => r_shrink: f64,
-    /// With or without the horizon bound.
-    with_horizon => horizon: bool,
-});
-
-/// The falloff choices' names, in the order of [`falloff_index`].
-const FALLOFFS: &[&str] = &["linear", "exact", "bernstein"];
-
-fn falloff_index(f: Falloff) -> usize {
-    match f {
-        Falloff::Linear => 0,
-        Falloff::Exact => 1,
-        Falloff::Bernstein => 2,
-    }
-}
-
-impl Configurable for SingleSample {
-    const NAME: &'static str = "single-sample";
-    const SUMMARY: &'static str = "single-sample soft shadows (Brabec & Seidel 2002)";
-    const LIGHTS: &'static [LightKind] = &[LightKind::Sphere, LightKind::Disk, LightKind::Rect];
-    const DEFAULT_RUN: &'static [&'static str] = &["single-sample"];
-    const COMPARE: &'static [&'static str] = &[
-        "single-sample",
-        "single-sample:light-aware",
-        "single-sample:light-aware,falloff=exact",
-        "single-sample:no-interpolate",
-        "single-sample:horizon",
-    ];
-    #[rustfmt::skip]
-    const FIELDS: &'static [Field<SingleSample>] = &[
-        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the depth and id maps (§5: 256)"),
-        field!(real "r-scale", r_scale, (0.0, 1e6), "texels per unit depth; 0: 20 texels at the farthest receiver (ours)"),
-        field!(real "r-bias", r_bias, (0.0, 1e6), "texels added to the search radius (§3.2)"),
-        field!(real "r-shrink", r_shrink, (0.0, 1e6), "per unit depth gap; 0: 1/farthest depth (ours)"),
-        field!(real "meet", meet, (0.0, 1.0), "where inner and outer penumbrae meet (§3.3)"),
-        field!(flag "no-interpolate", !interpolate, "search every pixel (without §4.3's interpolation)"),
-        field!(flag "no-id", !id_test, "without the object-id test (§3.2)"),
-        field!(flag "light-aware", light_aware, "radii from the light's footprint (ours; §6's future work)"),
-        super::options::choice("falloff", "the ramp's falloff (exact: ours)", FALLOFFS,
-            |m| falloff_index(m.falloff),
-            |m, i| m.falloff = [Falloff::Linear, Falloff::Exact, Falloff::Bernstein][i]),
-        field!(real "relative", bias_relative, (0.0, 1.0), "depth margin relative to the receiver's depth (PCSS's)"),
-        field!(real "texels", bias_texels, (0.0, 1000.0), "depth margin in texels at the receiver (PCSS's)"),
-        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
-    ];
 }
 
 /// Everything [`SingleSample::passes`] computed, per receiver.
@@ -240,9 +160,7 @@ pub struct SingleSamplePasses {
 }
 
 impl Method for SingleSample {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     /// Yes: see the trait's doc (no option of the paper asks otherwise).
     fn hides_back_faces(&self) -> bool {
@@ -254,10 +172,6 @@ impl Method for SingleSample {
     /// -f %M`).
     fn map_bytes(&self) -> u64 {
         17 * u64::from(self.resolution).pow(2)
-    }
-
-    fn lights(&self) -> &'static [LightKind] {
-        Self::LIGHTS
     }
 
     fn needs(&self) -> Needs {

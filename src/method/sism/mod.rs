@@ -148,7 +148,7 @@ mod umbra;
 pub use crate::method::centre::EdgeSource;
 
 use super::centre;
-use super::options::{builders, field, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{Horizon, Input, Method, MethodError, Output};
 use crate::kernel::footprint::f64::project;
 use crate::render::Needs;
@@ -188,57 +188,65 @@ pub enum Bound {
     Conservative,
 }
 
-/// Soft irregular shadow mapping: see the [module docs](self).
-///
-/// Sphere lights, and disk lights with the light frame along the disk's
-/// normal. Needs neither normals nor object ids (normals with the
-/// `horizon` option).
-///
-/// It fits no map to the receivers: its grid holds the receivers
-/// themselves and each edge reaches every receiver its footprint meets, so
-/// a receiver's `V` does not depend on the other receivers of the call
-/// (`tests/maps.rs`), whatever the frame's [`Fit`](crate::render::Fit). A
-/// receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`]).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct Sism {
-    /// Which edges are processed; default [`EdgeSource::Silhouettes`]
-    /// (§2.1).
-    pub edges: EdgeSource,
-    /// How occlusion is combined; default [`Composition::Independent`]
-    /// (eq. 4, `C = 0`, §5.2).
-    pub composition: Composition,
-    /// Which quad/wedge selects receivers; default [`Bound::Paper`] (§2.2).
-    pub bound: Bound,
-    /// §2.5's first optimisation, the per-bin maximum receiver depth for the
-    /// quad width; default `true` (the paper uses it).
-    pub bin_depth: bool,
-    /// §2.5's second optimisation, the wedge/column intersection; default
-    /// `true` (the paper uses it).
-    pub wedge_column: bool,
-    /// Grid cells per receiver, in `[1e-6, 64]`; default
-    /// [`Sism::DEFAULT_CELLS_PER_RECEIVER`] = 1 (ours: the paper sizes its
-    /// grid like the light-view image of hard irregular shadow mapping, one
-    /// sample per pixel on average, without a figure).
-    pub cells_per_receiver: f64,
-    /// Cells per side of a bin, `1..=1024`; default
-    /// [`Sism::DEFAULT_BIN_CELLS`] = 16 (ours: the paper's bins are the
-    /// Larrabee rasteriser's tiles, Seiler et al. 2008, size not stated).
-    pub bin_cells: u32,
-    /// Depth slices of the perspective grid, `1..=256`; default
-    /// [`Sism::DEFAULT_DEPTH_SLICES`] = 8 (ours: Fig. 3 shows a 3D grid
-    /// without a count).
+method_options! {
+    /// Soft irregular shadow mapping: see the [module docs](self).
     ///
-    /// The three grid sizes change only the work, never a value; the grid
-    /// lowers them where needed to stay within `2²⁶` keys (512 MiB of
-    /// offsets), so no valid option can exhaust memory.
-    pub depth_slices: u32,
-    /// The [horizon bound](Horizon), `V ≤ V_h`; default off (ours). With
-    /// [`Composition::Independent`] it is `min(V, V_h)`; with
-    /// [`Composition::ExactUnion`] the receiver's tangent plane is one more
-    /// edge of the union.
-    pub horizon: bool,
+    /// Sphere lights, and disk lights with the light frame along the disk's
+    /// normal. Needs neither normals nor object ids (normals with the
+    /// `horizon` option).
+    ///
+    /// It fits no map to the receivers: its grid holds the receivers
+    /// themselves and each edge reaches every receiver its footprint meets, so
+    /// a receiver's `V` does not depend on the other receivers of the call
+    /// (`tests/maps.rs`), whatever the frame's [`Fit`](crate::render::Fit). A
+    /// receiver on a closed mesh that faces away from the whole
+    /// light reads `V = 0` ([`Method::hides_back_faces`]).
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[non_exhaustive]
+    pub struct Sism {
+        /// Which edges are processed; default [`EdgeSource::Silhouettes`]
+        /// (§2.1).
+        pub edges: EdgeSource = EdgeSource::Silhouettes, option(flag "all-edges" == EdgeSource::AllEdges, else EdgeSource::Silhouettes, "every triangle edge instead of the silhouettes (§2.1's fallback)"), builder(with_edges);
+        /// How occlusion is combined; default [`Composition::Independent`]
+        /// (eq. 4, `C = 0`, §5.2).
+        pub composition: Composition = Composition::Independent, option(flag "exact-union" == Composition::ExactUnion, else Composition::Independent, "the union of the occluders in the footprint instead of C = 0 (§5.2, computed)"), builder(with_composition);
+        /// Which quad/wedge selects receivers; default [`Bound::Paper`] (§2.2).
+        pub bound: Bound = Bound::Paper, option(flag "conservative" == Bound::Conservative, else Bound::Paper, "the kernel's rigorous quad and wedge (changes the work, not the values)"), builder(with_bound);
+        /// §2.5's first optimisation, the per-bin maximum receiver depth for the
+        /// quad width; default `true` (the paper uses it).
+        pub bin_depth: bool = true, option(flag ! "no-bin-depth", "without §2.5's per-bin depth optimisation");
+        /// §2.5's second optimisation, the wedge/column intersection; default
+        /// `true` (the paper uses it).
+        pub wedge_column: bool = true, option(flag ! "no-wedge-column", "without §2.5's wedge/column optimisation");
+        /// Grid cells per receiver, in `[1e-6, 64]`; default
+        /// [`Sism::DEFAULT_CELLS_PER_RECEIVER`] = 1 (ours: the paper sizes its
+        /// grid like the light-view image of hard irregular shadow mapping, one
+        /// sample per pixel on average, without a figure).
+        pub cells_per_receiver: f64 = Sism::DEFAULT_CELLS_PER_RECEIVER, option(real "cells", (1e-6, 64.0), "grid cells per receiver (ours)");
+        /// Cells per side of a bin, `1..=1024`; default
+        /// [`Sism::DEFAULT_BIN_CELLS`] = 16 (ours: the paper's bins are the
+        /// Larrabee rasteriser's tiles, Seiler et al. 2008, size not stated).
+        pub bin_cells: u32 = Sism::DEFAULT_BIN_CELLS, option(int "bin", (1, 1024), "cells per side of a bin (ours)");
+        /// Depth slices of the perspective grid, `1..=256`; default
+        /// [`Sism::DEFAULT_DEPTH_SLICES`] = 8 (ours: Fig. 3 shows a 3D grid
+        /// without a count).
+        ///
+        /// The three grid sizes change only the work, never a value; the grid
+        /// lowers them where needed to stay within `2²⁶` keys (512 MiB of
+        /// offsets), so no valid option can exhaust memory.
+        pub depth_slices: u32 = Sism::DEFAULT_DEPTH_SLICES, option(int "slices", (1, 256), "depth slices of the grid (ours)");
+        /// The [horizon bound](Horizon), `V ≤ V_h`; default off (ours). With
+        /// [`Composition::Independent`] it is `min(V, V_h)`; with
+        /// [`Composition::ExactUnion`] the receiver's tangent plane is one more
+        /// edge of the union.
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
+    }
+    name: "sism",
+    summary: "soft irregular shadow mapping (Johnson et al. 2009)",
+    lights: &[LightKind::Sphere, LightKind::Disk],
+    default_run: &["sism"],
+    compare: &["sism", "sism:exact-union", "sism:horizon", "sism:exact-union,horizon",
+        "sism:all-edges", "sism:conservative"],
 }
 
 impl Sism {
@@ -267,63 +275,6 @@ impl Sism {
     }
 }
 
-builders!(Sism {
-    /// With the edges of `value`.
-    with_edges => edges: EdgeSource,
-    /// With the composition `value`.
-    with_composition => composition: Composition,
-    /// With the receiver bound `value`.
-    with_bound => bound: Bound,
-    /// With or without the horizon bound.
-    with_horizon => horizon: bool,
-});
-
-impl Default for Sism {
-    fn default() -> Sism {
-        Sism {
-            edges: EdgeSource::Silhouettes,
-            composition: Composition::Independent,
-            bound: Bound::Paper,
-            bin_depth: true,
-            wedge_column: true,
-            cells_per_receiver: Sism::DEFAULT_CELLS_PER_RECEIVER,
-            bin_cells: Sism::DEFAULT_BIN_CELLS,
-            depth_slices: Sism::DEFAULT_DEPTH_SLICES,
-            horizon: false,
-        }
-    }
-}
-
-impl Configurable for Sism {
-    const NAME: &'static str = "sism";
-    const SUMMARY: &'static str = "soft irregular shadow mapping (Johnson et al. 2009)";
-    const LIGHTS: &'static [LightKind] = &[LightKind::Sphere, LightKind::Disk];
-    const DEFAULT_RUN: &'static [&'static str] = &["sism"];
-    const COMPARE: &'static [&'static str] = &[
-        "sism",
-        "sism:exact-union",
-        "sism:horizon",
-        "sism:exact-union,horizon",
-        "sism:all-edges",
-        "sism:conservative",
-    ];
-    #[rustfmt::skip]
-    const FIELDS: &'static [Field<Sism>] = &[
-        field!(flag "all-edges", edges == EdgeSource::AllEdges, else EdgeSource::Silhouettes,
-            "every triangle edge instead of the silhouettes (§2.1's fallback)"),
-        field!(flag "exact-union", composition == Composition::ExactUnion, else Composition::Independent,
-            "the union of the occluders in the footprint instead of C = 0 (§5.2, computed)"),
-        field!(flag "conservative", bound == Bound::Conservative, else Bound::Paper,
-            "the kernel's rigorous quad and wedge (changes the work, not the values)"),
-        field!(flag "no-bin-depth", !bin_depth, "without §2.5's per-bin depth optimisation"),
-        field!(flag "no-wedge-column", !wedge_column, "without §2.5's wedge/column optimisation"),
-        field!(real "cells", cells_per_receiver, (1e-6, 64.0), "grid cells per receiver (ours)"),
-        field!(int "bin", bin_cells: u32, (1, 1024), "cells per side of a bin (ours)"),
-        field!(int "slices", depth_slices: u32, (1, 256), "depth slices of the grid (ours)"),
-        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
-    ];
-}
-
 /// Everything [`Sism::passes`] computed, per receiver in the frame's order.
 #[derive(Clone, Debug, Default, PartialEq)]
 pub struct SismPasses {
@@ -342,17 +293,11 @@ pub struct SismPasses {
 }
 
 impl Method for Sism {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     /// Yes: see the trait's doc (no option of the paper asks otherwise).
     fn hides_back_faces(&self) -> bool {
         true
-    }
-
-    fn lights(&self) -> &'static [LightKind] {
-        Self::LIGHTS
     }
 
     fn needs(&self) -> Needs {

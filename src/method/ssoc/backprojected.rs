@@ -8,7 +8,7 @@ use crate::kernel::footprint::f64 as footprint;
 use crate::kernel::silhouette::MeshTopology;
 use crate::method::centre::union::{self, MappedEdge};
 use crate::method::centre::{horizon_edge, EdgeSource, ProjectedEdge, Selection, NO_EDGE};
-use crate::method::options::{builders, field, Configurable, Field};
+use crate::method::options::{from_options, method_options};
 use crate::method::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::render::raster::MAX_RESOLUTION;
 use crate::render::{FittedMaps, Needs, Receiver};
@@ -16,91 +16,45 @@ use crate::scene::{LightKind, Mesh};
 use glam::DVec3;
 use std::collections::HashMap;
 
-/// Backprojected soft shadows with an occlusion camera shadow map: see the
-/// [module docs](super). Sphere and disk lights; needs receiver normals.
-///
-/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
-/// says: to the scene for a frame of points (`Frame::from_receivers`; each
-/// receiver's `V` independent of the other receivers of the call), to the
-/// scene and the receivers for a camera image (the real-time practice,
-/// `render`). A receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces)).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct BackprojectedSsoc {
-    /// Side of the shadow and distortion maps, `1..=16384`; default 1024
-    /// (ours, as [`Ssoc`](super::Ssoc)).
-    pub resolution: u32,
-    /// The neighbourhood searched for more edges, in texels around the
-    /// receiver's: `(2·search + 1)²` texels, `0..=16`; default 1 (ours; the
-    /// sketch gives no radius).
-    pub search: u32,
-    /// Completes the edges found by walking the silhouette from them: each
-    /// edge that meets the receiver's footprint adds the edges it shares an
-    /// end with (ours: the sketch finds edges by the neighbourhood alone,
-    /// which on a silhouette of many short edges misses most of those in a
-    /// wide footprint); default off.
-    pub walk: bool,
-    /// The [horizon bound](Horizon): the receiver's tangent plane as one
-    /// more edge of the union; default off (ours).
-    pub horizon: bool,
-    /// The maps hold the potential silhouettes of the light's bounding
-    /// ball (every edge that is a silhouette from some light point) instead
-    /// of the silhouettes from its centre, and each edge a receiver finds
-    /// is oriented and weighted by its multiplicity seen from that receiver
-    /// (the sketch: extra edges are harmless; an edge that is no silhouette
-    /// from the receiver weighs 0); default off.
-    pub potential: bool,
-}
-
-impl Default for BackprojectedSsoc {
-    fn default() -> BackprojectedSsoc {
-        BackprojectedSsoc {
-            resolution: super::Ssoc::DEFAULT_RESOLUTION,
-            search: 1,
-            walk: false,
-            horizon: false,
-            potential: false,
-        }
+method_options! {
+    /// Backprojected soft shadows with an occlusion camera shadow map: see the
+    /// [module docs](super). Sphere and disk lights; needs receiver normals.
+    ///
+    #[doc = crate::method::fitted_maps_doc!()]
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[non_exhaustive]
+    pub struct BackprojectedSsoc {
+        /// Side of the shadow and distortion maps, `1..=16384`; default 1024
+        /// (ours, as [`Ssoc`](super::Ssoc)).
+        pub resolution: u32 = super::Ssoc::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"), builder(with_resolution);
+        /// The neighbourhood searched for more edges, in texels around the
+        /// receiver's: `(2·search + 1)²` texels, `0..=16`; default 1 (ours; the
+        /// sketch gives no radius).
+        pub search: u32 = 1, option(int "search", (0, 16), "texels around the receiver's searched for edges (ours: 1, 3×3)"), builder(with_search);
+        /// Completes the edges found by walking the silhouette from them: each
+        /// edge that meets the receiver's footprint adds the edges it shares an
+        /// end with (ours: the sketch finds edges by the neighbourhood alone,
+        /// which on a silhouette of many short edges misses most of those in a
+        /// wide footprint); default off.
+        pub walk: bool = false, option(flag "walk", "complete the edges found along the silhouette, within the footprint (ours)"), builder(with_walk);
+        /// The [horizon bound](Horizon): the receiver's tangent plane as one
+        /// more edge of the union; default off (ours).
+        pub horizon: bool = false, option(flag "horizon", "the tangent plane as one more edge of the union (ours)"), builder(with_horizon);
+        /// The maps hold the potential silhouettes of the light's bounding
+        /// ball (every edge that is a silhouette from some light point) instead
+        /// of the silhouettes from its centre, and each edge a receiver finds
+        /// is oriented and weighted by its multiplicity seen from that receiver
+        /// (the sketch: extra edges are harmless; an edge that is no silhouette
+        /// from the receiver weighs 0); default off.
+        pub potential: bool = false, option(flag "potential", "potential silhouettes of the light's ball, each weighed from the receiver"), builder(with_potential);
     }
-}
-
-builders!(BackprojectedSsoc {
-    /// With maps of `value × value` texels.
-    with_resolution => resolution: u32,
-    /// With a neighbourhood of `(2·value + 1)²` texels.
-    with_search => search: u32,
-    /// With or without the walk along the silhouette.
-    with_walk => walk: bool,
-    /// With or without the horizon bound.
-    with_horizon => horizon: bool,
-    /// With or without the potential silhouettes.
-    with_potential => potential: bool,
-});
-
-impl Configurable for BackprojectedSsoc {
-    const NAME: &'static str = "backprojected-ssoc";
-    const SUMMARY: &'static str =
-        "backprojected soft shadows with an occlusion camera shadow map (Mo & Wyman 2007)";
-    const LIGHTS: &'static [LightKind] = &[LightKind::Sphere, LightKind::Disk];
-    const DEFAULT_RUN: &'static [&'static str] = &["backprojected-ssoc"];
-    const COMPARE: &'static [&'static str] = &[
-        "backprojected-ssoc",
-        "backprojected-ssoc:search=0",
-        "backprojected-ssoc:search=2",
-        "backprojected-ssoc:walk",
-        "backprojected-ssoc:walk,horizon",
-        "backprojected-ssoc:potential",
-        "backprojected-ssoc:walk,potential",
-    ];
-    #[rustfmt::skip]
-    const FIELDS: &'static [Field<BackprojectedSsoc>] = &[
-        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"),
-        field!(int "search", search: u32, (0, 16), "texels around the receiver's searched for edges (ours: 1, 3×3)"),
-        field!(flag "walk", walk, "complete the edges found along the silhouette, within the footprint (ours)"),
-        field!(flag "horizon", horizon, "the tangent plane as one more edge of the union (ours)"),
-        field!(flag "potential", potential, "potential silhouettes of the light's ball, each weighed from the receiver"),
-    ];
+    name: "backprojected-ssoc",
+    summary: "backprojected soft shadows with an occlusion camera shadow map (Mo & Wyman 2007)",
+    lights: &[LightKind::Sphere, LightKind::Disk],
+    default_run: &["backprojected-ssoc"],
+    compare: &["backprojected-ssoc", "backprojected-ssoc:search=0", "backprojected-ssoc:search=2",
+        "backprojected-ssoc:walk", "backprojected-ssoc:walk,horizon",
+        "backprojected-ssoc:potential", "backprojected-ssoc:walk,potential"],
 }
 
 impl BackprojectedSsoc {
@@ -212,9 +166,7 @@ impl BackprojectedSsoc {
 }
 
 impl Method for BackprojectedSsoc {
-    fn name(&self) -> String {
-        crate::method::options::print(self)
-    }
+    from_options!();
 
     /// Yes: see the trait's doc (no option of the paper asks otherwise).
     fn hides_back_faces(&self) -> bool {
@@ -224,10 +176,6 @@ impl Method for BackprojectedSsoc {
     /// The shadow and distortion maps, as [`Ssoc`](super::Ssoc)'s.
     fn map_bytes(&self) -> u64 {
         super::MAP_BYTES_PER_TEXEL * u64::from(self.resolution).pow(2)
-    }
-
-    fn lights(&self) -> &'static [LightKind] {
-        Self::LIGHTS
     }
 
     fn needs(&self) -> Needs {

@@ -103,7 +103,7 @@ pub use backprojected::BackprojectedSsoc;
 use super::centre::depth::DepthTest;
 use super::centre::nearest_on;
 use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge, Selection};
-use super::options::{builders, field, Configurable, Field};
+use super::options::{from_options, method_options};
 use super::{per_receiver, Horizon, Input, MethodError, Output, Requires};
 use crate::kernel::falloff::{f64 as falloff, Falloff};
 use crate::kernel::footprint::f64::{self as footprint, project};
@@ -115,40 +115,42 @@ use glam::{DVec2, DVec3};
 use maps::{DistortionMaps, NONE};
 use std::sync::Arc;
 
-/// The soft shadow occlusion camera: see the [module docs](self). Sphere
-/// and disk lights; needs receiver normals (the shadow-map test's receiver
-/// plane).
-///
-/// Its light-view maps are fitted as the frame's [`Fit`](crate::render::Fit)
-/// says: to the scene for a frame of points (`Frame::from_receivers`; each
-/// receiver's `V` independent of the other receivers of the call), to the
-/// scene and the receivers for a camera image (the real-time practice,
-/// `render`). A receiver on a closed mesh that faces away from the whole
-/// light reads `V = 0` ([`Method::hides_back_faces`](crate::method::Method::hides_back_faces)).
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub struct Ssoc {
-    /// Side of the shadow and distortion maps, `1..=16384`; default
-    /// [`Ssoc::DEFAULT_RESOLUTION`] (ours).
-    pub resolution: u32,
-    /// How many edges a receiver's distortion may visit (§3.2.3: "two or
-    /// three such steps are generally sufficient"), `1..=8`; default 3.
-    pub lookups: u32,
-    /// The test at the distorted point compares the shadow map with the
-    /// receiver's own depth less [`bias`](Ssoc::bias) (the paper's reading
-    /// of §4, "a rather large bias") instead of with its tangent plane;
-    /// default off (ours: steep receivers, see the [module docs](self)).
-    pub constant_bias: bool,
-    /// The relative depth bias of the constant reading
-    /// ([`constant_bias`](Ssoc::constant_bias)), `[0, 1]`; default
-    /// [`Ssoc::DEFAULT_BIAS`] (ours).
-    pub bias: f64,
-    /// Four lookups blended bilinearly (§5); default off.
-    pub bilinear: bool,
-    /// The falloff of eq. 1; default [`Falloff::Bernstein`] (§3.2.2).
-    pub falloff: Falloff,
-    /// The [horizon bound](Horizon); default off (ours).
-    pub horizon: bool,
+method_options! {
+    /// The soft shadow occlusion camera: see the [module docs](self). Sphere
+    /// and disk lights; needs receiver normals (the shadow-map test's receiver
+    /// plane).
+    ///
+    #[doc = crate::method::fitted_maps_doc!()]
+    #[derive(Clone, Copy, Debug, PartialEq)]
+    #[non_exhaustive]
+    pub struct Ssoc {
+        /// Side of the shadow and distortion maps, `1..=16384`; default
+        /// [`Ssoc::DEFAULT_RESOLUTION`] (ours).
+        pub resolution: u32 = Ssoc::DEFAULT_RESOLUTION, option(int "map", (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"), builder(with_resolution);
+        /// How many edges a receiver's distortion may visit (§3.2.3: "two or
+        /// three such steps are generally sufficient"), `1..=8`; default 3.
+        pub lookups: u32 = 3, option(int "lookups", (1, 8), "edges a distortion may visit (§3.2.3: 2 or 3)"), builder(with_lookups);
+        /// The test at the distorted point compares the shadow map with the
+        /// receiver's own depth less [`bias`](Ssoc::bias) (the paper's reading
+        /// of §4, "a rather large bias") instead of with its tangent plane;
+        /// default off (ours: steep receivers, see the [module docs](self)).
+        pub constant_bias: bool = false, option(flag "constant", "the distorted point tested at the receiver's depth less bias (§4), not its tangent plane"), builder(with_constant_bias);
+        /// The relative depth bias of the constant reading
+        /// ([`constant_bias`](Ssoc::constant_bias)), `[0, 1]`; default
+        /// [`Ssoc::DEFAULT_BIAS`] (ours).
+        pub bias: f64 = Ssoc::DEFAULT_BIAS, option(real "bias", (0.0, 1.0), "relative depth bias of the constant test (§4; ours: 0.02)"), builder(with_bias);
+        /// Four lookups blended bilinearly (§5); default off.
+        pub bilinear: bool = false, option(flag "bilinear", "four lookups blended bilinearly (§5)"), builder(with_bilinear);
+        /// The falloff of eq. 1; default [`Falloff::Bernstein`] (§3.2.2).
+        pub falloff: Falloff = Falloff::Bernstein, option(choice "falloff", ["bernstein" = Falloff::Bernstein, "exact" = Falloff::Exact, "linear" = Falloff::Linear], "eq. 1's falloff (§3.2.2: bernstein)"), builder(with_falloff);
+        /// The [horizon bound](Horizon); default off (ours).
+        pub horizon: bool = false, option(flag "horizon", "V ≤ the light's share above the receiver's tangent plane (ours)"), builder(with_horizon);
+    }
+    name: "ssoc",
+    summary: "the soft shadow occlusion camera (Mo, Popescu & Wyman 2007)",
+    lights: &[LightKind::Sphere, LightKind::Disk],
+    default_run: &["ssoc"],
+    compare: &["ssoc", "ssoc:lookups=1", "ssoc:falloff=exact", "ssoc:bilinear", "ssoc:horizon"],
 }
 
 impl Ssoc {
@@ -157,76 +159,6 @@ impl Ssoc {
     pub const DEFAULT_RESOLUTION: u32 = 1024;
     /// Default [`Ssoc::bias`]: 2 % of the receiver's depth (ours).
     pub const DEFAULT_BIAS: f64 = 0.02;
-}
-
-impl Default for Ssoc {
-    fn default() -> Ssoc {
-        Ssoc {
-            resolution: Ssoc::DEFAULT_RESOLUTION,
-            lookups: 3,
-            constant_bias: false,
-            bias: Ssoc::DEFAULT_BIAS,
-            bilinear: false,
-            falloff: Falloff::Bernstein,
-            horizon: false,
-        }
-    }
-}
-
-builders!(Ssoc {
-    /// With maps of `value × value` texels.
-    with_resolution => resolution: u32,
-    /// With at most `value` edges per receiver.
-    with_lookups => lookups: u32,
-    /// With or without the constant reading of the test at the distorted
-    /// point.
-    with_constant_bias => constant_bias: bool,
-    /// With the relative bias `value` of the constant reading.
-    with_bias => bias: f64,
-    /// With or without the bilinear lookups.
-    with_bilinear => bilinear: bool,
-    /// With the falloff `value`.
-    with_falloff => falloff: Falloff,
-    /// With or without the horizon bound.
-    with_horizon => horizon: bool,
-});
-
-/// The falloff choices' names, in the order of [`falloff_index`].
-const FALLOFFS: &[&str] = &["bernstein", "exact", "linear"];
-
-fn falloff_index(f: Falloff) -> usize {
-    match f {
-        Falloff::Bernstein => 0,
-        Falloff::Exact => 1,
-        Falloff::Linear => 2,
-    }
-}
-
-const FALLOFF_OF: [Falloff; 3] = [Falloff::Bernstein, Falloff::Exact, Falloff::Linear];
-
-impl Configurable for Ssoc {
-    const NAME: &'static str = "ssoc";
-    const SUMMARY: &'static str = "the soft shadow occlusion camera (Mo, Popescu & Wyman 2007)";
-    const LIGHTS: &'static [LightKind] = &[LightKind::Sphere, LightKind::Disk];
-    const DEFAULT_RUN: &'static [&'static str] = &["ssoc"];
-    const COMPARE: &'static [&'static str] = &[
-        "ssoc",
-        "ssoc:lookups=1",
-        "ssoc:falloff=exact",
-        "ssoc:bilinear",
-        "ssoc:horizon",
-    ];
-    #[rustfmt::skip]
-    const FIELDS: &'static [Field<Ssoc>] = &[
-        field!(int "map", resolution: u32, (1, MAX_RESOLUTION as u64), "side of the shadow and distortion maps (ours)"),
-        field!(int "lookups", lookups: u32, (1, 8), "edges a distortion may visit (§3.2.3: 2 or 3)"),
-        field!(flag "constant", constant_bias, "the distorted point tested at the receiver's depth less bias (§4), not its tangent plane"),
-        field!(real "bias", bias, (0.0, 1.0), "relative depth bias of the constant test (§4; ours: 0.02)"),
-        field!(flag "bilinear", bilinear, "four lookups blended bilinearly (§5)"),
-        super::options::choice("falloff", "eq. 1's falloff (§3.2.2: bernstein)", FALLOFFS,
-            |m| falloff_index(m.falloff), |m, i| m.falloff = FALLOFF_OF[i]),
-        field!(flag "horizon", horizon, "V ≤ the light's share above the receiver's tangent plane (ours)"),
-    ];
 }
 
 /// What both variants build for a frame: the shadow map, the silhouette
@@ -564,9 +496,7 @@ const REQUIRES: Requires = Requires {
 pub(super) const MAP_BYTES_PER_TEXEL: u64 = 21;
 
 impl super::Method for Ssoc {
-    fn name(&self) -> String {
-        super::options::print(self)
-    }
+    from_options!();
 
     /// Yes: see the trait's doc (no option of the paper asks otherwise).
     fn hides_back_faces(&self) -> bool {
@@ -577,10 +507,6 @@ impl super::Method for Ssoc {
     /// between `map=1024` and `map=4096`, `/usr/bin/time -f %M`).
     fn map_bytes(&self) -> u64 {
         MAP_BYTES_PER_TEXEL * u64::from(self.resolution).pow(2)
-    }
-
-    fn lights(&self) -> &'static [LightKind] {
-        Self::LIGHTS
     }
 
     fn needs(&self) -> Needs {

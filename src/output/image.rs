@@ -5,10 +5,9 @@
 //! Images are 8-bit sRGB, row-major from the top-left, three bytes per
 //! pixel ([`Rgb`]).
 
-use super::frame::{Frame, BACKGROUND};
-use super::Receiver;
 use crate::definitions::in_penumbra;
-use crate::scene::{Light, Scene};
+use crate::render::frame::{Frame, BACKGROUND};
+use crate::scene::{Light, Receiver, Scene};
 use glam::DVec3;
 use std::fmt;
 use std::io;

@@ -7,12 +7,13 @@
 //! The arrays are row-major, row 0 the top of the image, `width · height`
 //! pixels; a pixel that sees no surface has NaN position, normal and `V`
 //! and object id `−1`. The positions are the renderer's receivers exactly
-//! (each moved [`RECEIVER_OFFSET`](super::RECEIVER_OFFSET) of the scene's
+//! (each moved [`RECEIVER_OFFSET`](crate::render::RECEIVER_OFFSET) of the scene's
 //! scale off its surface toward the camera), so `V` computed at them is the
 //! exact answer `exact` holds, bit for bit.
 
-use super::{Frame, Stages, BACKGROUND};
 use crate::method::{self, Exact, MethodError};
+use crate::render::frame::{Frame, BACKGROUND};
+use crate::render::stages::Stages;
 use crate::scene::{Camera, Receiver, Scene};
 use glam::{DMat4, DVec3, DVec4};
 

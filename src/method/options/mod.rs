@@ -19,67 +19,26 @@
 //! values and an option given twice (`seed=3,seed=4`, as the scene files
 //! refuse a duplicate key) are [`ParseError`]s that name what the method
 //! accepts.
+//!
+//! The crate's methods declare their options once each (the `declare`
+//! module's `method_options!`): per field its doc, type, default, option and
+//! builder, from which the struct, its `Default`, the builders and the
+//! [`Configurable`] table are made.
+
+mod declare;
+mod error;
+mod field;
+
+pub use declare::{choice, flag, int, positional, real};
+pub(crate) use declare::{field, from_options, method_options};
+pub use error::{Expected, OptionError, ParseError, TableError};
+pub use field::{Field, Kind};
+
+use field::real_string;
 
 use super::Method;
 use crate::scene::LightKind;
-use std::fmt::{self, Write as _};
-
-/// How one field of a method's options is read and written.
-pub enum Kind<T: 'static> {
-    /// A flag: `key` present sets it to `true`; its default is `false`.
-    Flag {
-        /// The field's value.
-        get: fn(&T) -> bool,
-        /// Sets the field.
-        set: fn(&mut T, bool),
-    },
-    /// An integer in `min..=max`.
-    Int {
-        /// The field's value.
-        get: fn(&T) -> u64,
-        /// Sets the field (called with values in range only).
-        set: fn(&mut T, u64),
-        /// The least value accepted.
-        min: u64,
-        /// The greatest value accepted.
-        max: u64,
-    },
-    /// A finite real number in `min..=max`.
-    Real {
-        /// The field's value.
-        get: fn(&T) -> f64,
-        /// Sets the field (called with values in range only).
-        set: fn(&mut T, f64),
-        /// The least value accepted.
-        min: f64,
-        /// The greatest value accepted.
-        max: f64,
-    },
-    /// One of `choices`, by index.
-    Choice {
-        /// The index of the field's value in `choices`.
-        get: fn(&T) -> usize,
-        /// Sets the field to `choices[i]`.
-        set: fn(&mut T, usize),
-        /// The words accepted.
-        choices: &'static [&'static str],
-    },
-}
-
-/// One field of a method's options: its key, what it is, how it is read
-/// and written.
-pub struct Field<T: 'static> {
-    /// The key on the command line (`map`, `exact-union`, …); for the
-    /// positional field, the word its value is described by (`N`).
-    pub key: &'static str,
-    /// One line for `--help`: what the field is, and its source (paper
-    /// and section, or "ours").
-    pub doc: &'static str,
-    /// Whether the value stands alone (`mc:256`), without `key=`.
-    pub positional: bool,
-    /// How it is read and written.
-    pub kind: Kind<T>,
-}
+use std::fmt::Write as _;
 
 /// A method that has a name and options on the command line: what the
 /// [registry](super::registry) needs to parse, print, list and describe
@@ -102,255 +61,6 @@ pub trait Configurable: Method + Default + Clone + PartialEq + 'static {
     const FIELDS: &'static [Field<Self>];
 }
 
-/// What a field accepts.
-#[derive(Clone, Copy, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum Expected {
-    /// An integer in `min..=max`.
-    Int {
-        /// The least value accepted.
-        min: u64,
-        /// The greatest value accepted.
-        max: u64,
-    },
-    /// A finite real number in `min..=max`.
-    Real {
-        /// The least value accepted.
-        min: f64,
-        /// The greatest value accepted.
-        max: f64,
-    },
-    /// One of these words.
-    Choice(&'static [&'static str]),
-}
-
-impl<T> From<&Kind<T>> for Expected {
-    fn from(kind: &Kind<T>) -> Expected {
-        match kind {
-            Kind::Int { min, max, .. } => Expected::Int {
-                min: *min,
-                max: *max,
-            },
-            Kind::Real { min, max, .. } => Expected::Real {
-                min: *min,
-                max: *max,
-            },
-            Kind::Choice { choices, .. } => Expected::Choice(choices),
-            // A flag takes no value; asked what it accepts, it is on or off.
-            Kind::Flag { .. } => Expected::Choice(&[]),
-        }
-    }
-}
-
-impl fmt::Display for Expected {
-    /// `an integer from 1 to 16384`, `a number from 0 to 1`, `one of exact,
-    /// linear`.
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Expected::Int { min, max } => write!(f, "an integer from {min} to {max}"),
-            Expected::Real { min, max } => write!(
-                f,
-                "a number from {} to {}",
-                real_string(*min),
-                real_string(*max)
-            ),
-            Expected::Choice(choices) => write!(f, "one of {}", choices.join(", ")),
-        }
-    }
-}
-
-/// What is wrong with one option of a method.
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum OptionError {
-    /// An item that names no option of the method.
-    Unknown {
-        /// The item (`sideways`), or its key (`sideways` of `sideways=1`).
-        item: String,
-    },
-    /// An option that takes a value, written alone (`map`).
-    NeedsValue {
-        /// The option's key.
-        key: &'static str,
-        /// What its value may be.
-        expected: Expected,
-    },
-    /// A flag written with a value (`exact-union=1`).
-    FlagWithValue {
-        /// The flag.
-        key: &'static str,
-    },
-    /// A value that does not parse as, or lies outside, what the option
-    /// accepts; from [`parse`] (the text given) or [`check`] (the value a
-    /// method built in code holds).
-    Invalid {
-        /// The option's key (the positional value's word, `N`, for it).
-        key: &'static str,
-        /// The value, as given or as printed.
-        value: String,
-        /// What it may be.
-        expected: Expected,
-    },
-    /// An option given twice (`seed=3,seed=4`; `mc:256,512` for the
-    /// positional value), which the name could only resolve by dropping
-    /// one.
-    Repeated {
-        /// The option's key (`N` for the positional value).
-        key: &'static str,
-    },
-}
-
-impl fmt::Display for OptionError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            OptionError::Unknown { item } => write!(f, "unknown option '{item}'"),
-            OptionError::NeedsValue { key, expected } => {
-                write!(f, "'{key}' needs a value, {expected}")
-            }
-            OptionError::FlagWithValue { key } => {
-                write!(f, "'{key}' is a flag, written alone: {key}")
-            }
-            OptionError::Invalid {
-                key,
-                value,
-                expected,
-            } => write!(f, "{key} must be {expected}, got '{value}'"),
-            OptionError::Repeated { key } => {
-                write!(f, "{key} is given twice (give each option once)")
-            }
-        }
-    }
-}
-
-impl std::error::Error for OptionError {}
-
-/// Why a method name (`base[:item,…]`) could not be read: by
-/// [`registry::parse`](super::registry::parse) and [`parse`].
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum ParseError {
-    /// No registered method has the name's base.
-    UnknownMethod {
-        /// The name given (at most 60 characters of it).
-        name: String,
-        /// The available methods, as [`registry::available`](super::registry::available) lists them.
-        available: String,
-    },
-    /// A method of the design that is not built yet.
-    NotBuilt {
-        /// Its base name.
-        base: &'static str,
-        /// The available methods.
-        available: String,
-    },
-    /// An option of a known method.
-    Option {
-        /// The whole name given.
-        name: String,
-        /// What is wrong.
-        error: OptionError,
-        /// Every option the method accepts, for the message:
-        /// `pcss accepts map=N (1–16384), …`.
-        accepts: String,
-    },
-}
-
-impl ParseError {
-    /// The option error, when the method was known and one of its options
-    /// was not.
-    #[must_use]
-    pub fn option(&self) -> Option<&OptionError> {
-        match self {
-            ParseError::Option { error, .. } => Some(error),
-            _ => None,
-        }
-    }
-}
-
-impl fmt::Display for ParseError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ParseError::UnknownMethod { name, available } => {
-                write!(f, "unknown method '{name}'; available: {available}")
-            }
-            ParseError::NotBuilt { base, available } => write!(
-                f,
-                "method '{base}' is not built yet; available: {available}"
-            ),
-            ParseError::Option {
-                name,
-                error,
-                accepts,
-            } => write!(f, "'{name}': {error}; {accepts}"),
-        }
-    }
-}
-
-impl std::error::Error for ParseError {}
-
-/// Why a method's options table breaks a promise of this module
-/// ([`round_trip`]).
-#[derive(Clone, Debug, PartialEq)]
-#[non_exhaustive]
-pub enum TableError {
-    /// A flag that is on in the default method.
-    FlagOnByDefault {
-        /// The flag.
-        key: &'static str,
-    },
-    /// The default method prints as more than its base name (and has no
-    /// positional value).
-    DefaultNotBare {
-        /// What it prints as.
-        printed: String,
-    },
-    /// A printed name that does not parse.
-    Unparsable {
-        /// The name printed.
-        name: String,
-        /// Why it does not parse.
-        error: Box<ParseError>,
-    },
-    /// A printed name that parses to another method.
-    ParsesDifferently {
-        /// The name printed.
-        name: String,
-        /// The method it parses to, `{:?}`.
-        parsed: String,
-        /// The method printed, `{:?}`.
-        printed: String,
-    },
-    /// A method whose options lie in their ranges fails [`check`].
-    Check {
-        /// The name printed.
-        name: String,
-        /// What [`check`] found.
-        error: OptionError,
-    },
-}
-
-impl fmt::Display for TableError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            TableError::FlagOnByDefault { key } => write!(f, "flag {key} is on by default"),
-            TableError::DefaultNotBare { printed } => {
-                write!(f, "the default prints as '{printed}'")
-            }
-            TableError::Unparsable { name, error } => {
-                write!(f, "'{name}' does not parse back: {error}")
-            }
-            TableError::ParsesDifferently {
-                name,
-                parsed,
-                printed,
-            } => write!(f, "'{name}' parses to {parsed}, not {printed}"),
-            TableError::Check { name, error } => write!(f, "'{name}': {error}"),
-        }
-    }
-}
-
-impl std::error::Error for TableError {}
-
 /// The items of a method name `base[:item,…]`: `None` when `name` is not of
 /// that form for `base`.
 #[must_use]
@@ -367,17 +77,6 @@ fn value_string<T>(field: &Field<T>, m: &T) -> Option<String> {
         Kind::Int { get, .. } => Some(get(m).to_string()),
         Kind::Real { get, .. } => Some(real_string(get(m))),
         Kind::Choice { get, choices, .. } => choices.get(get(m)).map(|c| (*c).to_owned()),
-    }
-}
-
-/// The shortest text that parses back to the same `f64` (Rust's `{:?}`,
-/// which keeps exponents for very small and large values), without a
-/// trailing `.0`: `2`, `0.3`, `1e-300`.
-fn real_string(x: f64) -> String {
-    let s = format!("{x:?}");
-    match s.strip_suffix(".0") {
-        Some(integral) => integral.to_owned(),
-        None => s,
     }
 }
 
@@ -587,68 +286,6 @@ pub fn help<T: Configurable>() -> Vec<String> {
         .collect()
 }
 
-/// A static string (a key, a doc line, a word).
-type Str = &'static str;
-/// A field's getter.
-type Get<T, V> = fn(&T) -> V;
-/// A field's setter.
-type Set<T, V> = fn(&mut T, V);
-
-const fn named<T>(key: Str, doc: Str, kind: Kind<T>) -> Field<T> {
-    Field {
-        key,
-        doc,
-        positional: false,
-        kind,
-    }
-}
-
-/// A flag field.
-pub const fn flag<T>(key: Str, doc: Str, get: Get<T, bool>, set: Set<T, bool>) -> Field<T> {
-    named(key, doc, Kind::Flag { get, set })
-}
-
-/// The constructor of a numeric field, `key=N` for `u64` or `key=X` for
-/// `f64`, the value in `r.0..=r.1`.
-macro_rules! number_field {
-    ($(#[$doc:meta])* $name:ident, $V:ty, $kind:ident) => {
-        $(#[$doc])*
-        pub const fn $name<T>(key: Str, doc: Str, r: ($V, $V), get: Get<T, $V>, set: Set<T, $V>) -> Field<T> {
-            named(key, doc, Kind::$kind { get, set, min: r.0, max: r.1 })
-        }
-    };
-}
-
-number_field!(
-    /// An integer field `key=N`, `N` in `r.0..=r.1`.
-    int, u64, Int
-);
-number_field!(
-    /// A real field `key=X`, `X` finite in `r.0..=r.1`.
-    real, f64, Real
-);
-
-/// A choice field `key=word`, the word one of `choices`.
-pub const fn choice<T>(
-    key: Str,
-    doc: Str,
-    choices: &'static [Str],
-    get: Get<T, usize>,
-    set: Set<T, usize>,
-) -> Field<T> {
-    named(key, doc, Kind::Choice { get, set, choices })
-}
-
-/// `field` (an integer) made the positional field: its value stands alone
-/// (`mc:256`) and is always printed; its key is the word it is described
-/// by.
-pub const fn positional<T>(field: Field<T>) -> Field<T> {
-    Field {
-        positional: true,
-        ..field
-    }
-}
-
 /// Checks the options table of `T` against the promises of this module:
 /// every flag is off by default; the default prints as the bare name; and
 /// for every field, set to each end of its range, to a value inside it
@@ -724,58 +361,6 @@ pub fn round_trip<T: Configurable>() -> Result<(), TableError> {
     }
     Ok(())
 }
-
-/// One entry of a method's [`Configurable::FIELDS`] table, on one line:
-///
-/// - `field!(flag "key", field, "doc")`: a `bool` field, on when present;
-/// - `field!(flag "key", !field, "doc")`: a `bool` field on by default,
-///   off when the flag is present (`no-bin-depth`);
-/// - `field!(flag "key", field == ON else OFF, "doc")`: a two-valued field,
-///   `ON` when present;
-/// - `field!(int "key", field: u32, (min, max), "doc")`: an integer field;
-/// - `field!(real "key", field, (min, max), "doc")`: an `f64` field.
-macro_rules! field {
-    (flag $key:literal, !$f:ident, $doc:literal) => {
-        $crate::method::options::flag($key, $doc, |m| !m.$f, |m, v| m.$f = !v)
-    };
-    (flag $key:literal, $f:ident == $on:path, else $off:path, $doc:literal) => {
-        $crate::method::options::flag(
-            $key,
-            $doc,
-            |m| m.$f == $on,
-            |m, v| m.$f = if v { $on } else { $off },
-        )
-    };
-    (flag $key:literal, $f:ident, $doc:literal) => {
-        $crate::method::options::flag($key, $doc, |m| m.$f, |m, v| m.$f = v)
-    };
-    (int $key:literal, $f:ident: $t:ty, $r:expr, $doc:literal) => {
-        $crate::method::options::int($key, $doc, $r, |m| m.$f as u64, |m, v| m.$f = v as $t)
-    };
-    (real $key:literal, $f:ident, $r:expr, $doc:literal) => {
-        $crate::method::options::real($key, $doc, $r, |m| m.$f, |m, v| m.$f = v)
-    };
-}
-pub(crate) use field;
-
-/// Builder methods `with_x(value)` for fields of a method's options, each
-/// documented: `builders!(Pcss { /// With a … map. with_resolution =>
-/// resolution: u32, … })`.
-macro_rules! builders {
-    ($T:ident { $($(#[$doc:meta])* $name:ident => $f:ident: $t:ty),* $(,)? }) => {
-        impl $T {
-            $(
-                $(#[$doc])*
-                #[must_use]
-                pub fn $name(mut self, value: $t) -> $T {
-                    self.$f = value;
-                    self
-                }
-            )*
-        }
-    };
-}
-pub(crate) use builders;
 
 #[cfg(test)]
 mod tests {

@@ -15,9 +15,10 @@
 //! background pixels are ignored.
 
 use super::image::ErrorSummary;
-use super::{Frame, Stages, BACKGROUND};
 use crate::definitions::in_penumbra;
 use crate::method::{self, Exact, MethodError};
+use crate::render::frame::{Frame, BACKGROUND};
+use crate::render::stages::Stages;
 use crate::scene::{Light, Receiver, Scene};
 use std::fmt::Write as _;
 
