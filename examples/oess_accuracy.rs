@@ -12,7 +12,7 @@
 
 use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact};
-use softshadow::render::image::ErrorRow;
+use softshadow::output::image::ErrorRow;
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::primitive::{cuboid, quad, sphere, Transform};
 use softshadow::scene::{Camera, Light, Scene};

@@ -11,7 +11,7 @@
 //! report end weights (OESS) are shaded by them.
 
 use softshadow::method::{self, Exact};
-use softshadow::render::image::{error_heat_map, shaded, shaded_by_ends, ErrorRow};
+use softshadow::output::image::{error_heat_map, shaded, shaded_by_ends, ErrorRow};
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin;
 use std::error::Error;

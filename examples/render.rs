@@ -6,7 +6,7 @@
 
 use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact, Pcss};
-use softshadow::render::image::{error_heat_map, shaded, ErrorSummary};
+use softshadow::output::image::{error_heat_map, shaded, ErrorSummary};
 use softshadow::render::{Frame, Stages, BACKGROUND};
 use softshadow::scene::primitive::{quad, sphere};
 use softshadow::scene::{Camera, Light, Scene};

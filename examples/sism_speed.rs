@@ -12,7 +12,7 @@
 //! (`method::run`: its own stages and its pass), the median of `RUNS`.
 
 use softshadow::method::{self, Method, Run};
-use softshadow::render::image::ErrorSummary;
+use softshadow::output::image::ErrorSummary;
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::builtin;
 use std::time::Instant;

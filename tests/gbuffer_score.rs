@@ -6,9 +6,9 @@
 use softshadow::float_io::{npy_bytes_f64, npy_bytes_i32, read_npy_f64, read_npy_i64};
 use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact};
-use softshadow::render::gbuffer::{frame_from_arrays, CameraModel, GBuffer};
-use softshadow::render::image::{ErrorRow, ErrorSummary};
-use softshadow::render::score::{score, shading_factors, Score};
+use softshadow::output::gbuffer::{frame_from_arrays, CameraModel, GBuffer};
+use softshadow::output::image::{ErrorRow, ErrorSummary};
+use softshadow::output::score::{score, shading_factors, Score};
 use softshadow::render::{Frame, Stages};
 use softshadow::scene::{builtin, Camera, Scene};
 
@@ -261,7 +261,7 @@ fn bad_gbuffer_arrays_name_the_array_and_pixel() {
 #[test]
 fn the_yardstick_finds_monte_carlo_s_own_sample_count() {
     use softshadow::method::MonteCarlo;
-    use softshadow::render::score::{mc_equal, McOptions};
+    use softshadow::output::score::{mc_equal, McOptions};
     let (scene, frame, _, _) = setup("default", 96, 72);
     let n = 32;
     let mc = method::run(

@@ -443,7 +443,7 @@ fn receiver_penetration() {
 
 #[test]
 fn end_weights_shade_on_the_plain_picture_s_scale() {
-    use softshadow::render::image::{shaded, shaded_by_ends};
+    use softshadow::output::image::{shaded, shaded_by_ends};
     let scene = builtin("linear-light").unwrap();
     let stages = Stages::new(&scene);
     let camera = scene.camera().unwrap().with_resolution(48, 36).unwrap();

@@ -3,7 +3,7 @@
 
 use softshadow::glam::DVec3;
 use softshadow::method::{self, Exact, HardShadow, Method, MonteCarlo, Pcss, PcssBias};
-use softshadow::render::image::{error_heat_map, shaded, visibility_image, ErrorSummary};
+use softshadow::output::image::{error_heat_map, shaded, visibility_image, ErrorSummary};
 use softshadow::render::{Fit, Frame, Receiver, Stages, BACKGROUND};
 use softshadow::scene::primitive::{cuboid, quad};
 use softshadow::scene::{builtin, Camera, Light, LightKind, Scene, BUILTIN_NAMES};

@@ -6,7 +6,7 @@
 use softshadow::glam::{DVec2, DVec3};
 use softshadow::method::single_sample::SingleSamplePasses;
 use softshadow::method::{self, Exact, Method, SingleSample};
-use softshadow::render::image::ErrorSummary;
+use softshadow::output::image::ErrorSummary;
 use softshadow::render::{Fit, Frame, Stages};
 use softshadow::scene::primitive::{merge, quad};
 use softshadow::scene::{builtin, Camera, Light, LightKind, Scene, BUILTIN_NAMES};

@@ -8,7 +8,7 @@
 use softshadow::glam::DVec3;
 use softshadow::kernel::falloff::f64::{bernstein, disk_edge_falloff};
 use softshadow::method::{self, BackprojectedSsoc, Exact, Method, Ssoc};
-use softshadow::render::image::ErrorSummary;
+use softshadow::output::image::ErrorSummary;
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::primitive::quad;
 use softshadow::scene::{builtin, Light, Scene, BUILTIN_NAMES};

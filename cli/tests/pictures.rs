@@ -7,7 +7,7 @@
 
 use softshadow::glam::DVec3;
 use softshadow::reference::exact;
-use softshadow::render::image::{BACKGROUND_RGB, HEAT_RANGE};
+use softshadow::output::image::{BACKGROUND_RGB, HEAT_RANGE};
 use softshadow::render::{Frame, Stages, BACKGROUND, RECEIVER_OFFSET};
 use softshadow::scene::{builtin, Light, Scene};
 use std::path::{Path, PathBuf};

@@ -23,7 +23,7 @@ use libfuzzer_sys::fuzz_target;
 use softshadow::arbitrary::scene::visibility_case;
 use softshadow::arbitrary::Rng;
 use softshadow::method::{self, Method, MethodError};
-use softshadow::render::image::{error_heat_map, shaded, shaded_by_ends};
+use softshadow::output::image::{error_heat_map, shaded, shaded_by_ends};
 use softshadow::render::{Frame, Receiver, Stages};
 use softshadow::scene::{Camera, Light, Mesh, Scene};
 

@@ -387,7 +387,7 @@ pub struct McOptions {
 impl Default for McOptions {
     fn default() -> McOptions {
         McOptions {
-            counts: crate::report::default_mc(),
+            counts: super::yardstick::default_mc(),
             receivers: 16384,
             seed: 1,
             resamples: 200,
@@ -409,7 +409,7 @@ fn splitmix(state: &mut u64) -> u64 {
 /// `options.counts` samples on the scored receivers (a seeded random subset
 /// of `options.receivers` of them when there are more), its RMSE against
 /// `N` fitted by the report's power law, and the `N` at which it meets the
-/// image's RMSE on the same receivers ([`crate::report::Yardstick`]). With a
+/// image's RMSE on the same receivers ([`Yardstick`](super::yardstick::Yardstick)). With a
 /// subset, the interval of the fitted `N` over bootstrap resamples of the
 /// subset's receivers states its uncertainty.
 ///
@@ -423,7 +423,7 @@ pub fn mc_equal(
     options: &McOptions,
 ) -> Result<McEqual, MethodError> {
     use crate::method::MonteCarlo;
-    use crate::report::{Equal, Yardstick};
+    use super::yardstick::{Equal, Yardstick};
     let scored_ix: Vec<usize> = (0..scored.values.len())
         .filter(|&i| scored.values[i].is_finite())
         .collect();

@@ -13,15 +13,12 @@
 //! - [`raster`]: the light-view rasterizer every shadow-map method uses.
 //!
 //! What is done with a method's answers (shading, heat-maps, error
-//! summaries, image files, the G-buffer, scores) is in [`crate::output`];
-//! its modules are also reachable here as `render::image`,
-//! `render::gbuffer` and `render::score`.
+//! summaries, image files, the G-buffer, scores) is in [`crate::output`].
 
 pub(crate) mod frame;
 pub mod raster;
 pub(crate) mod stages;
 
-pub use crate::output::{gbuffer, image, score};
 pub use crate::scene::Receiver;
 pub use frame::{Fit, Frame, BACKGROUND, RECEIVER_OFFSET};
 pub use stages::{FittedMaps, Needs, Progress, SharedMaps, StageTime, Stages, Stats};

@@ -72,14 +72,13 @@ mod papers;
 mod plots;
 pub mod stability;
 mod write;
-mod yardstick;
 
 pub use check::{MAX_LINE, MAX_NAME, MAX_SIDE};
 pub use error::ReportError;
 pub use folder::{merge_into, read_part, Staged};
 pub use machine::machine_line;
 pub use write::{check_accuracy, write, write_accuracy, ACCURACY_MARKER};
-pub use yardstick::{Equal, Line, PowerLaw, Yardstick};
+pub use crate::output::yardstick::{default_mc, Equal, Line, PowerLaw, Yardstick};
 
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
@@ -103,11 +102,6 @@ pub const SLOW_RUN: f64 = 2.0;
 /// `softshadow score`).
 pub use crate::output::score::GROUPS;
 
-/// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
-#[must_use]
-pub fn default_mc() -> Vec<u32> {
-    (1..=12).map(|k| 1u32 << k).collect()
-}
 
 /// One part of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

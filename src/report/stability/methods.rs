@@ -6,7 +6,7 @@
 use super::Row;
 use crate::kernel::catalogue::Stiff;
 use crate::method::{self, Exact, Method};
-use crate::render::image::ErrorSummary;
+use crate::output::image::ErrorSummary;
 use crate::render::{Frame, Stages};
 use crate::scene::primitive::Transform;
 use crate::scene::{builtin, Camera, Light, Mesh, Scene};

@@ -241,3 +241,9 @@ mod tests {
         assert!(Yardstick::new(&points[..1]).is_none());
     }
 }
+
+/// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
+#[must_use]
+pub fn default_mc() -> Vec<u32> {
+    (1..=12).map(|k| 1u32 << k).collect()
+}
