@@ -4,5 +4,3 @@
 //! here too.
 
 pub use crate::kernel::light::Emitter;
-#[cfg(feature = "reference")]
-pub(crate) use crate::kernel::light::PlaneMap;

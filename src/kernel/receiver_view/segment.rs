@@ -38,11 +38,11 @@ impl SegmentView {
     /// The view of the segment `a b` from `p`.
     ///
     /// `None` when an argument is not finite, `a = b`, or `p` lies on the
-    /// closed segment (decided exactly; [`Light::emitter`] refuses such a
+    /// closed segment (decided exactly; [`Segment::seen_from`] refuses such a
     /// receiver too). A receiver on the light's line beyond an end is
     /// defined: every open segment `(p, x)` lies on that line.
     ///
-    /// [`Light::emitter`]: crate::scene::Light::emitter
+    /// [`Segment::seen_from`]: crate::kernel::light::Segment::seen_from
     #[must_use]
     pub fn new(p: DVec3, a: DVec3, b: DVec3) -> Option<SegmentView> {
         if !(p.is_finite() && a.is_finite() && b.is_finite()) || a == b {

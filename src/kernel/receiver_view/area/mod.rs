@@ -94,7 +94,7 @@ impl AreaView {
     ///
     /// `None` when an argument is not finite, `radius ≤ 0`, `normal` is
     /// zero, or `p` lies in the disk's plane (where no triangle's image is
-    /// defined; [`Light::emitter`](crate::scene::Light::emitter) refuses
+    /// defined; [`Disk::seen_from`](crate::kernel::light::Disk::seen_from) refuses
     /// such a receiver too).
     #[must_use]
     pub fn disk(p: DVec3, center: DVec3, normal: DVec3, radius: f64) -> Option<AreaView> {

@@ -94,8 +94,7 @@ use crate::bvh::Bvh;
 use crate::kernel::footprint::f64::gamma;
 use crate::kernel::lanes;
 use crate::kernel::predicate::{orient3d, Sign};
-use crate::scene::emitter::PlaneMap;
-use crate::scene::Emitter;
+use crate::kernel::light::{Emitter, PlaneMap};
 use glam::{DVec2, DVec3};
 
 /// `γ(16)`: more roundings than any bound below needs.
