@@ -19,8 +19,8 @@
 use softshadow::arbitrary::{scene::visibility_case, Rng};
 use softshadow::glam::DVec2;
 use softshadow::method::{self, Exact, Input, MethodError, MonteCarlo, Output};
-use softshadow::reference::{self, exact, monte_carlo::Estimate};
 use softshadow::output::image::{error_heat_map, shaded, ErrorRow};
+use softshadow::reference::{self, exact, monte_carlo::Estimate};
 use softshadow::render::Needs;
 use softshadow::report::{self, Case, Config};
 use softshadow::scene::builtin;

@@ -19,7 +19,14 @@ fn map() -> String {
 /// The backquoted spans of the map that are repository paths.
 fn named_paths(text: &str) -> BTreeSet<String> {
     const TOPS: [&str; 8] = [
-        "src/", "cli/", "tests/", "benches/", "examples/", "fuzz/", "python/", "docs/",
+        "src/",
+        "cli/",
+        "tests/",
+        "benches/",
+        "examples/",
+        "fuzz/",
+        "python/",
+        "docs/",
     ];
     text.split('`')
         .skip(1)
@@ -102,7 +109,11 @@ fn layers(text: &str) -> Vec<(String, BTreeSet<String>)> {
         .filter(|l| l.starts_with("| "))
         .filter_map(|row| {
             let cells: Vec<&str> = row.split('|').map(str::trim).collect();
-            let folder = cells.get(2)?.trim_matches('`').strip_prefix("src/")?.to_owned();
+            let folder = cells
+                .get(2)?
+                .trim_matches('`')
+                .strip_prefix("src/")?
+                .to_owned();
             let imports = cells
                 .get(4)?
                 .split(',')
@@ -117,7 +128,10 @@ fn layers(text: &str) -> Vec<(String, BTreeSet<String>)> {
 #[test]
 fn no_module_imports_from_a_layer_it_does_not_list() {
     let table = layers(&map());
-    assert!(table.len() >= 8, "the layers table was not found: {table:?}");
+    assert!(
+        table.len() >= 8,
+        "the layers table was not found: {table:?}"
+    );
     let names: BTreeSet<&str> = table.iter().map(|(f, _)| f.as_str()).collect();
     let mut wrong = Vec::new();
     for (folder, allowed) in &table {

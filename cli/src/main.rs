@@ -51,6 +51,7 @@ macro_rules! note {
 }
 
 mod check;
+mod memory;
 mod progress;
 mod render;
 mod report;

@@ -3,7 +3,8 @@
 //! made elsewhere against the exact answer on the same receivers, with the
 //! report's statistics).
 
-use crate::render::{camera_frame, check_memory};
+use crate::memory::check_memory;
+use crate::render::camera_frame;
 use crate::visibility::{resolve_scene, run_method};
 use softshadow::float_io::{
     self, exr_bytes, npy_bytes_f64, npy_bytes_i32, read_npy_f64, read_npy_i64, FloatIoError,
@@ -39,7 +40,7 @@ pub struct GbufferArgs {
     out: PathBuf,
     /// Refuse a frame whose estimated peak memory exceeds this many GiB
     /// (default: half of this machine's memory).
-    #[arg(long, value_parser = crate::render::parse_gib)]
+    #[arg(long, value_parser = crate::memory::parse_gib)]
     max_memory: Option<f64>,
 }
 
@@ -89,7 +90,7 @@ pub struct ScoreArgs {
     seed: u64,
     /// Refuse an image whose estimated peak memory exceeds this many GiB
     /// (default: half of this machine's memory).
-    #[arg(long, value_parser = crate::render::parse_gib)]
+    #[arg(long, value_parser = crate::memory::parse_gib)]
     max_memory: Option<f64>,
 }
 

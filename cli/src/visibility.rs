@@ -41,7 +41,7 @@ pub struct Args {
     seed: Option<u64>,
     /// Refuse a run whose estimated peak memory exceeds this many GiB
     /// (default: half of this machine's memory).
-    #[arg(long, value_parser = crate::render::parse_gib)]
+    #[arg(long, value_parser = crate::memory::parse_gib)]
     max_memory: Option<f64>,
     /// What the map methods fit their light-view maps to: scene (the
     /// occluders; each point's V independent of the other points, so a
@@ -122,7 +122,7 @@ pub fn run(args: &Args) -> Result<(), String> {
         if points.len() == 1 { "" } else { "s" },
         method.name()
     );
-    crate::render::check_memory(&what, points.len() as u64, method.as_ref(), args.max_memory)?;
+    crate::memory::check_memory(&what, points.len() as u64, method.as_ref(), args.max_memory)?;
     let frame = Frame::from_receivers(points).with_fit(match args.fit {
         FitArg::Scene => Fit::Scene,
         FitArg::Frame => Fit::Frame,

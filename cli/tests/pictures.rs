@@ -6,8 +6,8 @@
 //! written out again.
 
 use softshadow::glam::DVec3;
-use softshadow::reference::exact;
 use softshadow::output::image::{BACKGROUND_RGB, HEAT_RANGE};
+use softshadow::reference::exact;
 use softshadow::render::{Frame, Stages, BACKGROUND, RECEIVER_OFFSET};
 use softshadow::scene::{builtin, Light, Scene};
 use std::path::{Path, PathBuf};

@@ -137,7 +137,7 @@ pub(super) use avx::Avx8;
 /// same bits), four `f64` at a time.
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
 #[inline(always)]
-pub(super) fn axes4(v3: pulp::x86::V3, p: [f64; 4], d: [f64; 4]) -> super::ray::Axes32<4> {
+pub(super) fn axes4(v3: pulp::x86::V3, p: [f64; 4], d: [f64; 4]) -> Axes32<4> {
     use core::arch::x86_64::{__m128, __m256d, _CMP_LT_OQ};
     const TINY: f32 = 1.0 / (1u128 << 100) as f32;
     let (avx, sse, sse41) = (v3.avx, v3.sse, v3.sse4_1);
@@ -177,7 +177,7 @@ pub(super) fn axes4(v3: pulp::x86::V3, p: [f64; 4], d: [f64; 4]) -> super::ray::
     let far = sse41._mm_blendv_ps(down, up, backward);
     let inv = sse._mm_div_ps(sse._mm_set1_ps(1.0), di);
     let mask = sse._mm_movemask_ps(backward);
-    super::ray::Axes32 {
+    Axes32 {
         near: pulp::cast(near),
         far: pulp::cast(far),
         inv: pulp::cast(inv),
@@ -194,4 +194,13 @@ fn clamp4(v3: pulp::x86::V3, v: core::arch::x86_64::__m128) -> core::arch::x86_6
         sse._mm_min_ps(v, sse._mm_set1_ps(f32::MAX)),
         sse._mm_set1_ps(-f32::MAX),
     )
+}
+
+/// Axes of [`Ray32`](super::ray::Ray32)s, lane by lane
+/// ([`Ray32::axes`](super::ray::Ray32::axes), [`axes4`]).
+pub(super) struct Axes32<const L: usize> {
+    pub(super) near: [f32; L],
+    pub(super) far: [f32; L],
+    pub(super) inv: [f32; L],
+    pub(super) backward: [bool; L],
 }

@@ -4,7 +4,7 @@
 
 #[cfg(all(feature = "simd", target_arch = "x86_64"))]
 use super::lanes::Avx8;
-use super::lanes::{Lanes, Portable};
+use super::lanes::{Axes32, Lanes, Portable};
 use super::leaf::{self, LeafRay, PACK};
 use super::node::{decode, Node, EMPTY, WIDTH};
 use super::wide::{WideNode, LEAF as WIDE_LEAF, WIDE};
@@ -524,14 +524,6 @@ pub(super) struct Ray32 {
     /// The side (index of [`Node::q`]) of the entry plane of each axis: `1`
     /// (the maximum) where `dᵢ < 0`.
     pub(super) entry: [usize; 3],
-}
-
-/// Axes of [`Ray32`]s, lane by lane ([`Ray32::axes`]).
-pub(super) struct Axes32<const L: usize> {
-    pub(super) near: [f32; L],
-    pub(super) far: [f32; L],
-    pub(super) inv: [f32; L],
-    pub(super) backward: [bool; L],
 }
 
 /// `1 + 2⁻²⁰`: covers the `(1 + γ₃)/(1 − γ₃)` of three roundings on each side

@@ -422,8 +422,8 @@ pub fn mc_equal(
     scored: &Scored,
     options: &McOptions,
 ) -> Result<McEqual, MethodError> {
-    use crate::method::MonteCarlo;
     use super::yardstick::{Equal, Yardstick};
+    use crate::method::MonteCarlo;
     let scored_ix: Vec<usize> = (0..scored.values.len())
         .filter(|&i| scored.values[i].is_finite())
         .collect();

@@ -73,12 +73,12 @@ mod plots;
 pub mod stability;
 mod write;
 
+pub use crate::output::yardstick::{default_mc, Equal, Line, PowerLaw, Yardstick};
 pub use check::{MAX_LINE, MAX_NAME, MAX_SIDE};
 pub use error::ReportError;
 pub use folder::{merge_into, read_part, Staged};
 pub use machine::machine_line;
 pub use write::{check_accuracy, write, write_accuracy, ACCURACY_MARKER};
-pub use crate::output::yardstick::{default_mc, Equal, Line, PowerLaw, Yardstick};
 
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
@@ -101,7 +101,6 @@ pub const SLOW_RUN: f64 = 2.0;
 /// The receiver groups, in table order (the renderer's, shared with
 /// `softshadow score`).
 pub use crate::output::score::GROUPS;
-
 
 /// One part of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]

@@ -103,6 +103,9 @@ pub(crate) fn picture_factor(side: u32, pictures: u32, scene: &str) -> u32 {
     (side / wanted.clamp(1, side.max(1))).max(1)
 }
 
+/// The white gap between a picture's two halves, in pixels.
+pub(crate) const GAP: u32 = 4;
+
 /// The size of a cell's picture on scene `scene`: the shaded frame and
 /// the error heat-map (with its legend) side by side, each shrunk by
 /// [`picture_factor`].
@@ -110,7 +113,7 @@ pub(crate) fn picture_size(side: u32, pictures: u32, scene: &str) -> (u32, u32) 
     let f = picture_factor(side, pictures, scene);
     let (w, h) = crate::output::image::heat_map_size(side, side);
     let (s, w, h) = (side / f, w / f, h / f);
-    (s + super::write::GAP + w, s.max(h))
+    (s + GAP + w, s.max(h))
 }
 
 #[cfg(test)]

@@ -1,7 +1,7 @@
 //! Writing a report: `results.json`, `index.md`, the plots, and the
 //! accuracy pages under `docs/accuracy/`.
 
-use super::names::Names;
+use super::names::{Names, GAP};
 use super::papers::PAPERS;
 use super::plots;
 use super::ReportError;
@@ -17,9 +17,6 @@ use std::path::Path;
 /// above it (the page's title and prose) is kept.
 pub const ACCURACY_MARKER: &str =
     "<!-- Tables below are written by `softshadow report --accuracy`: edit above this line. -->";
-
-/// The white gap between a picture's two halves, in pixels.
-pub(crate) const GAP: u32 = 4;
 
 /// `a` and `b` side by side, `b` on the right, a white gap between.
 pub(crate) fn side_by_side(a: &Rgb, b: &Rgb) -> Rgb {

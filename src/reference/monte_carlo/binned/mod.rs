@@ -93,8 +93,8 @@ use super::Replicate;
 use crate::bvh::Bvh;
 use crate::kernel::footprint::f64::gamma;
 use crate::kernel::lanes;
-use crate::kernel::predicate::{orient3d, Sign};
 use crate::kernel::light::{Emitter, PlaneMap};
+use crate::kernel::predicate::{orient3d, Sign};
 use glam::{DVec2, DVec3};
 
 /// `γ(16)`: more roundings than any bound below needs.
