@@ -29,6 +29,7 @@ pub(crate) trait Float:
     const FRAC_1_PI: Self;
     const NAN: Self;
     const INFINITY: Self;
+    const EPSILON: Self;
     const MAX_EXP: i32;
     const MANTISSA_DIGITS: u32;
 
@@ -49,6 +50,9 @@ pub(crate) trait Float:
     fn is_nan(self) -> bool;
     fn log2(self) -> Self;
     fn floor(self) -> Self;
+    fn ceil(self) -> Self;
+    /// A 2D vector in `f64` (exact for both precisions).
+    fn wide2(v: Self::V2) -> glam::DVec2;
     fn powi(self, n: i32) -> Self;
     fn clamp(self, min: Self, max: Self) -> Self;
     fn signum(self) -> Self;
@@ -78,6 +82,12 @@ pub(crate) trait Vector2<T>:
     fn max_element(self) -> T;
     fn is_finite(self) -> bool;
     fn dot(self, other: Self) -> T;
+    const X: Self;
+    fn perp(self) -> Self;
+    fn min(self, other: Self) -> Self;
+    fn max(self, other: Self) -> Self;
+    fn length(self) -> T;
+    fn length_squared(self) -> T;
 }
 
 /// What the kernels use of glam's 3D vectors.
@@ -100,6 +110,10 @@ pub(crate) trait Vector3<T>:
     fn abs(self) -> Self;
     fn max_element(self) -> T;
     fn normalize_or_zero(self) -> Self;
+    fn length(self) -> T;
+    fn cross(self, other: Self) -> Self;
+    fn try_normalize(self) -> Option<Self>;
+    fn any_orthonormal_vector(self) -> Self;
     fn is_finite(self) -> bool;
     fn dot(self, other: Self) -> T;
 }
@@ -114,6 +128,7 @@ macro_rules! float {
             const FRAC_1_PI: $T = core::$T::consts::FRAC_1_PI;
             const NAN: $T = <$T>::NAN;
             const INFINITY: $T = <$T>::INFINITY;
+            const EPSILON: $T = <$T>::EPSILON;
             const MAX_EXP: i32 = <$T>::MAX_EXP;
             const MANTISSA_DIGITS: u32 = <$T>::MANTISSA_DIGITS;
 
@@ -155,6 +170,14 @@ macro_rules! float {
                 <$T>::floor(self)
             }
             #[inline(always)]
+            fn ceil(self) -> $T {
+                <$T>::ceil(self)
+            }
+            #[inline(always)]
+            fn wide2(v: glam::$V2) -> glam::DVec2 {
+                glam::DVec2::from(v)
+            }
+            #[inline(always)]
             fn powi(self, n: i32) -> $T {
                 <$T>::powi(self, n)
             }
@@ -182,6 +205,27 @@ macro_rules! float {
 
         impl Vector2<$T> for glam::$V2 {
             const ZERO: Self = glam::$V2::ZERO;
+            const X: Self = glam::$V2::X;
+            #[inline(always)]
+            fn perp(self) -> Self {
+                glam::$V2::perp(self)
+            }
+            #[inline(always)]
+            fn min(self, other: Self) -> Self {
+                glam::$V2::min(self, other)
+            }
+            #[inline(always)]
+            fn max(self, other: Self) -> Self {
+                glam::$V2::max(self, other)
+            }
+            #[inline(always)]
+            fn length(self) -> $T {
+                glam::$V2::length(self)
+            }
+            #[inline(always)]
+            fn length_squared(self) -> $T {
+                glam::$V2::length_squared(self)
+            }
             #[inline(always)]
             fn new(x: $T, y: $T) -> Self {
                 glam::$V2::new(x, y)
@@ -214,6 +258,22 @@ macro_rules! float {
 
         impl Vector3<$T> for glam::$V3 {
             const ZERO: Self = glam::$V3::ZERO;
+            #[inline(always)]
+            fn length(self) -> $T {
+                glam::$V3::length(self)
+            }
+            #[inline(always)]
+            fn cross(self, other: Self) -> Self {
+                glam::$V3::cross(self, other)
+            }
+            #[inline(always)]
+            fn try_normalize(self) -> Option<Self> {
+                glam::$V3::try_normalize(self)
+            }
+            #[inline(always)]
+            fn any_orthonormal_vector(self) -> Self {
+                glam::$V3::any_orthonormal_vector(self)
+            }
             #[inline(always)]
             fn x(self) -> $T {
                 self.x

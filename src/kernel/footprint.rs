@@ -24,6 +24,13 @@
 
 use crate::kernel::float::{Float, Vector2, Vector3};
 
+/// [`f64::gamma`] in either precision.
+#[inline]
+pub(crate) fn gamma<T: Float>(n: u32) -> T {
+    let nu = T::from_i64(i64::from(n)) * (T::EPSILON / T::of(2.0));
+    nu / (T::of(1.0) - nu)
+}
+
 /// [`f64::radius`] in either precision.
 #[inline]
 pub(crate) fn radius<T: Float>(light_radius: T, z_occluder: T, z_receiver: T) -> T {
