@@ -162,6 +162,7 @@ pub(crate) fn reduce<T: Float, R: Real<Scalar = T>>(y: R, x: R) -> (R, R, R::Mas
     // `den − den` is 0 exactly when den is finite. (Not `den < ∞`: LLVM
     // fuses that with `den > 0` into a class test it cannot keep in vector
     // registers.)
+    #[allow(clippy::eq_op)] // `den − den`: deliberate, see above.
     let regular = den.gt(zero) & (den - den).eq(zero) & num.ge(zero);
     (num, den, swap, regular)
 }

@@ -17,7 +17,7 @@
 //! `intensity = falloff(1 − d/dmax)` ([`f64::intensity`]),
 //!
 //! with the paper's Bernstein falloff or the exact disk falloff
-//! ([`Falloff`](super::falloff::Falloff)): `d = 0` (the outer edge of the
+//! ([`Falloff`]): `d = 0` (the outer edge of the
 //! penumbra) is fully lit, `d = dmax` (the inner edge) fully shadowed.
 //!
 //! ## Conventions at the edge of the domain

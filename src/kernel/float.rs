@@ -62,8 +62,9 @@ pub(crate) trait Float:
     fn atan2_std(self, x: Self) -> Self;
 }
 
-/// What the kernels use of glam's 2D vectors.
-pub(crate) trait Vector2<T>:
+/// The arithmetic glam's vectors of either dimension have: sums,
+/// differences, products and quotients by a scalar.
+pub(crate) trait VectorOps<T>:
     Copy
     + PartialEq
     + Debug
@@ -74,6 +75,23 @@ pub(crate) trait Vector2<T>:
     + Mul<T, Output = Self>
     + Div<T, Output = Self>
 {
+}
+
+impl<T, V> VectorOps<T> for V where
+    V: Copy
+        + PartialEq
+        + Debug
+        + Display
+        + Add<Output = V>
+        + Sub<Output = V>
+        + Neg<Output = V>
+        + Mul<T, Output = V>
+        + Div<T, Output = V>
+{
+}
+
+/// What the kernels use of glam's 2D vectors.
+pub(crate) trait Vector2<T>: VectorOps<T> {
     const ZERO: Self;
     fn new(x: T, y: T) -> Self;
     fn x(self) -> T;
@@ -91,17 +109,7 @@ pub(crate) trait Vector2<T>:
 }
 
 /// What the kernels use of glam's 3D vectors.
-pub(crate) trait Vector3<T>:
-    Copy
-    + PartialEq
-    + Debug
-    + Display
-    + Add<Output = Self>
-    + Sub<Output = Self>
-    + Neg<Output = Self>
-    + Mul<T, Output = Self>
-    + Div<T, Output = Self>
-{
+pub(crate) trait Vector3<T>: VectorOps<T> {
     const ZERO: Self;
     fn x(self) -> T;
     fn y(self) -> T;

@@ -24,8 +24,9 @@
 
 use crate::kernel::float::{Float, Vector2, Vector3};
 
-/// [`f64::gamma`] in either precision.
-#[inline]
+/// [`f64::gamma`] in either precision (inlined, so that a constant `n`
+/// folds to a constant).
+#[inline(always)]
 pub(crate) fn gamma<T: Float>(n: u32) -> T {
     let nu = T::from_i64(i64::from(n)) * (T::EPSILON / T::of(2.0));
     nu / (T::of(1.0) - nu)

@@ -262,9 +262,7 @@ fn interval<T: Float>(start: T, end: T) -> VisiblePart<T> {
         return VisiblePart {
             start: at,
             end: at,
-            fraction: zero,
-            weight_r: zero,
-            weight_l: zero,
+            ..empty_of(zero)
         };
     }
     let i = e - s;
@@ -305,15 +303,32 @@ fn from<T: Float>(s: T, q: T) -> VisiblePart<T> {
     }
 }
 
-/// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
-fn full<T: Float>() -> VisiblePart<T> {
+/// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`, given `0`,
+/// `1/2` and `1` in the precision.
+const fn full_of<T: Copy>(zero: T, half: T, one: T) -> VisiblePart<T> {
     VisiblePart {
-        start: T::of(0.0),
-        end: T::of(1.0),
-        fraction: T::of(1.0),
-        weight_r: T::of(0.5),
-        weight_l: T::of(0.5),
+        start: zero,
+        end: one,
+        fraction: one,
+        weight_r: half,
+        weight_l: half,
     }
+}
+
+/// Nothing visible: the empty interval at 0, given `0` in the precision.
+const fn empty_of<T: Copy>(zero: T) -> VisiblePart<T> {
+    VisiblePart {
+        start: zero,
+        end: zero,
+        fraction: zero,
+        weight_r: zero,
+        weight_l: zero,
+    }
+}
+
+/// [`full_of`] in either precision.
+fn full<T: Float>() -> VisiblePart<T> {
+    full_of(T::of(0.0), T::of(0.5), T::of(1.0))
 }
 
 /// `a·b − c·d` within `2u` relative (plus `O(u²)|ab|`): both products split
@@ -488,22 +503,10 @@ pub mod f64 {
 
     impl VisiblePart {
         /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
-        pub const FULL: VisiblePart = VisiblePart {
-            start: 0.0,
-            end: 1.0,
-            fraction: 1.0,
-            weight_r: 0.5,
-            weight_l: 0.5,
-        };
+        pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
 
         /// Nothing visible: the empty interval at 0.
-        pub const EMPTY: VisiblePart = VisiblePart {
-            start: 0.0,
-            end: 0.0,
-            fraction: 0.0,
-            weight_r: 0.0,
-            weight_l: 0.0,
-        };
+        pub const EMPTY: VisiblePart = super::empty_of(0.0);
 
         /// The interval `[start, end]` of the light's parameter, clamped
         /// to `[0, 1]` (an empty interval where `end ≤ start`, or for a
@@ -629,30 +632,18 @@ pub mod f32 {
 
     impl VisiblePart {
         /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
-        pub const FULL: VisiblePart = VisiblePart {
-            start: 0.0,
-            end: 1.0,
-            fraction: 1.0,
-            weight_r: 0.5,
-            weight_l: 0.5,
-        };
+        pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
 
         /// Nothing visible: the empty interval at 0.
-        pub const EMPTY: VisiblePart = VisiblePart {
-            start: 0.0,
-            end: 0.0,
-            fraction: 0.0,
-            weight_r: 0.0,
-            weight_l: 0.0,
-        };
+        pub const EMPTY: VisiblePart = super::empty_of(0.0);
 
-        /// As `f64`'s [`interval`](super::super::f64::VisiblePart::interval).
+        /// As `f64`'s [`interval`](crate::kernel::linear_light::f64::VisiblePart::interval).
         #[must_use]
         pub fn interval(start: f32, end: f32) -> VisiblePart {
             super::interval(start, end)
         }
 
-        /// As `f64`'s [`intersect`](super::super::f64::VisiblePart::intersect).
+        /// As `f64`'s [`intersect`](crate::kernel::linear_light::f64::VisiblePart::intersect).
         #[must_use]
         pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
             super::interval(self.start.max(other.start), self.end.min(other.end))

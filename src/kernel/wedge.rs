@@ -139,7 +139,7 @@ const RETRIES: i32 = 12;
 /// `normal` is a unit vector up to rounding; `offset` is a proven
 /// lower bound of `min_i normal · (e_i − center)` (in the exact
 /// arithmetic of the stored values), and `normal` is proven
-/// separating (see the [module docs](super)).
+/// separating (see the [module docs](self)).
 ///
 /// One type for both precisions: [`f64::WedgePlane`] and
 /// [`f32::WedgePlane`] name it.
@@ -155,7 +155,7 @@ pub struct WedgePlane<V, T> {
 
 /// A penumbra wedge: a conservative bound of the points a silhouette
 /// edge can partially occlude a sphere light from (see the [module
-/// docs](super) for the construction and its proof).
+/// docs](self) for the construction and its proof).
 ///
 /// One type for both precisions: [`f64::PenumbraWedge`] and
 /// [`f32::PenumbraWedge`] name it.
@@ -173,13 +173,14 @@ impl<V: Copy, T: Copy> PenumbraWedge<V, T> {
     }
 
     /// The verified planes (four, except for an edge within rounding
-    /// distance of the light: see [`new`](Self::new)).
+    /// distance of the light: see [`new`](f64::PenumbraWedge::new)).
     pub fn planes(&self) -> impl Iterator<Item = WedgePlane<V, T>> + '_ {
         self.planes.iter().flatten().copied()
     }
 }
 
 /// [`f64::PenumbraWedge::new`] in either precision.
+#[inline]
 fn new_wedge<T: Float>(
     (e0, e1): (T::V3, T::V3),
     center: T::V3,
@@ -239,6 +240,7 @@ fn new_wedge<T: Float>(
 }
 
 /// [`f64::PenumbraWedge::contains`] in either precision.
+#[inline]
 fn wedge_contains<T: Float>(wedge: &PenumbraWedge<T::V3, T>, p: T::V3) -> bool {
     if !p.is_finite() {
         return false;
@@ -381,7 +383,7 @@ impl<T: Float> Frame<T> {
     }
 }
 
-/// The light-image-plane rectangle of [`penumbra_quad`].
+/// The light-image-plane rectangle of [`penumbra_quad`](f64::penumbra_quad).
 ///
 /// Corners counter-clockwise: `center ∓ half_length·axis ∓
 /// half_width·axis⊥`, starting behind `e0` on the right of the
@@ -411,6 +413,7 @@ pub struct PenumbraQuad<V, T> {
 }
 
 /// [`f64::PenumbraQuad::contains`] in either precision.
+#[inline]
 fn quad_contains<T: Float>(quad: &PenumbraQuad<T::V2, T>, q: T::V2) -> bool {
     let q = T::wide2(q);
     (0..4).all(|i| {
@@ -422,7 +425,7 @@ fn quad_contains<T: Float>(quad: &PenumbraQuad<T::V2, T>, q: T::V2) -> bool {
     })
 }
 
-/// What [`penumbra_quad`] found.
+/// What [`penumbra_quad`](f64::penumbra_quad) found.
 ///
 /// One type for both precisions: [`f64::QuadBound`] and [`f32::QuadBound`]
 /// name it.
@@ -442,6 +445,7 @@ pub enum QuadBound<V, T> {
 }
 
 /// [`f64::penumbra_quad`] in either precision.
+#[inline]
 fn penumbra_quad<T: Float>(
     (e0, e1): (T::V3, T::V3),
     radius: T,
@@ -658,7 +662,7 @@ pub mod f32 {
     pub type QuadBound = super::QuadBound<Vec2, f32>;
 
     impl PenumbraWedge {
-        /// As `f64`'s [`new`](super::super::f64::PenumbraWedge::new).
+        /// As `f64`'s [`new`](crate::kernel::wedge::f64::PenumbraWedge::new).
         ///
         /// # Errors
         ///
@@ -667,7 +671,7 @@ pub mod f32 {
             super::new_wedge::<f32>((e0, e1), center, radius)
         }
 
-        /// As `f64`'s [`contains`](super::super::f64::PenumbraWedge::contains).
+        /// As `f64`'s [`contains`](crate::kernel::wedge::f64::PenumbraWedge::contains).
         #[must_use]
         pub fn contains(&self, p: Vec3) -> bool {
             super::wedge_contains::<f32>(self, p)
@@ -675,7 +679,7 @@ pub mod f32 {
     }
 
     impl PenumbraQuad {
-        /// As `f64`'s [`contains`](super::super::f64::PenumbraQuad::contains).
+        /// As `f64`'s [`contains`](crate::kernel::wedge::f64::PenumbraQuad::contains).
         #[must_use]
         pub fn contains(&self, q: Vec2) -> bool {
             super::quad_contains::<f32>(self, q)

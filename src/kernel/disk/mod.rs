@@ -198,7 +198,7 @@ pub mod f64 {
     }
 }
 
-/// `f32` disk-occlusion kernels: [`f64`](super::f64)'s, in single precision (its docs give both precisions' bounds).
+/// `f32` disk-occlusion kernels: [`f64`](mod@f64)'s, in single precision (its docs give both precisions' bounds).
 pub mod f32 {
     use super::{area, occlusion};
     use glam::Vec2;

@@ -171,6 +171,7 @@ where
 fn occlusion_lanes<T: DiskFloat, R: Real<Scalar = T>>(d: R, w0: R, w1: R) -> R {
     let k = |x: f64| R::splat(T::of(x));
     // Finite: `x − x` is 0 exactly then.
+    #[allow(clippy::eq_op)] // `x − x`: deliberate, see above.
     let finite = (d - d).eq(k(0.0)) & (w0 - w0).eq(k(0.0)) & (w1 - w1).eq(k(0.0));
     let sign = R::select(d.is_sign_negative(), k(-1.0), k(1.0));
     let d = d.abs();
