@@ -94,6 +94,9 @@
 //! All kernels are in [`f32`](mod@f32) and [`f64`](mod@f64) from one body; the `f32` versions
 //! compute in `f32` and decide exactly (the promotion to `f64` is exact).
 
+use crate::kernel::angle::{self, AngleFloat};
+use crate::kernel::eft::two_prod;
+use crate::kernel::float::{Float, Vector2, Vector3};
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use glam::DVec2;
 
@@ -190,359 +193,480 @@ fn ray_crosses_light(l: DVec2, r: DVec2, f: DVec2, e: DVec2) -> bool {
     orient2d(f, e, l).to_i32() * d >= 0 && orient2d(f, e, r).to_i32() * d <= 0
 }
 
-macro_rules! linear_light_kernels {
-    ($T:ident, $V2:ident, $V3:ident, $SAFE_LO:expr, $SAFE_HI:expr) => {
-        use super::{classify, ray_crosses_light, Crossing, OccluderSide};
-        use crate::kernel::angle::$T::atan2;
-        use crate::kernel::eft::$T::two_prod;
-        use glam::{$V2, $V3};
+/// Magnitudes in `[SAFE_LO, SAFE_HI]` need no rescaling: the product of two
+/// of them is finite, and normal even after a factor `sin θ` as small as
+/// `1e-20`.
+pub(crate) trait LinearFloat: AngleFloat {
+    const SAFE_LO: Self;
+    const SAFE_HI: Self;
+    /// The largest finite value.
+    const MAX: Self;
+    /// The predicates' coordinates (an exact promotion).
+    fn to_d2(p: Self::V2) -> DVec2;
+}
 
-        /// Magnitudes in `[SAFE_LO, SAFE_HI]` need no rescaling: the product
-        /// of two of them is finite, and normal even after a factor `sin θ`
-        /// as small as `1e-20`.
-        const SAFE_LO: $T = $SAFE_LO;
-        const SAFE_HI: $T = $SAFE_HI;
+impl LinearFloat for f64 {
+    const SAFE_LO: f64 = 1e-100;
+    const SAFE_HI: f64 = 1e100;
+    const MAX: f64 = f64::MAX;
+    #[inline]
+    fn to_d2(p: DVec2) -> DVec2 {
+        p
+    }
+}
 
-        /// The visible part of a segment light `[L, R]` and the weights of its
-        /// endpoint samples for linear emission (OESS substep 4.3, figures 5
-        /// and 6), all as fractions of the light's length.
-        #[derive(Clone, Copy, Debug, PartialEq)]
-        pub struct VisiblePart {
-            /// Where the visible interval starts, as the parameter `s ∈ [0, 1]`
-            /// along `L → R`.
-            pub start: $T,
-            /// Where it ends (`start ≤ end ≤ 1`). An empty interval (the light
-            /// wholly hidden) has `start = end`.
-            pub end: $T,
-            /// The visible fraction `i = end − start`, computed directly (not
-            /// by the subtraction), so it is accurate when small.
-            pub fraction: $T,
-            /// `A = ∫ s ds` over the visible part: the weight of the `R`
-            /// endpoint sample.
-            pub weight_r: $T,
-            /// `B = ∫ (1 − s) ds` over the visible part: the weight of the `L`
-            /// endpoint sample. `weight_l + weight_r = fraction` within
-            /// `6u·fraction` (`u = 2⁻⁵³`, `f32`: `2⁻²⁴`), plus the subnormal
-            /// spacing when the weights are subnormal.
-            pub weight_l: $T,
-        }
+impl LinearFloat for f32 {
+    const SAFE_LO: f32 = 1e-9;
+    const SAFE_HI: f32 = 1e9;
+    const MAX: f32 = f32::MAX;
+    #[inline]
+    fn to_d2(p: glam::Vec2) -> DVec2 {
+        p.as_dvec2()
+    }
+}
 
-        impl VisiblePart {
-            /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
-            pub const FULL: VisiblePart = VisiblePart {
-                start: 0.0,
-                end: 1.0,
-                fraction: 1.0,
-                weight_r: 0.5,
-                weight_l: 0.5,
-            };
+/// The visible part of a segment light `[L, R]` and the weights of its
+/// endpoint samples for linear emission (OESS substep 4.3, figures 5
+/// and 6), all as fractions of the light's length.
+///
+/// One type for both precisions: [`f64::VisiblePart`] and
+/// [`f32::VisiblePart`] name it.
+#[derive(Clone, Copy, Debug, PartialEq)]
+pub struct VisiblePart<T> {
+    /// Where the visible interval starts, as the parameter `s ∈ [0, 1]`
+    /// along `L → R`.
+    pub start: T,
+    /// Where it ends (`start ≤ end ≤ 1`). An empty interval (the light
+    /// wholly hidden) has `start = end`.
+    pub end: T,
+    /// The visible fraction `i = end − start`, computed directly (not
+    /// by the subtraction), so it is accurate when small.
+    pub fraction: T,
+    /// `A = ∫ s ds` over the visible part: the weight of the `R`
+    /// endpoint sample.
+    pub weight_r: T,
+    /// `B = ∫ (1 − s) ds` over the visible part: the weight of the `L`
+    /// endpoint sample. `weight_l + weight_r = fraction` within
+    /// `6u·fraction` (`u = 2⁻⁵³`, `f32`: `2⁻²⁴`), plus the subnormal
+    /// spacing when the weights are subnormal.
+    pub weight_l: T,
+}
 
-            /// Nothing visible: the empty interval at 0.
-            pub const EMPTY: VisiblePart = VisiblePart {
-                start: 0.0,
-                end: 0.0,
-                fraction: 0.0,
-                weight_r: 0.0,
-                weight_l: 0.0,
-            };
+/// `[start, end]` with its fraction and weights: [`f64::VisiblePart`]'s
+/// `interval` in either precision.
+fn interval<T: Float>(start: T, end: T) -> VisiblePart<T> {
+    let (zero, one, half) = (T::of(0.0), T::of(1.0), T::of(0.5));
+    let (s, e) = (start.clamp(zero, one), end.clamp(zero, one));
+    if s.is_nan() || e.is_nan() || e <= s {
+        let at = if s.is_nan() { zero } else { s };
+        return VisiblePart {
+            start: at,
+            end: at,
+            ..empty_of(zero)
+        };
+    }
+    let i = e - s;
+    VisiblePart {
+        start: s,
+        end: e,
+        fraction: i,
+        weight_r: half * i * (e + s),
+        weight_l: half * i * ((one - e) + (one - s)),
+    }
+}
 
-            /// The interval `[start, end]` of the light's parameter, clamped
-            /// to `[0, 1]` (an empty interval where `end ≤ start`, or for a
-            /// NaN bound), with its fraction `end − start` and the endpoint
-            /// weights `A = (end² − start²)/2`, `B = fraction − A`, each
-            /// formed without cancellation: `A = (end − start)(end +
-            /// start)/2`, `B = (end − start)(2 − end − start)/2`.
-            #[must_use]
-            pub fn interval(start: $T, end: $T) -> VisiblePart {
-                let (s, e) = (start.clamp(0.0, 1.0), end.clamp(0.0, 1.0));
-                if s.is_nan() || e.is_nan() || e <= s {
-                    let at = if s.is_nan() { 0.0 } else { s };
-                    return VisiblePart {
-                        start: at,
-                        end: at,
-                        ..VisiblePart::EMPTY
-                    };
-                }
-                let i = e - s;
-                VisiblePart {
-                    start: s,
-                    end: e,
-                    fraction: i,
-                    weight_r: 0.5 * i * (e + s),
-                    weight_l: 0.5 * i * ((1.0 - e) + (1.0 - s)),
-                }
-            }
+/// `[0, s]`, given `s` and `q = 1 − s` (each computed directly).
+#[inline]
+fn up_to<T: Float>(s: T, q: T) -> VisiblePart<T> {
+    let half = T::of(0.5);
+    VisiblePart {
+        start: T::of(0.0),
+        end: s,
+        fraction: s,
+        // ∫₀ˢ σ dσ = s²/2; ∫₀ˢ (1 − σ) dσ = s(2 − s)/2 = s(1 + q)/2.
+        weight_r: half * s * s,
+        weight_l: half * s * (T::of(1.0) + q),
+    }
+}
 
-            /// The part visible in both `self` and `other` (the
-            /// intersection of the intervals), as [`VisiblePart::interval`].
-            #[must_use]
-            pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
-                VisiblePart::interval(self.start.max(other.start), self.end.min(other.end))
-            }
+/// `[s, 1]`, given `s` and `q = 1 − s`.
+#[inline]
+fn from<T: Float>(s: T, q: T) -> VisiblePart<T> {
+    let half = T::of(0.5);
+    VisiblePart {
+        start: s,
+        end: T::of(1.0),
+        fraction: q,
+        // ∫ₛ¹ σ dσ = (1 − s²)/2 = q(1 + s)/2; ∫ₛ¹ (1 − σ) dσ = q²/2.
+        weight_r: half * q * (T::of(1.0) + s),
+        weight_l: half * q * q,
+    }
+}
 
-            /// `[0, s]`, given `s` and `q = 1 − s` (each computed directly).
-            #[inline]
-            fn up_to(s: $T, q: $T) -> VisiblePart {
-                VisiblePart {
-                    start: 0.0,
-                    end: s,
-                    fraction: s,
-                    // ∫₀ˢ σ dσ = s²/2; ∫₀ˢ (1 − σ) dσ = s(2 − s)/2 = s(1 + q)/2.
-                    weight_r: 0.5 * s * s,
-                    weight_l: 0.5 * s * (1.0 + q),
-                }
-            }
+/// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`, given `0`,
+/// `1/2` and `1` in the precision.
+const fn full_of<T: Copy>(zero: T, half: T, one: T) -> VisiblePart<T> {
+    VisiblePart {
+        start: zero,
+        end: one,
+        fraction: one,
+        weight_r: half,
+        weight_l: half,
+    }
+}
 
-            /// `[s, 1]`, given `s` and `q = 1 − s`.
-            #[inline]
-            fn from(s: $T, q: $T) -> VisiblePart {
-                VisiblePart {
-                    start: s,
-                    end: 1.0,
-                    fraction: q,
-                    // ∫ₛ¹ σ dσ = (1 − s²)/2 = q(1 + s)/2; ∫ₛ¹ (1 − σ) dσ = q²/2.
-                    weight_r: 0.5 * q * (1.0 + s),
-                    weight_l: 0.5 * q * q,
-                }
-            }
-        }
+/// Nothing visible: the empty interval at 0, given `0` in the precision.
+const fn empty_of<T: Copy>(zero: T) -> VisiblePart<T> {
+    VisiblePart {
+        start: zero,
+        end: zero,
+        fraction: zero,
+        weight_r: zero,
+        weight_l: zero,
+    }
+}
 
-        /// `a·b − c·d` within `2u` relative (plus `O(u²)|ab|`): both products
-        /// split exactly (TwoProd), `p − q` exact when they are within a
-        /// factor 2 (Sterbenz) and otherwise free of cancellation, the error
-        /// terms summed exactly (TwoSum). The same bits with or without a
-        /// hardware FMA (see `kernel::eft`).
-        #[inline]
-        fn difference_of_products(a: $T, b: $T, c: $T, d: $T) -> $T {
-            let (p, e) = two_prod(a, b);
-            let (q, f) = two_prod(c, d);
-            let s = e - f;
-            let bv = s - e;
-            let t = (e - (s - bv)) + (-f - bv);
-            ((p - q) + s) + t
-        }
+/// [`full_of`] in either precision.
+fn full<T: Float>() -> VisiblePart<T> {
+    full_of(T::of(0.0), T::of(0.5), T::of(1.0))
+}
 
-        #[inline]
-        fn cross(p: $V2, q: $V2) -> $T {
-            difference_of_products(p.x, q.y, p.y, q.x)
-        }
+/// `a·b − c·d` within `2u` relative (plus `O(u²)|ab|`): both products split
+/// exactly (TwoProd), `p − q` exact when they are within a factor 2
+/// (Sterbenz) and otherwise free of cancellation, the error terms summed
+/// exactly (TwoSum). The same bits with or without a hardware FMA (see
+/// `kernel::eft`).
+#[inline]
+fn difference_of_products<T: Float>(a: T, b: T, c: T, d: T) -> T {
+    let (p, e) = two_prod(a, b);
+    let (q, f) = two_prod(c, d);
+    let s = e - f;
+    let bv = s - e;
+    let t = (e - (s - bv)) + (-f - bv);
+    ((p - q) + s) + t
+}
 
-        /// An exact power of two `k` such that `m·k` lies near 1, or `1` when
-        /// `m` is already in the safe range (or zero).
-        #[inline]
-        fn rescale(m: $T) -> $T {
-            if m == 0.0 || (SAFE_LO..=SAFE_HI).contains(&m) {
-                return 1.0;
-            }
-            let limit = <$T>::MAX_EXP - 2;
-            let e = (m.log2().floor() as i32).clamp(-limit, limit);
-            (2.0 as $T).powi(-e)
-        }
+#[inline]
+fn cross<T: Float>(p: T::V2, q: T::V2) -> T {
+    difference_of_products(p.x(), q.y(), p.y(), q.x())
+}
 
-        /// Points whose largest coordinate exceeds a quarter of the largest
-        /// finite value are quartered (exactly, but for subnormal
-        /// coordinates), so that no difference of two of them overflows.
-        #[inline]
-        fn guard_overflow<const N: usize>(points: [$V2; N]) -> [$V2; N] {
-            let m = points
-                .iter()
-                .fold(0.0 as $T, |m, p| m.max(p.abs().max_element()));
-            if m > 0.25 * <$T>::MAX {
-                points.map(|p| p * 0.25)
-            } else {
-                points
-            }
-        }
+/// An exact power of two `k` such that `m·k` lies near 1, or `1` when `m` is
+/// already in the safe range (or zero).
+#[inline]
+fn rescale<T: LinearFloat>(m: T) -> T {
+    if m == T::of(0.0) || (T::SAFE_LO..=T::SAFE_HI).contains(&m) {
+        return T::of(1.0);
+    }
+    let limit = T::MAX_EXP - 2;
+    // An integer-valued float: the same `i32` from either width.
+    let e = (m.log2().floor().to_f64() as i32).clamp(-limit, limit);
+    T::of(2.0).powi(-e)
+}
 
-        /// `(s_P, 1 − s_P)` for a crossing known to be inside the segment.
-        #[inline]
-        fn crossing_parameter(l: $V2, r: $V2, f: $V2, e: $V2) -> ($T, $T) {
-            let [l, r, f, e] = guard_overflow([l, r, f, e]);
-            // s_P is invariant under scaling the shadow direction and, jointly,
-            // the two endpoint directions: normalise each to magnitude ~1.
-            let p = e - f;
-            let p = p * rescale(p.abs().max_element());
-            let (ql, qr) = (l - f, r - f);
-            let k = rescale(ql.abs().max_element().max(qr.abs().max_element()));
-            let a = cross(p, ql * k).abs();
-            let b = cross(p, qr * k).abs();
-            let sum = a + b;
-            if sum > 0.0 {
-                (a / sum, b / sum)
-            } else {
-                // Both distances below the precision's range although the
-                // exact signs differ: any point of the segment is within
-                // rounding of P. Take the middle.
-                (0.5, 0.5)
-            }
-        }
+/// Points whose largest coordinate exceeds a quarter of the largest finite
+/// value are quartered (exactly, but for subnormal coordinates), so that no
+/// difference of two of them overflows.
+#[inline]
+fn guard_overflow<T: LinearFloat, const N: usize>(points: [T::V2; N]) -> [T::V2; N] {
+    let m = points
+        .iter()
+        .fold(T::of(0.0), |m, p| m.max(p.abs().max_element()));
+    if m > T::of(0.25) * T::MAX {
+        points.map(|p| p * T::of(0.25))
+    } else {
+        points
+    }
+}
 
-        /// The visible part of the segment light `[l, r]` seen from the
-        /// fragment `f` past the occluding edge point `e`, the occluder lying
-        /// on `side` of the shadow line (OESS substep 4.3). 2D coordinates in the plane through the light and
-        /// the fragment.
-        ///
-        /// **Domain**: finite points, `l ≠ r`, `f` off the light's line; for
-        /// exact decisions, magnitudes as [`orient2d`](crate::kernel::predicate::orient2d).
-        ///
-        /// **Edge of the domain** (see the module docs): fully visible
-        /// ([`VisiblePart::FULL`]) when `e` does not lie between `f` and the
-        /// light's line, when the shadow line is parallel to the light,
-        /// `e = f`, `f` on the light's line, `l = r`, or any coordinate is
-        /// non-finite. When the shadow line meets the light's line outside
-        /// the segment, the light is wholly visible or wholly hidden
-        /// (`fraction = 0`, `start = end`, both weights `0`) as `side` says.
-        /// Never NaN.
-        ///
-        /// **Properties**: `fraction ∈ [0, 1]`, weights `≥ 0`,
-        /// `weight_l + weight_r = fraction` to a few ulps; swapping `l` and
-        /// `r` together with `side` swaps the weights and mirrors the
-        /// interval bit for bit; scaling all points by a power of two changes
-        /// nothing.
-        ///
-        /// **Accuracy**: `|ŝ − s_P| ≤ s_P(1 − s_P)(2u/sin θ_L + 2u/sin θ_R + 4u) + 2u·s_P`
-        /// to first order, `θ_L`, `θ_R` the angles at `f` between the shadow
-        /// line and `fl`, `fr` (module docs); measured in
-        /// `tests/linear_light.rs`, `docs/accuracy/kernels.md`.
-        #[must_use]
-        pub fn visible_part(l: $V2, r: $V2, f: $V2, e: $V2, side: OccluderSide) -> VisiblePart {
-            let Some(crossing) = classify(to_d2(l), to_d2(r), to_d2(f), to_d2(e)) else {
-                return VisiblePart::FULL;
-            };
-            let (s, q) = match crossing {
-                Crossing::BeforeL => (0.0, 1.0),
-                Crossing::BeyondR => (1.0, 0.0),
-                Crossing::Inside => crossing_parameter(l, r, f, e),
-            };
-            match side {
-                OccluderSide::TowardR => VisiblePart::up_to(s, q),
-                OccluderSide::TowardL => VisiblePart::from(s, q),
-            }
-        }
+/// `(s_P, 1 − s_P)` for a crossing known to be inside the segment.
+#[inline]
+fn crossing_parameter<T: LinearFloat>(l: T::V2, r: T::V2, f: T::V2, e: T::V2) -> (T, T) {
+    let [l, r, f, e] = guard_overflow::<T, 4>([l, r, f, e]);
+    // s_P is invariant under scaling the shadow direction and, jointly, the
+    // two endpoint directions: normalise each to magnitude ~1.
+    let p = e - f;
+    let p = p * rescale(p.abs().max_element());
+    let (ql, qr) = (l - f, r - f);
+    let k = rescale(ql.abs().max_element().max(qr.abs().max_element()));
+    let a = cross::<T>(p, ql * k).abs();
+    let b = cross::<T>(p, qr * k).abs();
+    let sum = a + b;
+    if sum > T::of(0.0) {
+        (a / sum, b / sum)
+    } else {
+        // Both distances below the precision's range although the exact
+        // signs differ: any point of the segment is within rounding of P.
+        // Take the middle.
+        (T::of(0.5), T::of(0.5))
+    }
+}
 
-        /// [`visible_part`] for 3D points: `e` is projected orthogonally onto
-        /// the plane through `l`, `r`, `f` (OESS interpolates its occluding
-        /// edges so that `e` lies in that plane; the projection absorbs
-        /// rounding), and the configuration is expressed in an orthonormal
-        /// frame of that plane with origin `l` and first axis along `r − l`.
-        ///
-        /// **Domain and edge of the domain**: as [`visible_part`]; fully
-        /// visible also when `f` is within rounding of the light's line (the
-        /// plane is then undefined). Magnitudes are rescaled by powers of
-        /// two, so any finite input works; the decisions are exact for the
-        /// projected 2D configuration.
-        ///
-        /// **Accuracy**: the projection perturbs each 2D coordinate by a few
-        /// ulps of the configuration's largest coordinate (after rescaling);
-        /// the effect on `s_P` follows the conditioning of [`visible_part`].
-        /// `tests/linear_light.rs` bounds the perturbation by `32u` times the
-        /// largest coordinate (embedding rotation included); measured errors
-        /// stay below 0.15 of that bound.
-        #[must_use]
-        pub fn visible_part_3d(l: $V3, r: $V3, f: $V3, e: $V3, side: OccluderSide) -> VisiblePart {
-            if !(l.is_finite() && r.is_finite() && f.is_finite() && e.is_finite()) {
-                return VisiblePart::FULL;
-            }
-            let m = l.abs().max_element().max(r.abs().max_element());
-            let m = m.max(f.abs().max_element()).max(e.abs().max_element());
-            let (l, r, f, e) = if m > 0.25 * <$T>::MAX {
-                (l * 0.25, r * 0.25, f * 0.25, e * 0.25)
-            } else {
-                (l, r, f, e)
-            };
-            let (u, w, g) = (r - l, f - l, e - l);
-            let k = rescale(
-                u.abs()
-                    .max_element()
-                    .max(w.abs().max_element())
-                    .max(g.abs().max_element()),
-            );
-            let (u, w, g) = (u * k, w * k, g * k);
-            let x = u.normalize_or_zero();
-            let y = (w - x * w.dot(x)).normalize_or_zero();
-            if x == $V3::ZERO || y == $V3::ZERO {
-                return VisiblePart::FULL;
-            }
-            visible_part(
-                $V2::ZERO,
-                $V2::new(u.dot(x), 0.0),
-                $V2::new(w.dot(x), w.dot(y)),
-                $V2::new(g.dot(x), g.dot(y)),
-                side,
-            )
-        }
-
-        /// The paper's law-of-sines form of the visible fraction (OESS
-        /// eq. 1): `i = sin β · sin δ / (sin α · sin(π − δ − γ)) = |LP|/|LR|`,
-        /// the fraction from `L` to the point `P` where the ray from `f`
-        /// through `e` meets the light (see the module docs for the angles).
-        /// For comparison with [`visible_part`], which is the stable form.
-        ///
-        /// Angles are `atan2(|cross|, dot)` of rescaled difference vectors, by
-        /// the crate's portable [`atan2`](crate::kernel::angle::f64::atan2);
-        /// the sines are the platform's.
-        ///
-        /// **Domain**: `Some` exactly when `f` is off the light's line and
-        /// the ray from `f` through `e` meets the closed segment `[l, r]`
-        /// (decided exactly); `None` otherwise (including `l = r`, `e = f`,
-        /// non-finite input). Inside the domain the value is clamped to
-        /// `[0, 1]`; if the computed `sin α` vanishes (`f` within rounding of
-        /// the light's line) the quotient is clamped too, and `0/0` gives
-        /// `None`.
-        ///
-        /// **Accuracy**: numerically weaker than [`visible_part`]: a sine near
-        /// `π` has an absolute error of a few `u`, so the relative error grows
-        /// like `u/|π − angle|` as `α`, `β`, `γ` or `δ + γ` approach `π`
-        /// (module docs). Measured (`tests/linear_light.rs`): on
-        /// well-conditioned configurations within `2.1e-15` (`f64`) and
-        /// `1.2e-6` (`f32`) of the exact value, about 3–4 times the stable
-        /// form's error; with the fragment `1e-8` above the middle of a unit
-        /// light, `1.2e-9` off, and with a grazing shadow line at that height,
-        /// `3.5e-8` off, where the stable form is exact to the last bit.
-        #[must_use]
-        pub fn law_of_sines_fraction(l: $V2, r: $V2, f: $V2, e: $V2) -> Option<$T> {
-            if !ray_crosses_light(to_d2(l), to_d2(r), to_d2(f), to_d2(e)) {
-                return None;
-            }
-            let [l, r, f, e] = guard_overflow([l, r, f, e]);
-            let k = rescale((r - l).abs().max_element().max((f - l).abs().max_element()));
-            let (fl, fr, lr) = ((l - f) * k, (r - f) * k, (r - l) * k);
-            let fe = e - f;
-            let fe = fe * rescale(fe.abs().max_element());
-            let angle = |p: $V2, q: $V2| atan2(cross(p, q).abs(), p.dot(q));
-            let alpha = angle(fl, fr);
-            let beta = angle(-lr, -fr);
-            let gamma = angle(lr, -fl);
-            let delta = angle(fl, fe);
-            let pi = core::$T::consts::PI;
-            let i = (beta.sin() * delta.sin()) / (alpha.sin() * (pi - delta - gamma).sin());
-            if i.is_nan() {
-                None
-            } else {
-                Some(i.clamp(0.0, 1.0))
-            }
-        }
+/// [`f64::visible_part`] in either precision.
+pub(crate) fn visible_part<T: LinearFloat>(
+    l: T::V2,
+    r: T::V2,
+    f: T::V2,
+    e: T::V2,
+    side: OccluderSide,
+) -> VisiblePart<T> {
+    let Some(crossing) = classify(T::to_d2(l), T::to_d2(r), T::to_d2(f), T::to_d2(e)) else {
+        return full();
     };
+    let (s, q) = match crossing {
+        Crossing::BeforeL => (T::of(0.0), T::of(1.0)),
+        Crossing::BeyondR => (T::of(1.0), T::of(0.0)),
+        Crossing::Inside => crossing_parameter::<T>(l, r, f, e),
+    };
+    match side {
+        OccluderSide::TowardR => up_to(s, q),
+        OccluderSide::TowardL => from(s, q),
+    }
+}
+
+/// [`f64::visible_part_3d`] in either precision.
+pub(crate) fn visible_part_3d<T: LinearFloat>(
+    l: T::V3,
+    r: T::V3,
+    f: T::V3,
+    e: T::V3,
+    side: OccluderSide,
+) -> VisiblePart<T> {
+    if !(l.is_finite() && r.is_finite() && f.is_finite() && e.is_finite()) {
+        return full();
+    }
+    let m = l.abs().max_element().max(r.abs().max_element());
+    let m = m.max(f.abs().max_element()).max(e.abs().max_element());
+    let quarter = T::of(0.25);
+    let (l, r, f, e) = if m > quarter * T::MAX {
+        (l * quarter, r * quarter, f * quarter, e * quarter)
+    } else {
+        (l, r, f, e)
+    };
+    let (u, w, g) = (r - l, f - l, e - l);
+    let k = rescale(
+        u.abs()
+            .max_element()
+            .max(w.abs().max_element())
+            .max(g.abs().max_element()),
+    );
+    let (u, w, g) = (u * k, w * k, g * k);
+    let x = u.normalize_or_zero();
+    let y = (w - x * w.dot(x)).normalize_or_zero();
+    if x == T::V3::ZERO || y == T::V3::ZERO {
+        return full();
+    }
+    visible_part(
+        T::V2::ZERO,
+        T::V2::new(u.dot(x), T::of(0.0)),
+        T::V2::new(w.dot(x), w.dot(y)),
+        T::V2::new(g.dot(x), g.dot(y)),
+        side,
+    )
+}
+
+/// [`f64::law_of_sines_fraction`] in either precision.
+pub(crate) fn law_of_sines_fraction<T: LinearFloat>(
+    l: T::V2,
+    r: T::V2,
+    f: T::V2,
+    e: T::V2,
+) -> Option<T> {
+    if !ray_crosses_light(T::to_d2(l), T::to_d2(r), T::to_d2(f), T::to_d2(e)) {
+        return None;
+    }
+    let [l, r, f, e] = guard_overflow::<T, 4>([l, r, f, e]);
+    let k = rescale((r - l).abs().max_element().max((f - l).abs().max_element()));
+    let (fl, fr, lr) = ((l - f) * k, (r - f) * k, (r - l) * k);
+    let fe = e - f;
+    let fe = fe * rescale(fe.abs().max_element());
+    let angle = |p: T::V2, q: T::V2| angle::atan2(cross::<T>(p, q).abs(), p.dot(q));
+    let alpha = angle(fl, fr);
+    let beta = angle(-lr, -fr);
+    let gamma = angle(lr, -fl);
+    let delta = angle(fl, fe);
+    let i = (beta.sin() * delta.sin()) / (alpha.sin() * (T::PI - delta - gamma).sin());
+    if i.is_nan() {
+        None
+    } else {
+        Some(i.clamp(T::of(0.0), T::of(1.0)))
+    }
 }
 
 /// `f64` versions.
 pub mod f64 {
-    /// The predicates' coordinates.
-    #[inline]
-    fn to_d2(p: glam::DVec2) -> glam::DVec2 {
-        p
+    use super::OccluderSide;
+    use glam::{DVec2, DVec3};
+
+    /// [`VisiblePart`](super::VisiblePart) in `f64`.
+    pub type VisiblePart = super::VisiblePart<f64>;
+
+    impl VisiblePart {
+        /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
+        pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
+
+        /// Nothing visible: the empty interval at 0.
+        pub const EMPTY: VisiblePart = super::empty_of(0.0);
+
+        /// The interval `[start, end]` of the light's parameter, clamped
+        /// to `[0, 1]` (an empty interval where `end ≤ start`, or for a
+        /// NaN bound), with its fraction `end − start` and the endpoint
+        /// weights `A = (end² − start²)/2`, `B = fraction − A`, each
+        /// formed without cancellation: `A = (end − start)(end +
+        /// start)/2`, `B = (end − start)(2 − end − start)/2`.
+        #[must_use]
+        pub fn interval(start: f64, end: f64) -> VisiblePart {
+            super::interval(start, end)
+        }
+
+        /// The part visible in both `self` and `other` (the
+        /// intersection of the intervals), as [`VisiblePart::interval`].
+        #[must_use]
+        pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
+            super::interval(self.start.max(other.start), self.end.min(other.end))
+        }
     }
-    linear_light_kernels!(f64, DVec2, DVec3, 1e-100, 1e100);
+
+    /// The visible part of the segment light `[l, r]` seen from the
+    /// fragment `f` past the occluding edge point `e`, the occluder lying
+    /// on `side` of the shadow line (OESS substep 4.3). 2D coordinates in the plane through the light and
+    /// the fragment.
+    ///
+    /// **Domain**: finite points, `l ≠ r`, `f` off the light's line; for
+    /// exact decisions, magnitudes as [`orient2d`](crate::kernel::predicate::orient2d).
+    ///
+    /// **Edge of the domain** (see the module docs): fully visible
+    /// ([`VisiblePart::FULL`]) when `e` does not lie between `f` and the
+    /// light's line, when the shadow line is parallel to the light,
+    /// `e = f`, `f` on the light's line, `l = r`, or any coordinate is
+    /// non-finite. When the shadow line meets the light's line outside
+    /// the segment, the light is wholly visible or wholly hidden
+    /// (`fraction = 0`, `start = end`, both weights `0`) as `side` says.
+    /// Never NaN.
+    ///
+    /// **Properties**: `fraction ∈ [0, 1]`, weights `≥ 0`,
+    /// `weight_l + weight_r = fraction` to a few ulps; swapping `l` and
+    /// `r` together with `side` swaps the weights and mirrors the
+    /// interval bit for bit; scaling all points by a power of two changes
+    /// nothing.
+    ///
+    /// **Accuracy**: `|ŝ − s_P| ≤ s_P(1 − s_P)(2u/sin θ_L + 2u/sin θ_R + 4u) + 2u·s_P`
+    /// to first order, `θ_L`, `θ_R` the angles at `f` between the shadow
+    /// line and `fl`, `fr` (module docs); measured in
+    /// `tests/linear_light.rs`, `docs/accuracy/kernels.md`.
+    #[must_use]
+    pub fn visible_part(l: DVec2, r: DVec2, f: DVec2, e: DVec2, side: OccluderSide) -> VisiblePart {
+        super::visible_part::<f64>(l, r, f, e, side)
+    }
+
+    /// [`visible_part`] for 3D points: `e` is projected orthogonally onto
+    /// the plane through `l`, `r`, `f` (OESS interpolates its occluding
+    /// edges so that `e` lies in that plane; the projection absorbs
+    /// rounding), and the configuration is expressed in an orthonormal
+    /// frame of that plane with origin `l` and first axis along `r − l`.
+    ///
+    /// **Domain and edge of the domain**: as [`visible_part`]; fully
+    /// visible also when `f` is within rounding of the light's line (the
+    /// plane is then undefined). Magnitudes are rescaled by powers of
+    /// two, so any finite input works; the decisions are exact for the
+    /// projected 2D configuration.
+    ///
+    /// **Accuracy**: the projection perturbs each 2D coordinate by a few
+    /// ulps of the configuration's largest coordinate (after rescaling);
+    /// the effect on `s_P` follows the conditioning of [`visible_part`].
+    /// `tests/linear_light.rs` bounds the perturbation by `32u` times the
+    /// largest coordinate (embedding rotation included); measured errors
+    /// stay below 0.15 of that bound.
+    #[must_use]
+    pub fn visible_part_3d(
+        l: DVec3,
+        r: DVec3,
+        f: DVec3,
+        e: DVec3,
+        side: OccluderSide,
+    ) -> VisiblePart {
+        super::visible_part_3d::<f64>(l, r, f, e, side)
+    }
+
+    /// The paper's law-of-sines form of the visible fraction (OESS
+    /// eq. 1): `i = sin β · sin δ / (sin α · sin(π − δ − γ)) = |LP|/|LR|`,
+    /// the fraction from `L` to the point `P` where the ray from `f`
+    /// through `e` meets the light (see the module docs for the angles).
+    /// For comparison with [`visible_part`], which is the stable form.
+    ///
+    /// Angles are `atan2(|cross|, dot)` of rescaled difference vectors, by
+    /// the crate's portable [`atan2`](crate::kernel::angle::f64::atan2);
+    /// the sines are the platform's.
+    ///
+    /// **Domain**: `Some` exactly when `f` is off the light's line and
+    /// the ray from `f` through `e` meets the closed segment `[l, r]`
+    /// (decided exactly); `None` otherwise (including `l = r`, `e = f`,
+    /// non-finite input). Inside the domain the value is clamped to
+    /// `[0, 1]`; if the computed `sin α` vanishes (`f` within rounding of
+    /// the light's line) the quotient is clamped too, and `0/0` gives
+    /// `None`.
+    ///
+    /// **Accuracy**: numerically weaker than [`visible_part`]: a sine near
+    /// `π` has an absolute error of a few `u`, so the relative error grows
+    /// like `u/|π − angle|` as `α`, `β`, `γ` or `δ + γ` approach `π`
+    /// (module docs). Measured (`tests/linear_light.rs`): on
+    /// well-conditioned configurations within `2.1e-15` (`f64`) and
+    /// `1.2e-6` (`f32`) of the exact value, about 3–4 times the stable
+    /// form's error; with the fragment `1e-8` above the middle of a unit
+    /// light, `1.2e-9` off, and with a grazing shadow line at that height,
+    /// `3.5e-8` off, where the stable form is exact to the last bit.
+    #[must_use]
+    pub fn law_of_sines_fraction(l: DVec2, r: DVec2, f: DVec2, e: DVec2) -> Option<f64> {
+        super::law_of_sines_fraction::<f64>(l, r, f, e)
+    }
 }
 
-/// `f32` versions.
+/// `f32` versions: [`f64`](mod@f64)'s, in single precision (its docs give
+/// both precisions' bounds).
 pub mod f32 {
-    /// The predicates' coordinates (exact promotion).
-    #[inline]
-    fn to_d2(p: glam::Vec2) -> glam::DVec2 {
-        p.as_dvec2()
+    use super::OccluderSide;
+    use glam::{Vec2, Vec3};
+
+    /// [`VisiblePart`](super::VisiblePart) in `f32`.
+    pub type VisiblePart = super::VisiblePart<f32>;
+
+    impl VisiblePart {
+        /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
+        pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
+
+        /// Nothing visible: the empty interval at 0.
+        pub const EMPTY: VisiblePart = super::empty_of(0.0);
+
+        /// As `f64`'s [`interval`](crate::kernel::linear_light::f64::VisiblePart::interval).
+        #[must_use]
+        pub fn interval(start: f32, end: f32) -> VisiblePart {
+            super::interval(start, end)
+        }
+
+        /// As `f64`'s [`intersect`](crate::kernel::linear_light::f64::VisiblePart::intersect).
+        #[must_use]
+        pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
+            super::interval(self.start.max(other.start), self.end.min(other.end))
+        }
     }
-    linear_light_kernels!(f32, Vec2, Vec3, 1e-9, 1e9);
+
+    /// [`f64::visible_part`](super::f64::visible_part) in `f32`.
+    #[must_use]
+    pub fn visible_part(l: Vec2, r: Vec2, f: Vec2, e: Vec2, side: OccluderSide) -> VisiblePart {
+        super::visible_part::<f32>(l, r, f, e, side)
+    }
+
+    /// [`f64::visible_part_3d`](super::f64::visible_part_3d) in `f32`.
+    #[must_use]
+    pub fn visible_part_3d(l: Vec3, r: Vec3, f: Vec3, e: Vec3, side: OccluderSide) -> VisiblePart {
+        super::visible_part_3d::<f32>(l, r, f, e, side)
+    }
+
+    /// [`f64::law_of_sines_fraction`](super::f64::law_of_sines_fraction) in `f32`.
+    #[must_use]
+    pub fn law_of_sines_fraction(l: Vec2, r: Vec2, f: Vec2, e: Vec2) -> Option<f32> {
+        super::law_of_sines_fraction::<f32>(l, r, f, e)
+    }
 }
 
 #[cfg(test)]

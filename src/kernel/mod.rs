@@ -27,6 +27,7 @@ pub mod disk;
 pub mod distortion;
 pub(crate) mod eft;
 pub mod falloff;
+pub(crate) mod float;
 pub mod footprint;
 pub(crate) mod lanes;
 pub mod light;

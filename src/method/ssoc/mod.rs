@@ -20,7 +20,8 @@
 //!    nearest `π(p)`, `n̂` its outward unit normal (away from the occluder),
 //!    `δ = (π(p) − s)·n̂` (negative inside the hard shadow), `z_near` the
 //!    edge's depth at `s` (`1/z` interpolated), `R = r(1/z_near − 1/z_p)`,
-//!    `dmax = 2R`, `d = clamp(R − δ, 0, dmax)`; the distorted point is
+//!    `dmax = 2R` ([`max_distortion`](crate::kernel::distortion::f64::max_distortion)),
+//!    `d = clamp(R − δ, 0, dmax)`; the distorted point is
 //!    `π(p) + d·n̂`. A receiver in front of the edge (`z_p ≤ z_near`) has
 //!    no penumbra from it;
 //! 3. Fig. 5: if the distorted point is still in the hard shadow, `V = 0`;
@@ -105,6 +106,7 @@ use super::centre::nearest_on;
 use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge, Selection};
 use super::options::{from_options, method_options};
 use super::{per_receiver, Horizon, Input, MethodError, Output, Requires};
+use crate::kernel::distortion::f64 as distortion;
 use crate::kernel::falloff::{f64 as falloff, Falloff};
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::{LightMaps, LightView, MAX_RESOLUTION};
@@ -335,7 +337,8 @@ impl Ssoc {
         };
         let delta = sign * dist;
         let radius = footprint::radius(r, z_near, z_p);
-        let dmax = 2.0 * radius;
+        // `2R` (§3.2.1), the doubling exact.
+        let dmax = distortion::max_distortion(r, z_near, z_p);
         let d = (radius - delta).clamp(0.0, dmax);
         let view = &fitted.view;
         let outside = view.to_pixel(s + n * (1.5 * view.texel_size().max_element()));
