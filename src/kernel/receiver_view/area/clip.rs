@@ -372,10 +372,7 @@ impl Clip {
     /// (a few ulps of each term) is added to `A`.
     fn wedge(&self, slot: usize, line: &Line, sigma: f64, e: f64) -> f64 {
         const SLACK: f64 = 64.0 * f64::EPSILON;
-        let rho = match self.disk {
-            Some(r) => r,
-            None => SQRT_2,
-        };
+        let rho = self.disk.unwrap_or(SQRT_2);
         let unit = |l: &Line, s: f64| {
             let h = l.a.hypot(l.b);
             (DVec2::new(s * l.a / h, s * l.b / h), s * l.c / h)
@@ -392,7 +389,7 @@ impl Clip {
             // μ s + ν t ≥ −d − δⱼ, so for μ < 0 the width in s is
             // (d + δⱼ + ν t) / (−μ) + c + δ.
             let (mu, nu) = (m.dot(n), -m.perp_dot(n));
-            if !(mu < -0.5) {
+            if mu >= -0.5 || mu.is_nan() {
                 continue;
             }
             let dj = other.err + e;
