@@ -182,6 +182,12 @@ impl Yardstick {
     }
 }
 
+/// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
+#[must_use]
+pub fn default_mc() -> Vec<u32> {
+    (1..=12).map(|k| 1u32 << k).collect()
+}
+
 #[cfg(test)]
 mod tests {
     use super::*;
@@ -240,10 +246,4 @@ mod tests {
         assert!(y.rmse.b < -0.3 && y.rmse.b > -0.7, "{:?}", y.rmse);
         assert!(Yardstick::new(&points[..1]).is_none());
     }
-}
-
-/// The Monte Carlo sample counts of the default yardstick: 2, 4, …, 4096.
-#[must_use]
-pub fn default_mc() -> Vec<u32> {
-    (1..=12).map(|k| 1u32 << k).collect()
 }
