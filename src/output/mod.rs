@@ -8,7 +8,7 @@
 //!   answer on the same receivers, with the report's statistics.
 //! - [`gbuffer`]: the receivers of a camera as arrays (position, normal,
 //!   object id, exact `V`) and the camera as a rasteriser's matrices.
-//! - [`yardstick`] (feature `report`): Monte Carlo's RMSE against its
+//! - `yardstick` (feature `report`): Monte Carlo's RMSE against its
 //!   sample count as a fitted power law, and the count at which it meets a
 //!   given RMSE — the yardstick of a score and of the report.
 
