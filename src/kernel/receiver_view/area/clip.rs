@@ -26,6 +26,18 @@ impl Line {
     fn at(&self, q: DVec2) -> f64 {
         self.a * q.x + self.b * q.y + self.c
     }
+
+    /// The larger coefficient: distances in the view are values over it.
+    pub(super) fn norm(&self) -> f64 {
+        self.a.abs().max(self.b.abs())
+    }
+
+    /// A bound on the rounding of [`Line::at`]: `4u` of its terms'
+    /// magnitudes.
+    fn rounding(&self, q: DVec2) -> f64 {
+        let terms = (self.a * q.x).abs() + (self.b * q.y).abs() + self.c.abs();
+        4.0 * f64::EPSILON * terms
+    }
 }
 
 /// The line a clipped image's edge lies on: a side of the square (bottom,
@@ -136,7 +148,7 @@ impl Clip {
         if !any_in {
             // The exact image may still be a sliver within the lines'
             // errors of the vertices left.
-            let norm = line.a.abs().max(line.b.abs());
+            let norm = line.norm();
             let (most, err) = (0..n).fold((f64::NEG_INFINITY, 0.0_f64), |(m, e), k| {
                 (m.max(f[k] / norm), e.max(self.image.err[k]))
             });
@@ -282,11 +294,7 @@ impl Clip {
             }
             let near = image.v[..n]
                 .iter()
-                .map(|&q| {
-                    let norm = l.a.abs().max(l.b.abs());
-                    let terms = (l.a * q.x).abs() + (l.b * q.y).abs() + l.c.abs();
-                    (l.at(q) - 4.0 * f64::EPSILON * terms) / norm
-                })
+                .map(|&q| (l.at(q) - l.rounding(q)) / l.norm())
                 .fold(f64::INFINITY, f64::min);
             if near < (l.err + most_rho) * 2.0 {
                 let band = self.band(&image.v[..n], l, -1.0, l.err, most_rho);
@@ -308,15 +316,12 @@ impl Clip {
     /// nothing where `Q` so grown misses the light. `Q` lies in the box of
     /// the vertices in that slab and the edges' crossings of its side,
     /// each crossing within the rounding of its parameter (the lines'
-    /// values are within `4u` of their terms, as in [`distance`]).
+    /// values are within [`Line::rounding`] of the exact ones).
     fn band(&self, v: &[DVec2], line: &Line, sigma: f64, delta: f64, e: f64) -> f64 {
         const U4: f64 = 4.0 * f64::EPSILON;
         let level = -2.0 * (delta + e);
-        let norm = line.a.abs().max(line.b.abs());
-        let value = |q: DVec2| {
-            let terms = (line.a * q.x).abs() + (line.b * q.y).abs() + line.c.abs();
-            (sigma * line.at(q) / norm, U4 * terms / norm)
-        };
+        let norm = line.norm();
+        let value = |q: DVec2| (sigma * line.at(q) / norm, line.rounding(q) / norm);
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(f64::NEG_INFINITY));
         let mut margin = 0.0_f64;
         let n = v.len();
@@ -449,9 +454,7 @@ impl Clip {
 /// the larger coefficient (at most the gradient's length), its rounding
 /// included.
 pub(super) fn distance(line: &Line, q: DVec2) -> f64 {
-    let norm = line.a.abs().max(line.b.abs());
-    let terms = (line.a * q.x).abs() + (line.b * q.y).abs() + line.c.abs();
-    ((line.at(q).abs() + 4.0 * f64::EPSILON * terms) / norm) * (1.0 + 4.0 * f64::EPSILON)
+    ((line.at(q).abs() + line.rounding(q)) / line.norm()) * (1.0 + 4.0 * f64::EPSILON)
 }
 
 /// Where the line crosses side `s` of the square `|X|, |Y| ≤ h` (bottom,

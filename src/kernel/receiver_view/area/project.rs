@@ -192,7 +192,7 @@ impl AreaView {
     /// diagonal and the line's error), `None` if neither.
     #[inline(always)]
     fn settled(&self, line: Line) -> Option<Result<Line, bool>> {
-        let norm = line.a.abs().max(line.b.abs());
+        let norm = line.norm();
         if line.c.abs() > (2.0 * self.half + 1.5 * line.err) * norm {
             Some(Err(line.c > 0.0))
         } else if line.err <= TOLERANCE {
@@ -217,7 +217,7 @@ impl AreaView {
         };
         let ea = a.bound * i00.abs() + f64::EPSILON * line.a.abs();
         let eb = a.bound * i01.abs() + b.bound * i11.abs() + f64::EPSILON * (ta.abs() + tb.abs());
-        let norm = line.a.abs().max(line.b.abs());
+        let norm = line.norm();
         let shift = c.bound + self.half * (ea + eb);
         // Beyond a quarter of the coefficients' size the bound is not
         // first order: infinite (the caller then asks the exact values).
