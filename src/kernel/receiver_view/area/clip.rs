@@ -333,17 +333,12 @@ impl Clip {
                 (lo, hi) = (lo.min(v[k]), hi.max(v[k]));
             }
             if a_in != b_in {
-                // The crossing of the slab's side, from the end inside.
-                let ((a, ga), (b, gb)) = if a_in {
-                    ((v[k], ga), (v[j], gb))
-                } else {
-                    ((v[j], gb), (v[k], ga))
-                };
-                let t = ((ga - level) / (ga - gb)).clamp(0.0, 1.0);
-                let q = a + (b - a) * t;
+                // The crossing of the slab's side (its parameter within the
+                // values' errors over their difference, and its rounding).
+                let q = crossing(v[k], ga - level, v[j], gb - level);
                 let dt = (ea + eb) / (ga - gb).abs() + U4;
                 (lo, hi) = (lo.min(q), hi.max(q));
-                margin = margin.max((b - a).length() * dt + U4 * q.abs().max_element());
+                margin = margin.max((v[j] - v[k]).length() * dt + U4 * q.abs().max_element());
             }
         }
         let diagonal = 2.0 * SQRT_2 * self.half;
