@@ -348,6 +348,7 @@ fn a_large_merge_is_linear() {
                     seconds: None,
                     errors: None,
                     shaded: None,
+                    pieces: None,
                     profile: Vec::new(),
                     picture: None,
                     mc_equal: None,
@@ -598,4 +599,118 @@ fn the_error_plots_show_exact_on_the_floor_and_every_setting_labelled_apart() {
         }
     }
     std::fs::remove_dir_all(&dir).unwrap();
+}
+
+/// On the segment-light scene every receiver is in one group by the
+/// light's pieces, the counts are those of the pieces asked receiver by
+/// receiver, and each cell's errors per group are the buffers' RMSE over
+/// those receivers; other scenes have no such groups. Results without the
+/// groups (written before them) still read, check and merge; a cell with
+/// them on a scene without them is refused.
+#[test]
+fn the_groups_by_the_light_s_pieces() {
+    use softshadow::kernel::receiver_view::Pieces;
+    use softshadow::reference::exact;
+    let config = small(&["hard", "oess:map=128"]);
+    let results = report::finish(
+        report::run(&cases(&["linear-light", "contact"]), &config, None, &quiet).unwrap(),
+    );
+    let scene = builtin("linear-light").unwrap();
+    let camera = scene.camera().unwrap().with_resolution(40, 40).unwrap();
+    let stages = Stages::new(&scene);
+    let frame = Frame::from_camera(&camera, stages.bvh());
+    let kinds: Vec<Pieces> = frame
+        .receivers()
+        .iter()
+        .map(|r| {
+            exact::pieces(stages.bvh(), scene.light(), r.position)
+                .unwrap()
+                .unwrap()
+        })
+        .collect();
+    let counts = Pieces::ALL.map(|k| kinds.iter().filter(|x| **x == k).count());
+    let record = &results.scenes[0];
+    assert_eq!(record.name, "linear-light");
+    assert_eq!(record.pieces, Some(counts));
+    assert_eq!(counts.iter().sum::<usize>(), record.receivers);
+    // The frame shows the model's case, the others and the lit floor.
+    for k in [Pieces::OneAtEnd, Pieces::Several, Pieces::Whole] {
+        assert!(kinds.contains(&k), "no receiver sees {k:?}");
+    }
+    assert_eq!(results.scenes[1].pieces, None);
+    let exact_v = method::run(&Exact, &stages, &frame)
+        .unwrap()
+        .output
+        .visibility;
+    for setting in ["hard", "oess:map=128"] {
+        let cell = results
+            .cells
+            .iter()
+            .find(|c| c.scene == "linear-light" && c.method == setting)
+            .unwrap();
+        let m = method::parse(setting).unwrap();
+        let v = method::run(m.as_ref(), &Stages::new(&scene), &frame)
+            .unwrap()
+            .output
+            .visibility;
+        let pieces = cell.pieces.unwrap();
+        for (g, kind) in Pieces::ALL.iter().enumerate() {
+            let (mut sum, mut n) = (0.0, 0usize);
+            for i in (0..v.len()).filter(|&i| kinds[i] == *kind) {
+                sum += (v[i] - exact_v[i]) * (v[i] - exact_v[i]);
+                n += 1;
+            }
+            let rmse = if n > 0 { (sum / n as f64).sqrt() } else { 0.0 };
+            assert_eq!(pieces[g].count, n, "{setting}, {kind:?}");
+            assert!(
+                (pieces[g].rmse - rmse).abs() < 1e-12,
+                "{setting}, {kind:?}: {} vs {rmse}",
+                pieces[g].rmse
+            );
+        }
+    }
+    assert!(results
+        .cells
+        .iter()
+        .filter(|c| c.scene == "contact")
+        .all(|c| c.pieces.is_none()));
+    // Without the groups, as written before them.
+    let mut old = as_json(&results);
+    let text_with = old.to_string();
+    for list in ["scenes", "cells"] {
+        for x in old[list].as_array_mut().unwrap() {
+            x.as_object_mut().unwrap().remove("pieces");
+        }
+    }
+    assert!(text_with.contains("\"pieces\"") && !old.to_string().contains("\"pieces\""));
+    let old = from_json(old);
+    old.check().unwrap();
+    assert_eq!(
+        report::merge(vec![old]).unwrap().cells.len(),
+        results.cells.len()
+    );
+    // A cell with the groups on a scene without them.
+    let mut bad = as_json(&results);
+    let errors = bad["cells"][1]["pieces"].clone();
+    let k = results
+        .cells
+        .iter()
+        .position(|c| c.scene == "contact" && c.status == "ok")
+        .unwrap();
+    bad["cells"][k]["pieces"] = errors;
+    let err = refusal(report::merge(vec![from_json(bad)]));
+    assert!(
+        matches!(&err, ReportError::NotWhole { what, .. } if what.contains("pieces")),
+        "{err:?}"
+    );
+    // The index says the groups under the segment-light scene only.
+    let dir = tmp("pieces");
+    report::write(&results, &dir).unwrap();
+    let index = std::fs::read_to_string(dir.join("index.md")).unwrap();
+    let head = format!("| method | one piece at an end ({}) |", counts[0]);
+    let at = index.find(&head).expect("the table by pieces");
+    assert!(index.find("## `linear-light`").unwrap() < at);
+    assert!(index.find("## `contact`").unwrap() > at);
+    assert_eq!(index.matches("| method | one piece at an end (").count(), 1);
+    let _ = std::fs::remove_dir_all(&dir);
 }

@@ -15,11 +15,14 @@
 //! background pixels are ignored.
 
 use super::image::ErrorSummary;
+use crate::bvh::Bvh;
 use crate::definitions::in_penumbra;
+use crate::kernel::receiver_view::Pieces;
 use crate::method::{self, Exact, MethodError};
+use crate::reference::exact;
 use crate::render::frame::{Frame, BACKGROUND};
 use crate::render::stages::Stages;
-use crate::scene::{Light, Receiver, Scene};
+use crate::scene::{Light, LightKind, Receiver, Scene};
 use std::fmt::Write as _;
 
 /// The receiver groups, in table order: every receiver, the exact
@@ -45,6 +48,37 @@ pub fn group_masks(receivers: &[Receiver], exact: &[f64]) -> [Vec<bool>; 4] {
     ]
 }
 
+/// The groups of a segment light's receivers by the visible pieces of the
+/// light, in table order ([`Pieces::ALL`]): one piece holding an end (the
+/// case occluding edges soft shadows models), one piece inside the light,
+/// two or more pieces, none (umbra), the whole light.
+pub const PIECES: [&str; 5] = [
+    "one piece at an end",
+    "one piece inside",
+    "two or more pieces",
+    "no piece (umbra)",
+    "the whole light",
+];
+
+/// Per receiver, whether it is in each of [`PIECES`], when the light is a
+/// segment (`None` for any other light): how the exact reference sees
+/// the light from it ([`exact::pieces_many`]). Each receiver is in one
+/// group, but a receiver the exact reference refuses (on the light, not
+/// finite), which is in none.
+#[must_use]
+pub fn pieces_masks(bvh: &Bvh, light: &Light, receivers: &[Receiver]) -> Option<[Vec<bool>; 5]> {
+    if light.kind() != LightKind::Segment {
+        return None;
+    }
+    let points: Vec<_> = receivers.iter().map(|r| r.position).collect();
+    let seen = exact::pieces_many(bvh, light, &points);
+    Some(Pieces::ALL.map(|kind| {
+        seen.iter()
+            .map(|s| matches!(s, Ok(Some(k)) if *k == kind))
+            .collect()
+    }))
+}
+
 /// Per receiver, the factor `max(0, n·l̂)` of the shaded value (`l̂` toward
 /// the light's centre; 1 for a receiver without a normal).
 #[must_use]
@@ -59,14 +93,15 @@ pub fn shading_factors(light: &Light, receivers: &[Receiver]) -> Vec<f64> {
 }
 
 /// The [`ErrorSummary`] of `values` against `reference` over each group of
-/// `masks` ([`group_masks`]), restricted to the indices where `keep`.
+/// `masks` ([`group_masks`], [`pieces_masks`]), restricted to the indices
+/// where `keep`.
 #[must_use]
-pub fn group_errors(
+pub fn group_errors<const N: usize>(
     values: &[f64],
     reference: &[f64],
-    masks: &[Vec<bool>; 4],
+    masks: &[Vec<bool>; N],
     keep: impl Fn(usize) -> bool,
-) -> [ErrorSummary; 4] {
+) -> [ErrorSummary; N] {
     masks.each_ref().map(|m| {
         ErrorSummary::new(values, reference, |i| {
             m.get(i).copied().unwrap_or(false) && keep(i)

@@ -64,7 +64,7 @@
 
 use crate::bvh::Bvh;
 use crate::kernel::light::{Emitter, ReceiverError};
-use crate::kernel::receiver_view::{self, Fraction, Occluders};
+use crate::kernel::receiver_view::{self, Fraction, Occluders, Pieces, SegmentView};
 use crate::scene::Light;
 use glam::DVec3;
 
@@ -271,6 +271,50 @@ pub fn emitter_visibility_bounded(
             0.0
         },
     }
+}
+
+/// How `p` sees the scene's segment light: its visible pieces
+/// ([`Pieces::of`]) on the exact reference's own blocked intervals, over
+/// the triangles the BVH culls for [`visibility`] (the culling keeps every
+/// triangle that hides anything, so the answer is the one over every
+/// triangle); `Ok(None)` for a light of another kind.
+///
+/// # Errors
+/// As [`visibility`].
+pub fn pieces(bvh: &Bvh, light: &Light, p: DVec3) -> Result<Option<Pieces>, ReceiverError> {
+    pieces_with(bvh, light, p, &mut Scratch::default())
+}
+
+/// [`pieces`] for every point, in parallel over the points (as
+/// [`visibility_many`]).
+#[must_use]
+pub fn pieces_many(
+    bvh: &Bvh,
+    light: &Light,
+    points: &[DVec3],
+) -> Vec<Result<Option<Pieces>, ReceiverError>> {
+    many(points, |p, scratch| pieces_with(bvh, light, p, scratch))
+}
+
+/// [`pieces`] with caller-provided buffers.
+fn pieces_with(
+    bvh: &Bvh,
+    light: &Light,
+    p: DVec3,
+    scratch: &mut Scratch,
+) -> Result<Option<Pieces>, ReceiverError> {
+    in_range(bvh, light, p, |e| {
+        let Emitter::Segment(s) = *e else {
+            return None;
+        };
+        let view = SegmentView::new(p, s.a(), s.b())?;
+        let Scratch {
+            candidates,
+            view: buffers,
+        } = scratch;
+        let triangles = Culled { bvh, candidates }.near(|| view.hull());
+        Some(view.pieces(triangles, buffers))
+    })
 }
 
 /// The scene's triangles near a view: those whose bounds meet the view's

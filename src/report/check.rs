@@ -317,6 +317,20 @@ fn scene(at: &str, s: &SceneRecord, side: u32, machines: usize) -> Result<(), St
             s.groups, s.receivers, s.penumbra
         ));
     }
+    if let Some(pieces) = s.pieces {
+        if s.light != "segment" {
+            return Err(format!(
+                "{at}.pieces: recorded for a {} light, not a segment",
+                quote(&s.light)
+            ));
+        }
+        if pieces.iter().try_fold(0usize, |n, &k| n.checked_add(k)) != Some(s.receivers) {
+            return Err(format!(
+                "{at}.pieces: {pieces:?} do not add up to {} receivers",
+                s.receivers
+            ));
+        }
+    }
     for (k, &t) in s.shared.iter().enumerate() {
         finite_at_least(&format!("{at}.shared[{k}]"), t, 0.0)?;
     }
@@ -417,6 +431,24 @@ fn cell(
                 summary(&format!("{at}.{what}[{g}]"), e, record.groups[g])?;
             }
         }
+        match (&c.pieces, record.pieces) {
+            (Some(errors), Some(counts)) => {
+                for (g, e) in errors.iter().enumerate() {
+                    summary(&format!("{at}.pieces[{g}]"), e, counts[g])?;
+                }
+            }
+            (None, None) => {}
+            (Some(_), None) => {
+                return Err(format!(
+                    "{at}.pieces: errors by the light's pieces, of a scene without them"
+                ))
+            }
+            (None, Some(_)) => {
+                return Err(format!(
+                    "{at}.pieces: missing from a measured cell of a scene with them"
+                ))
+            }
+        }
         if c.profile.len() != record.profile_columns.len() {
             return Err(format!(
                 "{at}.profile: {} values for the scene's {} profile columns",
@@ -448,6 +480,7 @@ fn cell(
             || c.seconds.is_some()
             || c.errors.is_some()
             || c.shaded.is_some()
+            || c.pieces.is_some()
             || !c.profile.is_empty()
             || c.picture.is_some()
         {
@@ -522,6 +555,7 @@ pub(crate) fn same_scene(a: &SceneRecord, b: &SceneRecord) -> bool {
         && a.receivers == b.receivers
         && a.penumbra == b.penumbra
         && a.groups == b.groups
+        && a.pieces == b.pieces
         && a.profile_row == b.profile_row
         && a.profile_columns == b.profile_columns
         && a.profile_exact == b.profile_exact

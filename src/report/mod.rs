@@ -28,6 +28,10 @@
 //!   every built-in scene) and the occluders (every other object); and the
 //!   same for the shaded value `V·max(0, n·l̂)` (`l̂` toward the light's
 //!   centre), which is what the papers' pictures show.
+//! - **Error by the light's pieces** of a segment light: of `V` over the
+//!   receivers grouped by the light's visible pieces as the exact
+//!   reference sees them ([`PIECES`],
+//!   [`Pieces`](crate::kernel::receiver_view::Pieces)).
 //! - **The falloff profile**: `V` along the scene's profile row, the image
 //!   row with the most exact-penumbra receivers.
 //! - **The yardstick** (derived when the parts are finished, [`finish`]):
@@ -45,7 +49,8 @@
 //! product), `machines` (one line per machine that ran a part), `scenes`
 //! ([`SceneRecord`]), `cells` ([`CellRecord`]) and `yardsticks` (per
 //! scene, [`Yardstick`]). Times are seconds. Every number is finite:
-//! what is written reads back, bit for bit.
+//! what is written reads back, bit for bit. The `pieces` of a scene and
+//! of its cells are optional (segment lights only): older results read.
 //!
 //! # The report's folder
 //!
@@ -83,7 +88,7 @@ pub use write::{check_accuracy, write, write_accuracy, ACCURACY_MARKER};
 use crate::method::registry::{self, REGISTRY};
 use crate::method::{self, Exact, Method};
 use crate::output::image::ErrorSummary;
-use crate::output::score::{group_errors, group_masks, scaled, shading_factors};
+use crate::output::score::{group_errors, group_masks, pieces_masks, scaled, shading_factors};
 use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
@@ -101,6 +106,9 @@ pub const SLOW_RUN: f64 = 2.0;
 /// The receiver groups, in table order (the renderer's, shared with
 /// `softshadow score`).
 pub use crate::output::score::GROUPS;
+
+/// The groups by the visible pieces of a segment light, in table order.
+pub use crate::output::score::PIECES;
 
 /// One part of a sweep.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Serialize, Deserialize)]
@@ -226,6 +234,11 @@ pub struct SceneRecord {
     pub penumbra: usize,
     /// Receivers per group, [`GROUPS`] order.
     pub groups: [usize; 4],
+    /// Receivers per group by the light's pieces, [`PIECES`] order: on a
+    /// segment-light scene (`None` on others, and in parts written before
+    /// it was recorded).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pieces: Option<[usize; 5]>,
     /// The shared stages' seconds: BVH build, primary rays.
     pub shared: [f64; 2],
     /// The profile row (image row) and its pixels' columns.
@@ -271,6 +284,10 @@ pub struct CellRecord {
     pub errors: Option<[Errors; 4]>,
     /// Errors of the shaded value per group.
     pub shaded: Option<[Errors; 4]>,
+    /// Errors of `V` per group by the light's pieces ([`PIECES`] order),
+    /// where the scene records them ([`SceneRecord::pieces`]).
+    #[serde(default, skip_serializing_if = "Option::is_none")]
+    pub pieces: Option<[Errors; 5]>,
     /// `V` along the scene's profile.
     pub profile: Vec<f64>,
     /// The side-by-side picture, relative to the report's folder.
@@ -379,6 +396,7 @@ struct Prepared {
     frame: Frame,
     exact: Vec<f64>,
     groups: [Vec<bool>; 4],
+    pieces: Option<[Vec<bool>; 5]>,
     shading: Vec<f64>,
     profile: Vec<usize>,
     record: SceneRecord,
@@ -496,6 +514,7 @@ fn failed(index: usize, case: &Case, setting: &str, why: &str) -> CellRecord {
         seconds: None,
         errors: None,
         shaded: None,
+        pieces: None,
         profile: Vec::new(),
         picture: None,
         mc_equal: None,
@@ -539,6 +558,7 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
     let groups = group_masks(receivers, &exact);
     let penumbra = groups[1].clone();
     let light = scene.light();
+    let pieces = pieces_masks(bvh, light, receivers);
     let shading = shading_factors(light, receivers);
     // The profile: the image row with the most exact-penumbra receivers.
     let (w, h) = frame.size();
@@ -569,6 +589,9 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
         receivers: receivers.len(),
         penumbra: penumbra.iter().filter(|p| **p).count(),
         groups: groups.each_ref().map(|g| g.iter().filter(|x| **x).count()),
+        pieces: pieces
+            .as_ref()
+            .map(|p| p.each_ref().map(|g| g.iter().filter(|x| **x).count())),
         shared: [stats.seconds("bvh"), stats.seconds("receivers")],
         profile_row,
         profile_columns,
@@ -580,6 +603,7 @@ fn prepare(case: &Case, config: &Config) -> Result<Prepared, String> {
         frame,
         exact,
         groups,
+        pieces,
         shading,
         profile,
         record,
@@ -643,6 +667,10 @@ fn run_cell(
         &prepared.groups,
         all,
     ));
+    cell.pieces = prepared
+        .pieces
+        .as_ref()
+        .map(|p| group_errors(&v, exact, p, all));
     cell.profile = prepared.profile.iter().map(|&k| v[k]).collect();
     cell
 }

@@ -5,7 +5,7 @@ use super::names::{Names, GAP};
 use super::papers::PAPERS;
 use super::plots;
 use super::ReportError;
-use super::{CellRecord, Errors, Results, SceneRecord, GROUPS, SLOW_RUN};
+use super::{CellRecord, Errors, Results, SceneRecord, GROUPS, PIECES, SLOW_RUN};
 use crate::method::registry::REGISTRY;
 use crate::output::image::Rgb;
 use crate::scene::file::{read_input, MAX_TEXT_BYTES};
@@ -340,7 +340,55 @@ fn scene_section(
             }
         }
     }
+    let lead = format!("{PIECES_INTRO} RMSE of `V` (receivers per group in the header):");
+    pieces_rmse(s, scene, cells, &lead);
 }
+
+/// What the groups by the light's pieces are, before their tables.
+const PIECES_INTRO: &str = "By the visible pieces of the light: each receiver in one group by how \
+     the exact reference sees the segment light from it — one piece holding an end of the light \
+     (the view occluding edges soft shadows models: one occluding edge per end), one piece \
+     inside, two or more pieces, none (umbra), the whole light.";
+
+/// The RMSE of `V` per group by the light's pieces ([`PIECES`]), one row
+/// per cell that has them, after the `lead` line; nothing on a scene
+/// without them.
+fn pieces_rmse(s: &mut String, scene: &SceneRecord, cells: &[&CellRecord], lead: &str) {
+    let Some(counts) = scene.pieces else { return };
+    let rows: Vec<(&str, [Errors; 5])> = cells
+        .iter()
+        .filter_map(|c| Some((c.method.as_str(), c.pieces?)))
+        .collect();
+    if rows.is_empty() {
+        return;
+    }
+    let _ = writeln!(s, "\n{lead}\n");
+    let head: Vec<String> = PIECES
+        .iter()
+        .zip(counts)
+        .map(|(name, n)| format!("{name} ({n})"))
+        .collect();
+    let _ = writeln!(s, "| method | {} |", head.join(" | "));
+    let _ = writeln!(s, "|---|{}", "---:|".repeat(PIECES.len()));
+    for (method, e) in rows {
+        let cols: Vec<String> = e
+            .iter()
+            .map(|g| {
+                if g.count > 0 {
+                    format!("{:.4}", g.rmse)
+                } else {
+                    "—".to_owned()
+                }
+            })
+            .collect();
+        let _ = writeln!(s, "| `{method}` | {} |", cols.join(" | "));
+    }
+}
+
+/// The settings a method's accuracy page compares by the light's pieces
+/// besides its own and `hard`: every other method's defaults and Monte
+/// Carlo at these sample counts.
+const PIECES_BESIDE_MC: [&str; 2] = ["mc:4", "mc:16"];
 
 /// The accuracy pages' file names: `methods.md` and one per method with
 /// comparison settings (but `hard`, beside every other).
@@ -450,9 +498,10 @@ pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<()
         let mut wanted: HashSet<&str> = entry.compare.iter().copied().collect();
         wanted.insert("hard");
         for scene in &results.scenes {
-            let rows: Vec<&CellRecord> = cells
+            let mine = cells
                 .get(scene.name.as_str())
-                .map_or(&[][..], Vec::as_slice)
+                .map_or(&[][..], Vec::as_slice);
+            let rows: Vec<&CellRecord> = mine
                 .iter()
                 .copied()
                 .filter(|c| wanted.contains(c.method.as_str()) && c.errors.is_some())
@@ -467,7 +516,7 @@ pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<()
             );
             let _ = writeln!(page, "| method | receivers | count | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 |");
             let _ = writeln!(page, "|---|---|---:|---:|---:|---:|---:|---:|---:|");
-            for c in rows {
+            for c in &rows {
                 let e = c.errors.unwrap_or_default();
                 for (g, name) in GROUPS.iter().enumerate() {
                     if e[g].count > 0 {
@@ -476,11 +525,45 @@ pub fn write_accuracy(results: &Results, dir: &Path, command: &str) -> Result<()
                 }
             }
             let _ = writeln!(page);
+            pieces_page(&mut page, scene, &rows, mine);
         }
         let title = format!("`{}` against the exact reference", entry.name);
         update_page(&dir.join(format!("{}.md", entry.name)), &title, &page)?;
     }
     Ok(())
+}
+
+/// A method page's errors by the light's pieces: the full summaries of
+/// its `rows` per group, then the RMSE per group of the rows beside the
+/// other methods' defaults and Monte Carlo at [`PIECES_BESIDE_MC`] among
+/// the scene's `cells`. Nothing on a scene without them.
+fn pieces_page(s: &mut String, scene: &SceneRecord, rows: &[&CellRecord], cells: &[&CellRecord]) {
+    if scene.pieces.is_none() {
+        return;
+    }
+    let _ = writeln!(s, "{PIECES_INTRO}\n");
+    let _ = writeln!(s, "| method | receivers | count | mean abs | RMSE | p99 abs | max | mean signed | share > 0.05 |");
+    let _ = writeln!(s, "|---|---|---:|---:|---:|---:|---:|---:|---:|");
+    for c in rows {
+        for (name, e) in PIECES.iter().zip(c.pieces.unwrap_or_default()) {
+            if e.count > 0 {
+                error_row(s, &c.method, name, &e);
+            }
+        }
+    }
+    let mut beside: Vec<&CellRecord> = rows.to_vec();
+    beside.extend(cells.iter().copied().filter(|c| {
+        let other =
+            super::is_default_setting(&c.method) || PIECES_BESIDE_MC.contains(&c.method.as_str());
+        other && !rows.iter().any(|r| r.method == c.method)
+    }));
+    let lead = format!(
+        "RMSE of `V` by the pieces, beside the other methods' defaults and Monte Carlo at {} \
+         (receivers per group in the header):",
+        PIECES_BESIDE_MC.join(", ")
+    );
+    pieces_rmse(s, scene, &beside, &lead);
+    let _ = writeln!(s);
 }
 
 /// The horizon option's effect: per scene, each setting `M` beside

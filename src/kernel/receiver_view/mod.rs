@@ -186,7 +186,7 @@ mod segment;
 mod union;
 
 pub use area::{AreaView, Image};
-pub use segment::SegmentView;
+pub use segment::{Pieces, SegmentView};
 pub use union::Search as UnionSearch;
 
 use crate::kernel::light::Emitter;

@@ -144,6 +144,21 @@ impl SegmentView {
         (span.lo < span.hi).then_some(((span.lo, span.hi), span.err))
     }
 
+    /// How the light is seen from `p` among the triangles: [`Pieces::of`]
+    /// their [`SegmentView::blocked`] intervals, the ones whose union
+    /// [`SegmentView::occluded_fraction`] measures.
+    #[must_use]
+    pub fn pieces<'t>(
+        &self,
+        triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
+        scratch: &mut Scratch,
+    ) -> Pieces {
+        scratch.intervals.clear();
+        let blocked = triangles.into_iter().filter_map(|t| self.blocked(t));
+        scratch.intervals.extend(blocked);
+        Pieces::of(&mut scratch.intervals)
+    }
+
     /// The fraction of the light the triangles hide from `p`, in `[0, 1]`:
     /// the length of the union of [`SegmentView::blocked`].
     #[must_use]
@@ -177,6 +192,88 @@ impl SegmentView {
         Fraction {
             value: union_length(&mut scratch.intervals),
             bound: bound + 2.0 * n * f64::EPSILON,
+        }
+    }
+}
+
+/// How a receiver sees a segment light: by its *pieces*, the maximal
+/// intervals of positive length of the light's parameter `[0, 1]` that no
+/// triangle hides ([`Pieces::of`]). Occluding edges soft shadows models a
+/// receiver's view as one occluding edge per end of the light, which
+/// describes [`Pieces::OneAtEnd`], [`Pieces::Hidden`] and [`Pieces::Whole`]
+/// and no other.
+#[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
+pub enum Pieces {
+    /// One piece holding an end of the light, `[0, t]` or `[t, 1]` with
+    /// `0 < t < 1`.
+    OneAtEnd,
+    /// One piece holding neither end, `[t₀, t₁]` with `0 < t₀ < t₁ < 1`.
+    OneInside,
+    /// Two pieces or more.
+    Several,
+    /// No piece: the light is hidden whole (umbra).
+    Hidden,
+    /// The whole light, `[0, 1]`: nothing hidden.
+    Whole,
+}
+
+impl Pieces {
+    /// Every kind, in the order the report's tables list them.
+    pub const ALL: [Pieces; 5] = [
+        Pieces::OneAtEnd,
+        Pieces::OneInside,
+        Pieces::Several,
+        Pieces::Hidden,
+        Pieces::Whole,
+    ];
+
+    /// The pieces of `[0, 1]` outside the union of the `blocked` intervals
+    /// `(s₀, s₁)` (sorted here, in place), decided by comparisons of the
+    /// ends alone, so exactly for the intervals given.
+    ///
+    /// - A piece has positive length: intervals that touch (one ends
+    ///   where the next begins, `s₁ = s₀′`) or overlap leave none between
+    ///   them, and nothing is counted at a single point. A piece however
+    ///   short counts.
+    /// - A piece holds an end when no interval covers that end: it starts
+    ///   at 0 when every interval starts after 0, ends at 1 when every
+    ///   interval ends before 1. An interval ending exactly at 0 or 1 takes
+    ///   that end.
+    /// - Each interval is clamped to `[0, 1]`; one with a NaN end or
+    ///   `s₀ ≥ s₁` after clamping hides nothing (as
+    ///   [`SegmentView::blocked`] reports none of zero length).
+    ///
+    /// So no interval is [`Pieces::Whole`], intervals covering `[0, 1]`
+    /// without a gap of positive length [`Pieces::Hidden`].
+    #[must_use]
+    pub fn of(blocked: &mut [(f64, f64)]) -> Pieces {
+        blocked.sort_unstable_by(|x, y| x.0.total_cmp(&y.0));
+        let (mut count, mut at_end) = (0usize, false);
+        // How far from 0 the union reaches without a gap.
+        let mut reach = 0.0_f64;
+        for &(s0, s1) in blocked.iter() {
+            // False for a NaN end.
+            let hides = s0 < s1 && s0 < 1.0 && s1 > 0.0;
+            if !hides {
+                continue;
+            }
+            let (s0, s1) = (s0.max(0.0), s1.min(1.0));
+            if s0 > reach {
+                count += 1;
+                at_end |= reach == 0.0;
+            }
+            reach = reach.max(s1);
+        }
+        if reach < 1.0 {
+            count += 1;
+            at_end = true;
+        }
+        match count {
+            0 => Pieces::Hidden,
+            1 if reach == 0.0 => Pieces::Whole,
+            1 if at_end => Pieces::OneAtEnd,
+            1 => Pieces::OneInside,
+            _ => Pieces::Several,
         }
     }
 }
