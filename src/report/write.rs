@@ -340,7 +340,7 @@ fn scene_section(
             }
         }
     }
-    let lead = format!("{PIECES_INTRO} RMSE of `V` (receivers per group in the header):");
+    let lead = format!("{PIECES_INTRO} RMSE of `V`:");
     pieces_rmse(s, scene, cells, &lead);
 }
 
@@ -350,26 +350,24 @@ const PIECES_INTRO: &str = "By the visible pieces of the light: each receiver in
      (the view occluding edges soft shadows models: one occluding edge per end), one piece \
      inside, two or more pieces, none (umbra), the whole light.";
 
-/// The RMSE of `V` per group by the light's pieces ([`PIECES`]), one row
-/// per cell that has them, after the `lead` line; nothing on a scene
-/// without them.
+/// The RMSE of `V` per group by the light's pieces ([`PIECES`]) after
+/// the `lead` line: the groups' receivers, then one row per cell that has
+/// them (but `exact`, 0 throughout); nothing on a scene without them.
 fn pieces_rmse(s: &mut String, scene: &SceneRecord, cells: &[&CellRecord], lead: &str) {
     let Some(counts) = scene.pieces else { return };
     let rows: Vec<(&str, [Errors; 5])> = cells
         .iter()
+        .filter(|c| c.method != "exact")
         .filter_map(|c| Some((c.method.as_str(), c.pieces?)))
         .collect();
     if rows.is_empty() {
         return;
     }
     let _ = writeln!(s, "\n{lead}\n");
-    let head: Vec<String> = PIECES
-        .iter()
-        .zip(counts)
-        .map(|(name, n)| format!("{name} ({n})"))
-        .collect();
-    let _ = writeln!(s, "| method | {} |", head.join(" | "));
+    let counts: Vec<String> = counts.iter().map(usize::to_string).collect();
+    let _ = writeln!(s, "| method | {} |", PIECES.join(" | "));
     let _ = writeln!(s, "|---|{}", "---:|".repeat(PIECES.len()));
+    let _ = writeln!(s, "| receivers | {} |", counts.join(" | "));
     for (method, e) in rows {
         let cols: Vec<String> = e
             .iter()
@@ -558,9 +556,8 @@ fn pieces_page(s: &mut String, scene: &SceneRecord, rows: &[&CellRecord], cells:
         other && !rows.iter().any(|r| r.method == c.method)
     }));
     let lead = format!(
-        "RMSE of `V` by the pieces, beside the other methods' defaults and Monte Carlo at {} \
-         (receivers per group in the header):",
-        PIECES_BESIDE_MC.join(", ")
+        "RMSE of `V` by the pieces, beside the other methods' defaults and Monte Carlo (`{}`):",
+        PIECES_BESIDE_MC.join("`, `")
     );
     pieces_rmse(s, scene, &beside, &lead);
     let _ = writeln!(s);
