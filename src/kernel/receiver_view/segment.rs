@@ -153,10 +153,10 @@ impl SegmentView {
         triangles: impl IntoIterator<Item = &'t [DVec3; 3]>,
         scratch: &mut Scratch,
     ) -> Pieces {
-        scratch.intervals.clear();
-        let blocked = triangles.into_iter().filter_map(|t| self.blocked(t));
-        scratch.intervals.extend(blocked);
-        Pieces::of(&mut scratch.intervals)
+        let intervals = &mut scratch.intervals;
+        intervals.clear();
+        intervals.extend(triangles.into_iter().filter_map(|t| self.blocked(t)));
+        Pieces::of(intervals)
     }
 
     /// The fraction of the light the triangles hide from `p`, in `[0, 1]`:
