@@ -703,6 +703,14 @@ fn the_groups_by_the_light_s_pieces() {
         matches!(&err, ReportError::NotWhole { what, .. } if what.contains("pieces")),
         "{err:?}"
     );
+    // A measured cell of the segment-light scene without them.
+    let mut bad = as_json(&results);
+    bad["cells"][1].as_object_mut().unwrap().remove("pieces");
+    let err = refusal(report::merge(vec![from_json(bad)]));
+    assert!(
+        matches!(&err, ReportError::NotWhole { what, .. } if what.contains("cells[1].pieces")),
+        "{err:?}"
+    );
     // The index says the groups under the segment-light scene only.
     let dir = tmp("pieces");
     report::write(&results, &dir).unwrap();

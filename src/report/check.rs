@@ -431,24 +431,7 @@ fn cell(
                 summary(&format!("{at}.{what}[{g}]"), e, record.groups[g])?;
             }
         }
-        match (&c.pieces, record.pieces) {
-            (Some(errors), Some(counts)) => {
-                for (g, e) in errors.iter().enumerate() {
-                    summary(&format!("{at}.pieces[{g}]"), e, counts[g])?;
-                }
-            }
-            (None, None) => {}
-            (Some(_), None) => {
-                return Err(format!(
-                    "{at}.pieces: errors by the light's pieces, of a scene without them"
-                ))
-            }
-            (None, Some(_)) => {
-                return Err(format!(
-                    "{at}.pieces: missing from a measured cell of a scene with them"
-                ))
-            }
-        }
+        pieces(at, c, record)?;
         if c.profile.len() != record.profile_columns.len() {
             return Err(format!(
                 "{at}.profile: {} values for the scene's {} profile columns",
@@ -502,6 +485,26 @@ fn cell(
         finite_at_least(&format!("{at}.speedup"), s, 0.0)?;
     }
     Ok(())
+}
+
+/// A measured cell's errors by the light's pieces: there exactly when its
+/// scene records the groups, each over its group's receivers.
+fn pieces(at: &str, c: &CellRecord, record: &SceneRecord) -> Result<(), String> {
+    match (&c.pieces, record.pieces) {
+        (Some(errors), Some(counts)) => {
+            for (g, e) in errors.iter().enumerate() {
+                summary(&format!("{at}.pieces[{g}]"), e, counts[g])?;
+            }
+            Ok(())
+        }
+        (None, None) => Ok(()),
+        (Some(_), None) => Err(format!(
+            "{at}.pieces: errors by the light's pieces, of a scene without them"
+        )),
+        (None, Some(_)) => Err(format!(
+            "{at}.pieces: missing from a measured cell of a scene with them"
+        )),
+    }
 }
 
 /// One error summary over a group of `count` receivers: values of `V` and
