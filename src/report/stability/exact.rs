@@ -218,7 +218,7 @@ fn deep_overlap(rows: &mut Vec<Row>) {
         both_rows(
             rows,
             Stiff::DeepOverlap,
-            format!("{case}"),
+            case.to_owned(),
             &UNIT,
             &pts,
             10_000,
