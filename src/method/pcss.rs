@@ -125,10 +125,12 @@ impl Pcss {
 
     /// With the bias margins, relative and in texels.
     #[must_use]
-    pub fn with_bias_margins(mut self, relative: f64, texels: f64) -> Pcss {
-        self.bias_relative = relative;
-        self.bias_texels = texels;
-        self
+    pub fn with_bias_margins(self, relative: f64, texels: f64) -> Pcss {
+        Pcss {
+            bias_relative: relative,
+            bias_texels: texels,
+            ..self
+        }
     }
 }
 
