@@ -89,6 +89,33 @@ fn values<T: ReadableElement + Copy>(bytes: &[u8]) -> Result<Vec<T>, FormatError
     Ok(a.iter().copied().collect())
 }
 
+/// An array of one of the `allowed` dtypes (named `what` in the error),
+/// read as `Wide`: the 8-byte type (descr ending in `8`) as it is, the
+/// 4-byte type `Narrow` widened.
+fn read_either<Wide, Narrow>(
+    bytes: &[u8],
+    allowed: &[(&'static str, usize)],
+    what: &str,
+) -> Result<Array<Wide>, FormatError>
+where
+    Wide: ReadableElement + Copy + From<Narrow>,
+    Narrow: ReadableElement + Copy,
+{
+    let c = check(bytes, allowed, what)?;
+    let data = if c.descr.ends_with('8') {
+        values::<Wide>(bytes)?
+    } else {
+        values::<Narrow>(bytes)?
+            .into_iter()
+            .map(Wide::from)
+            .collect()
+    };
+    Ok(Array {
+        shape: c.shape,
+        data,
+    })
+}
+
 /// A float array (`float32` or `float64`, either byte order, C or Fortran
 /// order) from an `.npy` file's bytes, as `f64` in row-major order.
 ///
@@ -97,16 +124,7 @@ fn values<T: ReadableElement + Copy>(bytes: &[u8]) -> Result<Vec<T>, FormatError
 /// the file (truncated or hostile); [`FormatError::Unsupported`]: another
 /// dtype.
 pub fn read_npy_f64(bytes: &[u8]) -> Result<Array<f64>, FormatError> {
-    let c = check(bytes, &FLOATS, "float32 or float64")?;
-    let data = if c.descr.ends_with('8') {
-        values::<f64>(bytes)?
-    } else {
-        values::<f32>(bytes)?.into_iter().map(f64::from).collect()
-    };
-    Ok(Array {
-        shape: c.shape,
-        data,
-    })
+    read_either::<f64, f32>(bytes, &FLOATS, "float32 or float64")
 }
 
 /// An integer array (`int32` or `int64`) from an `.npy` file's bytes, as
@@ -115,16 +133,7 @@ pub fn read_npy_f64(bytes: &[u8]) -> Result<Array<f64>, FormatError> {
 /// # Errors
 /// As [`read_npy_f64`].
 pub fn read_npy_i64(bytes: &[u8]) -> Result<Array<i64>, FormatError> {
-    let c = check(bytes, &INTS, "int32 or int64")?;
-    let data = if c.descr.ends_with('8') {
-        values::<i64>(bytes)?
-    } else {
-        values::<i32>(bytes)?.into_iter().map(i64::from).collect()
-    };
-    Ok(Array {
-        shape: c.shape,
-        data,
-    })
+    read_either::<i64, i32>(bytes, &INTS, "int32 or int64")
 }
 
 /// The `.npy` bytes of `data` with `shape` (row-major, little-endian).

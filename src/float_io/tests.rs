@@ -93,47 +93,46 @@ fn npy_with(dict: &str, major: u8, data: &[u8]) -> Vec<u8> {
 
 #[test]
 fn hostile_and_truncated_npy_headers_are_refused_before_allocating() {
-    let ok = npy_with(
-        "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }",
-        1,
-        &[0; 32],
-    );
+    // The header of a float64 array of `shape`, C order.
+    let f8 =
+        |shape: &str| format!("{{'descr': '<f8', 'fortran_order': False, 'shape': {shape}, }}");
+    let ok = npy_with(&f8("(2, 2)"), 1, &[0; 32]);
     assert_eq!(read_npy_f64(&ok).unwrap().shape, vec![2, 2]);
     for (dict, major, data, needle) in [
         // A shape of 10¹⁸ elements in a file of a few bytes.
-        (
-            "{'descr': '<f8', 'fortran_order': False, 'shape': (1000000000, 1000000000), }",
-            1,
-            &[0u8; 8][..],
-            "hostile",
-        ),
+        (f8("(1000000000, 1000000000)"), 1, &[0u8; 8][..], "hostile"),
         // A shape whose size overflows 64 bits.
         (
-            "{'descr': '<f8', 'fortran_order': False, 'shape': (4294967296, 4294967296, 4294967296), }",
+            f8("(4294967296, 4294967296, 4294967296)"),
             2,
             &[0u8; 8][..],
             "overflow",
         ),
         // One value short.
-        (
-            "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }",
-            1,
-            &[0u8; 24][..],
-            "truncated",
-        ),
+        (f8("(2, 2)"), 1, &[0u8; 24][..], "truncated"),
         // One value too many.
+        (f8("(2, 2)"), 1, &[0u8; 40][..], "after its header"),
         (
-            "{'descr': '<f8', 'fortran_order': False, 'shape': (2, 2), }",
+            "{'descr': '<c16', 'fortran_order': False, 'shape': (1,), }".to_owned(),
             1,
-            &[0u8; 40][..],
-            "after its header",
+            &[0u8; 16][..],
+            "dtype",
         ),
-        ("{'descr': '<c16', 'fortran_order': False, 'shape': (1,), }", 1, &[0u8; 16][..], "dtype"),
-        ("{'descr': [('a', '<f8')], 'fortran_order': False, 'shape': (1,), }", 1, &[0u8; 8][..], "dtype"),
-        ("{'descr': '<f8', 'shape': (1,), }", 1, &[0u8; 8][..], "header"),
-        ("not a dict at all", 1, &[0u8; 8][..], "header"),
+        (
+            "{'descr': [('a', '<f8')], 'fortran_order': False, 'shape': (1,), }".to_owned(),
+            1,
+            &[0u8; 8][..],
+            "dtype",
+        ),
+        (
+            "{'descr': '<f8', 'shape': (1,), }".to_owned(),
+            1,
+            &[0u8; 8][..],
+            "header",
+        ),
+        ("not a dict at all".to_owned(), 1, &[0u8; 8][..], "header"),
     ] {
-        let bytes = npy_with(dict, major, data);
+        let bytes = npy_with(&dict, major, data);
         let e = read_npy_f64(&bytes).unwrap_err().to_string();
         assert!(e.contains(needle), "{dict}: {e}");
         assert!(!e.contains('\n'), "{e}");

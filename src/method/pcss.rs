@@ -125,10 +125,12 @@ impl Pcss {
 
     /// With the bias margins, relative and in texels.
     #[must_use]
-    pub fn with_bias_margins(mut self, relative: f64, texels: f64) -> Pcss {
-        self.bias_relative = relative;
-        self.bias_texels = texels;
-        self
+    pub fn with_bias_margins(self, relative: f64, texels: f64) -> Pcss {
+        Pcss {
+            bias_relative: relative,
+            bias_texels: texels,
+            ..self
+        }
     }
 }
 
@@ -157,36 +159,18 @@ impl Lookup<'_> {
     /// the map).
     fn blocker(&self, u: DVec2) -> Option<f64> {
         let view = &self.maps.view;
-        let t = view.to_pixel(u).floor();
-        if !(t.x >= 0.0
-            && t.y >= 0.0
-            && t.x < f64::from(view.width())
-            && t.y < f64::from(view.height()))
-        {
-            return None;
-        }
-        let (col, row) = (t.x as u32, t.y as u32);
+        let (col, row) = view.pixel_of(u)?;
         let d = self.maps.maps.depth_at(col, row);
         self.test.blocks(view, col, row, d).then_some(d)
     }
 }
 
 impl Method for Pcss {
-    from_options!();
-
-    /// Yes: see the trait's doc (no option of the paper asks otherwise).
-    fn hides_back_faces(&self) -> bool {
-        true
-    }
-
-    /// The depth, object and triangle maps (16 bytes a texel: measured
-    /// 16.0 between `map=1024` and `map=4096`, `/usr/bin/time -f %M`).
-    fn map_bytes(&self) -> u64 {
-        16 * u64::from(self.resolution).pow(2)
-    }
-
-    fn needs(&self) -> Needs {
-        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS
+    from_options! {
+        /// The depth, object and triangle maps (16 bytes a texel: measured
+        /// 16.0 between `map=1024` and `map=4096`, `/usr/bin/time -f %M`).
+        map_bytes_per_texel: 16,
+        needs: Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS,
     }
 
     fn requires(&self) -> Requires {

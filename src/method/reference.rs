@@ -1,10 +1,37 @@
 //! The two references as methods: [`Exact`] and [`MonteCarlo`].
 
-use super::options::{from_options, method_options};
+use super::options::{from_options, method_options, Configurable};
 use super::{per_receiver, Input, Method, MethodError, Output};
+use crate::bvh::Bvh;
 use crate::reference::{exact, monte_carlo};
 use crate::render::Needs;
-use crate::scene::LightKind;
+use crate::scene::{Emitter, LightKind, ReceiverError};
+use glam::DVec3;
+
+/// Each receiver's answer by `f(state, index, bvh, emitter, p)`, the
+/// receiver's emitter and position, after `method`'s options are checked;
+/// a receiver whose coordinates `out_of_range` refuses is refused with
+/// [`ReceiverError::OutOfRange`]. `init` makes a worker's state.
+fn per_emitter<S, T: Send>(
+    method: &impl Configurable,
+    input: &Input<'_, '_>,
+    init: impl Fn() -> S + Send + Sync,
+    out_of_range: impl Fn(&Bvh, &Emitter, DVec3) -> bool + Send + Sync,
+    f: impl Fn(&mut S, usize, &Bvh, &Emitter, DVec3) -> Result<T, MethodError> + Send + Sync,
+) -> Result<Vec<T>, MethodError> {
+    super::check_options(method)?;
+    let bvh = input.stages().bvh();
+    let emitters = input.emitters();
+    per_receiver(input, init, |s, index, r| {
+        if out_of_range(bvh, &emitters[index], r.position) {
+            return Err(MethodError::Receiver {
+                index,
+                error: ReceiverError::OutOfRange,
+            });
+        }
+        f(s, index, bvh, &emitters[index], r.position)
+    })
+}
 
 method_options! {
     /// The exact reference ([`crate::reference::exact`]): the answer every
@@ -41,26 +68,23 @@ impl Method for Exact {
     }
 
     fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
-        super::check_options(self)?;
-        let bvh = input.stages().bvh();
-        let emitters = input.emitters();
-        let answers = per_receiver(input, exact::Scratch::default, |s, index, r| {
-            if exact::domain(bvh, &emitters[index], r.position) == exact::Domain::Overflow {
-                return Err(MethodError::Receiver {
-                    index,
-                    error: crate::scene::ReceiverError::OutOfRange,
-                });
-            }
-            let b = exact::emitter_visibility_bounded(bvh, &emitters[index], r.position, s);
-            if self.tolerance < 1.0 && (b.bound > self.tolerance || b.bound.is_nan()) {
-                return Err(MethodError::Tolerance {
-                    index,
-                    bound: b.bound,
-                    tolerance: self.tolerance,
-                });
-            }
-            Ok(b)
-        })?;
+        let answers = per_emitter(
+            self,
+            input,
+            exact::Scratch::default,
+            |bvh, emitter, p| exact::domain(bvh, emitter, p) == exact::Domain::Overflow,
+            |s, index, bvh, emitter, p| {
+                let b = exact::emitter_visibility_bounded(bvh, emitter, p, s);
+                if self.tolerance < 1.0 && (b.bound > self.tolerance || b.bound.is_nan()) {
+                    return Err(MethodError::Tolerance {
+                        index,
+                        bound: b.bound,
+                        tolerance: self.tolerance,
+                    });
+                }
+                Ok(b)
+            },
+        )?;
         Ok(Output {
             visibility: answers.iter().map(|b| b.visibility).collect(),
             stderr: None,
@@ -113,27 +137,13 @@ impl Method for MonteCarlo {
     }
 
     fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
-        super::check_options(self)?;
-        let bvh = input.stages().bvh();
-        let emitters = input.emitters();
         let options = monte_carlo::Options::new(self.samples).with_seed(self.seed);
-        let estimates = per_receiver(
+        let estimates = per_emitter(
+            self,
             input,
             || (),
-            |(), index, r| {
-                if monte_carlo::out_of_range(bvh, &emitters[index], r.position) {
-                    return Err(MethodError::Receiver {
-                        index,
-                        error: crate::scene::ReceiverError::OutOfRange,
-                    });
-                }
-                Ok(monte_carlo::emitter_visibility(
-                    bvh,
-                    &emitters[index],
-                    r.position,
-                    &options,
-                ))
-            },
+            monte_carlo::out_of_range,
+            |(), _, bvh, emitter, p| Ok(monte_carlo::emitter_visibility(bvh, emitter, p, &options)),
         )?;
         Ok(Output {
             visibility: estimates.iter().map(|e| e.visibility).collect(),

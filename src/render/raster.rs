@@ -108,6 +108,33 @@
 //! this keeps every predicate inside [`orient2d`]'s exact range, so
 //! coverage is exact for every triangle rasterised.
 
+/// The accessors of a grid of `width × height` pixels stored row-major
+/// (the fields `width` and `height`): `width()`, `height()` and
+/// `index(col, row)`, the latter with visibility `$vis`.
+macro_rules! pixel_grid {
+    ($($vis:tt)*) => {
+        /// The number of columns.
+        #[must_use]
+        pub fn width(&self) -> u32 {
+            self.width
+        }
+
+        /// The number of rows.
+        #[must_use]
+        pub fn height(&self) -> u32 {
+            self.height
+        }
+
+        /// The row-major index `row·width + col` of pixel `(col, row)`,
+        /// `None` outside the grid.
+        #[must_use]
+        $($vis)* fn index(&self, col: u32, row: u32) -> Option<usize> {
+            (col < self.width && row < self.height)
+                .then(|| row as usize * self.width as usize + col as usize)
+        }
+    };
+}
+
 mod view;
 
 pub use view::LightView;
@@ -265,22 +292,7 @@ impl LightMaps {
         fill(&mut self.depth, n, f64::INFINITY);
     }
 
-    /// The number of columns.
-    #[must_use]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The number of rows.
-    #[must_use]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
-
-    fn index(&self, col: u32, row: u32) -> Option<usize> {
-        (col < self.width && row < self.height)
-            .then(|| row as usize * self.width as usize + col as usize)
-    }
+    pixel_grid!();
 
     /// The light-frame depth `z` of the nearest triangle at pixel
     /// `(col, row)`; `f64::INFINITY` where no triangle is seen, and outside
@@ -343,6 +355,14 @@ pub fn rasterize(
     triangles: &[[DVec3; 3]],
     objects: &[u32],
 ) -> Result<LightMaps, RasterError> {
+    check_lengths(triangles, objects)?;
+    let mut maps = LightMaps::empty(view.width, view.height);
+    fill_maps(view, triangles, objects, &mut maps);
+    Ok(maps)
+}
+
+/// The errors of [`rasterize`] on its input's lengths.
+fn check_lengths(triangles: &[[DVec3; 3]], objects: &[u32]) -> Result<(), RasterError> {
     if objects.len() != triangles.len() {
         return Err(RasterError::LengthMismatch {
             triangles: triangles.len(),
@@ -352,9 +372,7 @@ pub fn rasterize(
     if triangles.len() >= u32::MAX as usize {
         return Err(RasterError::TooManyTriangles);
     }
-    let mut maps = LightMaps::empty(view.width, view.height);
-    fill_maps(view, triangles, objects, &mut maps);
-    Ok(maps)
+    Ok(())
 }
 
 /// [`rasterize`] into existing maps, reusing their storage (resized to the
@@ -369,15 +387,7 @@ pub fn rasterize_into(
     maps: &mut LightMaps,
 ) -> Result<(), RasterError> {
     maps.reset(view.width, view.height);
-    if objects.len() != triangles.len() {
-        return Err(RasterError::LengthMismatch {
-            triangles: triangles.len(),
-            objects: objects.len(),
-        });
-    }
-    if triangles.len() >= u32::MAX as usize {
-        return Err(RasterError::TooManyTriangles);
-    }
+    check_lengths(triangles, objects)?;
     fill_maps(view, triangles, objects, maps);
     Ok(())
 }

@@ -109,22 +109,8 @@ impl ConfigRecord {
         if self.mc.first().is_some_and(|&n| n == 0) || self.mc.windows(2).any(|w| w[0] >= w[1]) {
             return Err("config.mc: the sample counts are not positive and increasing".to_owned());
         }
-        let mut seen = HashSet::with_capacity(self.scenes.len());
-        for (k, s) in self.scenes.iter().enumerate() {
-            let at = format!("config.scenes[{k}]");
-            text(&at, s, MAX_NAME)?;
-            if !seen.insert(s.as_str()) {
-                return Err(format!("{at}: {} is twice in the sweep", quote(s)));
-            }
-        }
-        let mut seen = HashSet::with_capacity(self.settings.len());
-        for (k, s) in self.settings.iter().enumerate() {
-            let at = format!("config.settings[{k}]");
-            text(&at, s, MAX_NAME)?;
-            if !seen.insert(s.as_str()) {
-                return Err(format!("{at}: {} is twice in the sweep", quote(s)));
-            }
-        }
+        distinct_names("config.scenes", &self.scenes)?;
+        let seen = distinct_names("config.settings", &self.settings)?;
         if self.settings.first().is_none_or(|s| s != "exact") {
             return Err("config.settings: the first is not \"exact\"".to_owned());
         }
@@ -150,23 +136,20 @@ impl ConfigRecord {
 
     /// Which of the sweep's settings differ from `other`'s, if any.
     pub(crate) fn differs(&self, other: &ConfigRecord) -> Option<&'static str> {
-        if self.scenes != other.scenes {
-            Some("the scenes differ")
-        } else if self.settings != other.settings {
-            Some("the settings (methods) differ")
-        } else if self.side != other.side {
-            Some("the frame sides differ")
-        } else if self.runs != other.runs {
-            Some("the runs per cell differ")
-        } else if self.mc != other.mc {
-            Some("the yardstick's sample counts differ")
-        } else if self.pictures != other.pictures {
-            Some("the picture sides differ")
-        } else if self.cells != other.cells {
-            Some("the cell counts differ")
-        } else {
-            None
-        }
+        [
+            (self.scenes != other.scenes, "the scenes differ"),
+            (
+                self.settings != other.settings,
+                "the settings (methods) differ",
+            ),
+            (self.side != other.side, "the frame sides differ"),
+            (self.runs != other.runs, "the runs per cell differ"),
+            (self.mc != other.mc, "the yardstick's sample counts differ"),
+            (self.pictures != other.pictures, "the picture sides differ"),
+            (self.cells != other.cells, "the cell counts differ"),
+        ]
+        .into_iter()
+        .find_map(|(differ, why)| differ.then_some(why))
     }
 }
 
@@ -354,18 +337,42 @@ fn scene(at: &str, s: &SceneRecord, side: u32, machines: usize) -> Result<(), St
             s.width
         ));
     }
-    if s.profile_exact.len() != s.profile_columns.len() {
-        return Err(format!(
-            "{at}.profile_exact: {} values for {} profile columns",
-            s.profile_exact.len(),
-            s.profile_columns.len()
-        ));
-    }
-    for (k, &v) in s.profile_exact.iter().enumerate() {
-        within(&format!("{at}.profile_exact[{k}]"), v, 0.0, 1.0)?;
-    }
+    profile(
+        &format!("{at}.profile_exact"),
+        &s.profile_exact,
+        s.profile_columns.len(),
+    )?;
     if let Some(b) = s.exact_bound {
         within(&format!("{at}.exact_bound"), b, 0.0, 1.0)?;
+    }
+    Ok(())
+}
+
+/// The names of the field `at`, each a line of text and none twice; the
+/// set of them.
+fn distinct_names<'a>(at: &str, names: &'a [String]) -> Result<HashSet<&'a str>, String> {
+    let mut seen = HashSet::with_capacity(names.len());
+    for (k, s) in names.iter().enumerate() {
+        let at = format!("{at}[{k}]");
+        text(&at, s, MAX_NAME)?;
+        if !seen.insert(s.as_str()) {
+            return Err(format!("{at}: {} is twice in the sweep", quote(s)));
+        }
+    }
+    Ok(seen)
+}
+
+/// A profile, the field `at`: one `V` in `[0, 1]` for each of the
+/// scene's `columns` profile columns.
+fn profile(at: &str, values: &[f64], columns: usize) -> Result<(), String> {
+    if values.len() != columns {
+        return Err(format!(
+            "{at}: {} values for the scene's {columns} profile columns",
+            values.len()
+        ));
+    }
+    for (k, &v) in values.iter().enumerate() {
+        within(&format!("{at}[{k}]"), v, 0.0, 1.0)?;
     }
     Ok(())
 }
@@ -432,16 +439,11 @@ fn cell(
             }
         }
         pieces(at, c, record)?;
-        if c.profile.len() != record.profile_columns.len() {
-            return Err(format!(
-                "{at}.profile: {} values for the scene's {} profile columns",
-                c.profile.len(),
-                record.profile_columns.len()
-            ));
-        }
-        for (k, &v) in c.profile.iter().enumerate() {
-            within(&format!("{at}.profile[{k}]"), v, 0.0, 1.0)?;
-        }
+        profile(
+            &format!("{at}.profile"),
+            &c.profile,
+            record.profile_columns.len(),
+        )?;
         if let Some(p) = &c.picture {
             let own = names.picture(c.index);
             if *p != own {

@@ -5,7 +5,7 @@
 
 use super::{CellRecord, ConfigRecord, SceneRecord, GROUPS};
 use plotters::coord::combinators::LogCoord;
-use plotters::coord::Shift;
+use plotters::coord::{CoordTranslate, Shift};
 use plotters::prelude::*;
 
 /// One colour per method (base name), by its place in the registry.
@@ -26,6 +26,39 @@ fn colour(base: &str) -> RGBColor {
         .position(|e| e.name == base)
         .unwrap_or(0);
     PALETTE[k % PALETTE.len()]
+}
+
+/// The frame of a chart on `root`, filled white first: `caption` above,
+/// the margin and x label area of every plot of the report, `y_labels`
+/// pixels for the y axis's labels.
+fn framed<'a, 'b>(
+    root: &'a DrawingArea<SVGBackend<'b>, Shift>,
+    caption: String,
+    y_labels: u32,
+) -> Option<ChartBuilder<'a, 'b, SVGBackend<'b>>> {
+    root.fill(&WHITE).ok()?;
+    let mut builder = ChartBuilder::on(root);
+    builder
+        .caption(caption, ("sans-serif", 20))
+        .margin(12)
+        .x_label_area_size(40)
+        .y_label_area_size(y_labels);
+    Some(builder)
+}
+
+/// The legend of `chart`'s labelled series at `position`, on a
+/// translucent white box.
+fn legend<'a, 'b: 'a, CT: CoordTranslate>(
+    chart: &mut ChartContext<'a, SVGBackend<'b>, CT>,
+    position: SeriesLabelPosition,
+) -> Option<()> {
+    chart
+        .configure_series_labels()
+        .position(position)
+        .background_style(WHITE.mix(0.9))
+        .border_style(BLACK)
+        .draw()
+        .ok()
 }
 
 /// A tick label: three significant digits, no trailing zeros.
@@ -199,18 +232,11 @@ pub(crate) fn error_against_time(
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (1100, 720)).into_drawing_area();
-        root.fill(&WHITE).ok()?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                format!(
-                    "{}: RMSE of V ({} receivers) against time",
-                    scene.name, GROUPS[g]
-                ),
-                ("sans-serif", 20),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(60)
+        let caption = format!(
+            "{}: RMSE of V ({} receivers) against time",
+            scene.name, GROUPS[g]
+        );
+        let mut chart = framed(&root, caption, 60)?
             .build_cartesian_2d(
                 (t0 / 1.5..t1 * 1.5).log_scale(),
                 (floor..(e1 * 1.5).min(1.5)).log_scale(),
@@ -228,13 +254,7 @@ pub(crate) fn error_against_time(
             .draw()
             .ok()?;
         draw_points(&mut chart, config, &points)?;
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::UpperRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .ok()?;
+        legend(&mut chart, SeriesLabelPosition::UpperRight)?;
         draw_labels(&root, &chart, &points)?;
         root.present().ok()?;
     }
@@ -411,18 +431,11 @@ pub(crate) fn profile(scene: &SceneRecord, cells: &[&CellRecord]) -> Option<Stri
     let mut svg = String::new();
     {
         let root = SVGBackend::with_string(&mut svg, (900, 480)).into_drawing_area();
-        root.fill(&WHITE).ok()?;
-        let mut chart = ChartBuilder::on(&root)
-            .caption(
-                format!(
-                    "{}: V along image row {} (the row with the most penumbra)",
-                    scene.name, scene.profile_row
-                ),
-                ("sans-serif", 20),
-            )
-            .margin(12)
-            .x_label_area_size(40)
-            .y_label_area_size(50)
+        let caption = format!(
+            "{}: V along image row {} (the row with the most penumbra)",
+            scene.name, scene.profile_row
+        );
+        let mut chart = framed(&root, caption, 50)?
             .build_cartesian_2d(x0..x1, -0.02f64..1.02)
             .ok()?;
         chart
@@ -454,13 +467,7 @@ pub(crate) fn profile(scene: &SceneRecord, cells: &[&CellRecord]) -> Option<Stri
             .ok()?
             .label("exact")
             .legend(|(x, y)| PathElement::new(vec![(x, y), (x + 20, y)], BLACK.stroke_width(3)));
-        chart
-            .configure_series_labels()
-            .position(SeriesLabelPosition::LowerRight)
-            .background_style(WHITE.mix(0.9))
-            .border_style(BLACK)
-            .draw()
-            .ok()?;
+        legend(&mut chart, SeriesLabelPosition::LowerRight)?;
         root.present().ok()?;
     }
     Some(svg)

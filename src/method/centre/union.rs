@@ -329,25 +329,24 @@ mod tests {
     }
 
     #[test]
-    fn coincident_edges_share_their_piece() {
-        // A solid's contour in the all-edges chain: the front and the back
-        // face each bring the same edge, weight ½ each, and the layer count
-        // inside is ½ + ½. The piece must count once (a regression: it was
-        // counted once per copy, doubling the occluded area).
+    fn overlapping_squares_count_once() {
         let mut s = Scratch::default();
-        let mut e = square(DVec2::new(0.5, 0.0), 0.2, 0.5);
-        e.extend(square(DVec2::new(0.5, 0.0), 0.2, 0.5));
-        let v = union_occlusion(0.0, &e, &mut s);
-        assert!((v - 0.16 / PI).abs() < 1e-14, "{v}");
-    }
-
-    #[test]
-    fn two_overlapping_squares_count_once() {
-        let mut s = Scratch::default();
-        let mut e = square(DVec2::new(0.1, 0.0), 0.3, 1.0);
-        e.extend(square(DVec2::new(0.25, 0.0), 0.3, 1.0));
-        // Union: a 0.75 × 0.6 rectangle from x = −0.2 to 0.55, y ± 0.3.
-        let v = union_occlusion(2.0, &e, &mut s);
-        assert!((v - 0.45 / PI).abs() < 1e-13, "{v}");
+        // Two squares of half side `h` and edge weight `weight` at `x0`
+        // and `x1` on the x axis, the layer count `c0` at the disk's
+        // centre; their union's area, and the tolerance.
+        for (x0, x1, h, weight, c0, area, tolerance) in [
+            // A solid's contour in the all-edges chain: the front and the
+            // back face each bring the same edge, weight ½ each, and the
+            // layer count inside is ½ + ½. The piece must count once, not
+            // once per copy (which doubles the occluded area).
+            (0.5, 0.5, 0.2, 0.5, 0.0, 0.16, 1e-14),
+            // Union: a 0.75 × 0.6 rectangle from x = −0.2 to 0.55, y ± 0.3.
+            (0.1, 0.25, 0.3, 1.0, 2.0, 0.45, 1e-13),
+        ] {
+            let mut e = square(DVec2::new(x0, 0.0), h, weight);
+            e.extend(square(DVec2::new(x1, 0.0), h, weight));
+            let v = union_occlusion(c0, &e, &mut s);
+            assert!((v - area / PI).abs() < tolerance, "{v}");
+        }
     }
 }

@@ -128,23 +128,13 @@ pub struct OessPasses {
 }
 
 impl Method for Oess {
-    from_options!();
-
-    /// Yes: see the trait's doc (no option of the paper asks otherwise).
-    fn hides_back_faces(&self) -> bool {
-        true
-    }
-
-    /// The two endpoint maps — each a depth, object and triangle map
-    /// and the edge columns found in it — and the search's rows: measured
-    /// 62.5 bytes a texel between `map=1024` and `map=4096` (`/usr/bin/time
-    /// -f %M`); `map=16384` needs about 17 GB.
-    fn map_bytes(&self) -> u64 {
-        64 * u64::from(self.resolution).pow(2)
-    }
-
-    fn needs(&self) -> Needs {
-        Needs::BVH
+    from_options! {
+        /// The two endpoint maps — each a depth, object and triangle map
+        /// and the edge columns found in it — and the search's rows: measured
+        /// 62.5 bytes a texel between `map=1024` and `map=4096` (`/usr/bin/time
+        /// -f %M`); `map=16384` needs about 17 GB.
+        map_bytes_per_texel: 64,
+        needs: Needs::BVH,
     }
 
     fn visibility(&self, input: &Input<'_, '_>) -> Result<Output, MethodError> {
@@ -378,15 +368,10 @@ impl Oess {
         let view = &map.view;
         let q = view.frame().to_light(f);
         let u = DVec2::new(q.x / q.z, q.y / q.z);
-        let t = view.to_pixel(u);
-        if !(t.x >= 0.0
-            && t.y >= 0.0
-            && t.x < f64::from(view.width())
-            && t.y < f64::from(view.height()))
-        {
+        let Some((col, row)) = view.pixel_of(u) else {
             return true;
-        }
-        map.surface_depth(t.x as u32, t.y as u32, u) >= q.z * (1.0 - self.bias)
+        };
+        map.surface_depth(col, row, u) >= q.z * (1.0 - self.bias)
     }
 }
 

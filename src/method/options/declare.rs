@@ -219,6 +219,12 @@ pub(crate) use method_options;
 /// The items of `impl Method` that a method declared with
 /// `method_options!` takes from its declaration: `name()`, its
 /// `print`ed name, and `lights()`, its `Configurable::LIGHTS`.
+///
+/// A map method (one with a `resolution` field, the side of its light-view
+/// maps) writes `from_options! { map_bytes_per_texel: N, needs: STAGES }`,
+/// preceded by the doc of `map_bytes()` (where `N` was measured), and also
+/// takes `needs()`, `STAGES`, `hides_back_faces()`, `true`, and
+/// `map_bytes()`, `N · resolution²`.
 macro_rules! from_options {
     () => {
         fn name(&self) -> String {
@@ -227,6 +233,23 @@ macro_rules! from_options {
 
         fn lights(&self) -> &'static [$crate::scene::LightKind] {
             <Self as $crate::method::options::Configurable>::LIGHTS
+        }
+    };
+    ($(#[$doc:meta])* map_bytes_per_texel: $bytes:expr, needs: $needs:expr $(,)?) => {
+        $crate::method::options::from_options!();
+
+        fn needs(&self) -> $crate::render::Needs {
+            $needs
+        }
+
+        /// Yes: see the trait's doc (no option of the paper asks otherwise).
+        fn hides_back_faces(&self) -> bool {
+            true
+        }
+
+        $(#[$doc])*
+        fn map_bytes(&self) -> u64 {
+            $bytes * u64::from(self.resolution).pow(2)
         }
     };
 }

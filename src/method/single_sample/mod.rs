@@ -160,22 +160,12 @@ pub struct SingleSamplePasses {
 }
 
 impl Method for SingleSample {
-    from_options!();
-
-    /// Yes: see the trait's doc (no option of the paper asks otherwise).
-    fn hides_back_faces(&self) -> bool {
-        true
-    }
-
-    /// The depth and id maps and their tile summaries (measured 16.6
-    /// bytes a texel between `map=1024` and `map=4096`, `/usr/bin/time
-    /// -f %M`).
-    fn map_bytes(&self) -> u64 {
-        17 * u64::from(self.resolution).pow(2)
-    }
-
-    fn needs(&self) -> Needs {
-        Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS
+    from_options! {
+        /// The depth and id maps and their tile summaries (measured 16.6
+        /// bytes a texel between `map=1024` and `map=4096`, `/usr/bin/time
+        /// -f %M`).
+        map_bytes_per_texel: 17,
+        needs: Needs::BVH | Needs::LIGHT_FRAME | Needs::LIGHT_MAPS,
     }
 
     fn requires(&self) -> Requires {

@@ -259,19 +259,23 @@ impl Sism {
 
     /// With or without §2.5's two overdraw optimisations.
     #[must_use]
-    pub fn with_optimisations(mut self, bin_depth: bool, wedge_column: bool) -> Sism {
-        self.bin_depth = bin_depth;
-        self.wedge_column = wedge_column;
-        self
+    pub fn with_optimisations(self, bin_depth: bool, wedge_column: bool) -> Sism {
+        Sism {
+            bin_depth,
+            wedge_column,
+            ..self
+        }
     }
 
     /// With the grid sizes (cells per receiver, bin side, depth slices).
     #[must_use]
-    pub fn with_grid(mut self, cells_per_receiver: f64, bin_cells: u32, depth_slices: u32) -> Sism {
-        self.cells_per_receiver = cells_per_receiver;
-        self.bin_cells = bin_cells;
-        self.depth_slices = depth_slices;
-        self
+    pub fn with_grid(self, cells_per_receiver: f64, bin_cells: u32, depth_slices: u32) -> Sism {
+        Sism {
+            cells_per_receiver,
+            bin_cells,
+            depth_slices,
+            ..self
+        }
     }
 }
 

@@ -11,7 +11,7 @@ use crate::method::centre::{horizon_edge, EdgeSource, ProjectedEdge, Selection, 
 use crate::method::options::{from_options, method_options};
 use crate::method::{per_receiver, Horizon, Input, Method, MethodError, Output, Requires};
 use crate::render::raster::MAX_RESOLUTION;
-use crate::render::{FittedMaps, Needs, Receiver};
+use crate::render::{FittedMaps, Receiver};
 use crate::scene::{LightKind, Mesh};
 use glam::DVec3;
 use std::collections::HashMap;
@@ -166,20 +166,10 @@ impl BackprojectedSsoc {
 }
 
 impl Method for BackprojectedSsoc {
-    from_options!();
-
-    /// Yes: see the trait's doc (no option of the paper asks otherwise).
-    fn hides_back_faces(&self) -> bool {
-        true
-    }
-
-    /// The shadow and distortion maps, as [`Ssoc`](super::Ssoc)'s.
-    fn map_bytes(&self) -> u64 {
-        super::MAP_BYTES_PER_TEXEL * u64::from(self.resolution).pow(2)
-    }
-
-    fn needs(&self) -> Needs {
-        super::NEEDS
+    from_options! {
+        /// The shadow and distortion maps, as [`Ssoc`](super::Ssoc)'s.
+        map_bytes_per_texel: super::MAP_BYTES_PER_TEXEL,
+        needs: super::NEEDS,
     }
 
     fn requires(&self) -> Requires {

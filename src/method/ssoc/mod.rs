@@ -240,15 +240,9 @@ pub(crate) struct Warped {
 /// The shadow-map test of `p` (light frame) at image point `u` with depth
 /// test `test`; off the map: lit.
 fn blocked_at(view: &LightView, maps: &LightMaps, test: &DepthTest, u: DVec2) -> bool {
-    let t = view.to_pixel(u);
-    if !(t.x >= 0.0
-        && t.y >= 0.0
-        && t.x < f64::from(view.width())
-        && t.y < f64::from(view.height()))
-    {
+    let Some((col, row)) = view.pixel_of(u) else {
         return false;
-    }
-    let (col, row) = (t.x as u32, t.y as u32);
+    };
     test.blocks(view, col, row, maps.depth_at(col, row))
 }
 
@@ -367,11 +361,13 @@ impl Ssoc {
         if edge == NONE {
             return hard;
         }
-        let Some(first) = prep
-            .edges
-            .get(edge as usize)
-            .and_then(|e| self.read(e, w.u, w.p.z, prep.r, fitted))
-        else {
+        // The distortion of the receiver by the map's edge `k`.
+        let read = |k: u32| {
+            prep.edges
+                .get(k as usize)
+                .and_then(|e| self.read(e, w.u, w.p.z, prep.r, fitted))
+        };
+        let Some(first) = read(edge) else {
             return hard;
         };
         let view = &fitted.view;
@@ -419,11 +415,7 @@ impl Ssoc {
             else {
                 return v;
             };
-            let Some(second) = prep
-                .edges
-                .get(other as usize)
-                .and_then(|e| self.read(e, w.u, w.p.z, prep.r, fitted))
-            else {
+            let Some(second) = read(other) else {
                 return v;
             };
             // The paper's three cases (§4): the same region, one relevant
@@ -499,21 +491,11 @@ const REQUIRES: Requires = Requires {
 pub(super) const MAP_BYTES_PER_TEXEL: u64 = 21;
 
 impl super::Method for Ssoc {
-    from_options!();
-
-    /// Yes: see the trait's doc (no option of the paper asks otherwise).
-    fn hides_back_faces(&self) -> bool {
-        true
-    }
-
-    /// The shadow and distortion maps (measured 20.9 bytes a texel
-    /// between `map=1024` and `map=4096`, `/usr/bin/time -f %M`).
-    fn map_bytes(&self) -> u64 {
-        MAP_BYTES_PER_TEXEL * u64::from(self.resolution).pow(2)
-    }
-
-    fn needs(&self) -> Needs {
-        NEEDS
+    from_options! {
+        /// The shadow and distortion maps (measured 20.9 bytes a texel
+        /// between `map=1024` and `map=4096`, `/usr/bin/time -f %M`).
+        map_bytes_per_texel: MAP_BYTES_PER_TEXEL,
+        needs: NEEDS,
     }
 
     fn requires(&self) -> Requires {

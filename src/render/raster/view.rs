@@ -173,17 +173,7 @@ impl LightView {
         self.hi
     }
 
-    /// The number of columns.
-    #[must_use]
-    pub fn width(&self) -> u32 {
-        self.width
-    }
-
-    /// The number of rows.
-    #[must_use]
-    pub fn height(&self) -> u32 {
-        self.height
-    }
+    pixel_grid!(pub);
 
     /// The number of pixels, `width · height`.
     #[must_use]
@@ -237,14 +227,6 @@ impl LightView {
         let inside =
             p.x >= 0.0 && p.y >= 0.0 && p.x < f64::from(self.width) && p.y < f64::from(self.height);
         inside.then_some((p.x as u32, p.y as u32))
-    }
-
-    /// The row-major index `row·width + col` of pixel `(col, row)`, `None`
-    /// outside the view.
-    #[must_use]
-    pub fn index(&self, col: u32, row: u32) -> Option<usize> {
-        (col < self.width && row < self.height)
-            .then(|| row as usize * self.width as usize + col as usize)
     }
 
     /// The image-plane projection and light-frame depth of a world point

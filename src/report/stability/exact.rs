@@ -55,6 +55,32 @@ fn exact_row(family: &'static str, case: String, m: Measured, n: usize) -> Row {
     }
 }
 
+/// The rows of one case twice: `case, dyadic` as placed and `case,
+/// ordinary` in general position (offsets of size 1), each over
+/// `copies` plates each `shift` further ([`exact_error`]).
+fn both_rows(
+    rows: &mut Vec<Row>,
+    family: Stiff,
+    case: String,
+    plate: &Plate,
+    pts: &[DVec3],
+    copies: usize,
+    shift: f64,
+) {
+    rows.push(exact_row(
+        family.name(),
+        format!("{case}, dyadic"),
+        exact_error(plate, DVec3::ZERO, pts, copies, shift),
+        pts.len(),
+    ));
+    rows.push(exact_row(
+        family.name(),
+        format!("{case}, ordinary"),
+        general(1.0).measure(plate, pts, copies, shift),
+        pts.len(),
+    ));
+}
+
 /// General position: turned by these angles, moved by ordinary offsets
 /// of size `scale`.
 fn general(scale: f64) -> General {
@@ -96,18 +122,15 @@ fn light_size(rows: &mut Vec<Row>) {
     for r in [1e-6, 1e-5, 1e-4, 1e-3, 10.0, 100.0, 1000.0] {
         let plate = Plate { r, ..UNIT };
         let pts = receivers(&plate, 0.0, 33);
-        rows.push(exact_row(
-            Stiff::LightSize.name(),
-            format!("r = {r:e}, dyadic"),
-            exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
-            pts.len(),
-        ));
-        rows.push(exact_row(
-            Stiff::LightSize.name(),
-            format!("r = {r:e}, ordinary"),
-            general(1.0).measure(&plate, &pts, 1, 0.0),
-            pts.len(),
-        ));
+        both_rows(
+            rows,
+            Stiff::LightSize,
+            format!("r = {r:e}"),
+            &plate,
+            &pts,
+            1,
+            0.0,
+        );
     }
 }
 
@@ -132,18 +155,15 @@ fn grazing(rows: &mut Vec<Row>) {
                 DVec3::new(dyadic((t * plate.r - plate.s * k) / (1.0 - k)), 0.0, 0.0)
             })
             .collect();
-        rows.push(exact_row(
-            Stiff::Grazing.name(),
-            format!("elevation 1e-{e}, dyadic"),
-            exact_error(&plate, DVec3::ZERO, &pts, 1, 0.0),
-            pts.len(),
-        ));
-        rows.push(exact_row(
-            Stiff::Grazing.name(),
-            format!("elevation 1e-{e}, ordinary"),
-            general(1.0).measure(&plate, &pts, 1, 0.0),
-            pts.len(),
-        ));
+        both_rows(
+            rows,
+            Stiff::Grazing,
+            format!("elevation 1e-{e}"),
+            &plate,
+            &pts,
+            1,
+            0.0,
+        );
     }
 }
 
@@ -175,18 +195,15 @@ fn contact(rows: &mut Vec<Row>) {
 fn coincident_edges(rows: &mut Vec<Row>) {
     for e in [20, 40, 52] {
         let pts = receivers(&UNIT, 0.0, 33);
-        rows.push(exact_row(
-            Stiff::CoincidentEdges.name(),
-            format!("second edge 2^-{e} away, dyadic"),
-            exact_error(&UNIT, DVec3::ZERO, &pts, 2, 2f64.powi(-e)),
-            pts.len(),
-        ));
-        rows.push(exact_row(
-            Stiff::CoincidentEdges.name(),
-            format!("second edge 2^-{e} away, ordinary"),
-            general(1.0).measure(&UNIT, &pts, 2, 2f64.powi(-e)),
-            pts.len(),
-        ));
+        both_rows(
+            rows,
+            Stiff::CoincidentEdges,
+            format!("second edge 2^-{e} away"),
+            &UNIT,
+            &pts,
+            2,
+            2f64.powi(-e),
+        );
     }
 }
 
@@ -198,17 +215,14 @@ fn deep_overlap(rows: &mut Vec<Row>) {
         ("10^4 coincident plates", 0.0),
         ("10^4 plates, each 2^-30 further", 2f64.powi(-30)),
     ] {
-        rows.push(exact_row(
-            Stiff::DeepOverlap.name(),
-            format!("{case}, dyadic"),
-            exact_error(&UNIT, DVec3::ZERO, &pts, 10_000, shift),
-            pts.len(),
-        ));
-        rows.push(exact_row(
-            Stiff::DeepOverlap.name(),
-            format!("{case}, ordinary"),
-            general(1.0).measure(&UNIT, &pts, 10_000, shift),
-            pts.len(),
-        ));
+        both_rows(
+            rows,
+            Stiff::DeepOverlap,
+            case.to_owned(),
+            &UNIT,
+            &pts,
+            10_000,
+            shift,
+        );
     }
 }

@@ -47,45 +47,40 @@ fn chords(r: f64, far: f64) -> f64 {
 }
 
 fn segment_disk_area_rows(rows: &mut Vec<Row>) {
-    let subject = "disk::segment_disk_area (error / r²)";
-    for e in [3, 5, 8] {
-        let far = 10f64.powi(e);
-        rows.push(Row::new(
-            "f32",
-            subject,
-            Stiff::FarOffset.name(),
-            format!("chord ends 10^{e} away, r = 1"),
-            41,
-            chords(1.0, far),
-            format!(
-                "inside (documented: {} for any edge length)",
-                SEGMENT_DISK_AREA.stated()
-            ),
-        ));
-    }
-    for r in [1e-6, 1e-3, 1e3] {
-        rows.push(Row::new(
-            "f32",
-            subject,
-            Stiff::LightSize.name(),
-            format!("r = {r:e}, chord ends 2r away"),
-            41,
-            chords(r, 2.0 * r),
+    let documented = format!(
+        "inside (documented: {} for any edge length)",
+        SEGMENT_DISK_AREA.stated()
+    );
+    let far = [3, 5, 8].map(|e| {
+        let case = format!("chord ends 10^{e} away, r = 1");
+        (
+            Stiff::FarOffset,
+            case,
+            (41, chords(1.0, 10f64.powi(e))),
+            documented.clone(),
+        )
+    });
+    let size = [1e-6, 1e-3, 1e3].map(|r| {
+        let case = format!("r = {r:e}, chord ends 2r away");
+        (
+            Stiff::LightSize,
+            case,
+            (41, chords(r, 2.0 * r)),
             "inside".to_owned(),
-        ));
-    }
-    for e in [3, 6] {
-        let d = 1.0 - 10f64.powi(-e);
-        rows.push(Row::new(
-            "f32",
-            subject,
-            Stiff::Grazing.name(),
-            format!("chord at (1 − 1e-{e})·r"),
-            1,
-            segment(1.0, d, 2.0),
+        )
+    });
+    let grazing = [3, 6].map(|e| {
+        let worst = segment(1.0, 1.0 - 10f64.powi(-e), 2.0);
+        let case = format!("chord at (1 − 1e-{e})·r");
+        (
+            Stiff::Grazing,
+            case,
+            (1, worst),
             f32_note(1.0, 10f64.powi(-e)),
-        ));
-    }
+        )
+    });
+    let cases = far.into_iter().chain(size).chain(grazing);
+    Row::push_cases(rows, "f32", "disk::segment_disk_area (error / r²)", cases);
 }
 
 /// `linear_light::visible_part`: a light `[x0, x0 + len]` on the x axis,
@@ -120,42 +115,32 @@ fn part(x0: f64, y: f64, len: f64) -> f64 {
 }
 
 fn visible_part_rows(rows: &mut Vec<Row>) {
-    let subject = "linear_light::visible_part (fraction)";
-    for e in [3, 5, 8] {
+    let far = [3, 5, 8].map(|e| {
         let x0 = 10f64.powi(e);
-        rows.push(Row::new(
-            "f32",
-            subject,
-            Stiff::FarOffset.name(),
-            format!("light 10^{e} from the origin, length 1"),
-            21,
-            part(x0, 1.0, 1.0),
+        let case = format!("light 10^{e} from the origin, length 1");
+        (
+            Stiff::FarOffset,
+            case,
+            (21, part(x0, 1.0, 1.0)),
             f32_note(x0, 1.0),
-        ));
-    }
-    for e in [3, 6] {
-        let y = 10f64.powi(-e);
-        rows.push(Row::new(
-            "f32",
-            subject,
-            Stiff::Grazing.name(),
-            format!("fragment 1e-{e} from the light's line"),
-            21,
-            part(0.0, y, 1.0),
+        )
+    });
+    let grazing = [3, 6].map(|e| {
+        let case = format!("fragment 1e-{e} from the light's line");
+        let worst = part(0.0, 10f64.powi(-e), 1.0);
+        (Stiff::Grazing, case, (21, worst), "inside".to_owned())
+    });
+    let size = [1e-6, 1e3].map(|len| {
+        let case = format!("length {len:e}, fragment at 1");
+        (
+            Stiff::LightSize,
+            case,
+            (21, part(0.0, 1.0, len)),
             "inside".to_owned(),
-        ));
-    }
-    for len in [1e-6, 1e3] {
-        rows.push(Row::new(
-            "f32",
-            subject,
-            Stiff::LightSize.name(),
-            format!("length {len:e}, fragment at 1"),
-            21,
-            part(0.0, 1.0, len),
-            "inside".to_owned(),
-        ));
-    }
+        )
+    });
+    let cases = far.into_iter().chain(grazing).chain(size);
+    Row::push_cases(rows, "f32", "linear_light::visible_part (fraction)", cases);
 }
 
 /// One `f32` kernel of scalars against its `f64` twin on the same

@@ -87,28 +87,24 @@ pub(super) fn falloff_rows(rows: &mut Vec<Row>) {
             (f(t) + f(1.0 - t) - 1.0).abs()
         })
         .fold((f(0.5) - 0.5).abs(), f64::max);
-    rows.push(Row::new(
-        "f64",
-        "falloff::disk_edge_falloff",
-        Stiff::Symmetry.name(),
-        "|F(t) + F(1 − t) − 1| at t = k/1024, and F(½) − ½",
-        1024,
-        symmetric,
+    let mut cases = vec![(
+        Stiff::Symmetry,
+        "|F(t) + F(1 − t) − 1| at t = k/1024, and F(½) − ½".to_owned(),
+        (1024, symmetric),
         "inside (absolute)",
-    ));
+    )];
     for e in [3, 6, 9, 12] {
         let t = 10f64.powi(-e);
         let want = segment_area(4.0 * t.sqrt().asin()) / std::f64::consts::PI;
-        rows.push(Row::new(
-            "f64",
-            "falloff::disk_edge_falloff",
-            Stiff::Grazing.name(),
-            format!("t = 1e-{e} (relative error)"),
-            1,
-            ((f(t) - want) / want).abs(),
+        let case = format!("t = 1e-{e} (relative error)");
+        cases.push((
+            Stiff::Grazing,
+            case,
+            (1, ((f(t) - want) / want).abs()),
             "inside",
         ));
     }
+    Row::push_cases(rows, "f64", "falloff::disk_edge_falloff", cases);
     // The Bernstein smoothstep 3t² − 2t³ is exact in f64 at t = k/1024
     // (30 bits): any difference is the kernel's.
     let b = (0..=1024)
@@ -117,13 +113,7 @@ pub(super) fn falloff_rows(rows: &mut Vec<Row>) {
             (falloff::bernstein(t) - (3.0 * t * t - 2.0 * t * t * t)).abs()
         })
         .fold(0.0, f64::max);
-    rows.push(Row::new(
-        "f64",
-        "falloff::bernstein",
-        Stiff::ExactPoints.name(),
-        "t = k/1024 (3t² − 2t³ exact)",
-        1025,
-        b,
-        "inside (absolute)",
-    ));
+    let case = "t = k/1024 (3t² − 2t³ exact)".to_owned();
+    let cases = [(Stiff::ExactPoints, case, (1025, b), "inside (absolute)")];
+    Row::push_cases(rows, "f64", "falloff::bernstein", cases);
 }

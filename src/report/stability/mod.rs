@@ -52,6 +52,7 @@ mod plate;
 mod silhouette;
 mod wedge;
 
+use crate::kernel::catalogue::Stiff;
 use std::fmt::Write as _;
 
 /// One measured row.
@@ -99,6 +100,27 @@ impl Row {
             max,
             bound: None,
             note: note.into(),
+        }
+    }
+
+    /// A row of `precision` and `subject` for each case `(family, case,
+    /// (count, largest error), note)`, in order.
+    fn push_cases<N: Into<String>>(
+        rows: &mut Vec<Row>,
+        precision: &'static str,
+        subject: &str,
+        cases: impl IntoIterator<Item = (Stiff, String, (usize, f64), N)>,
+    ) {
+        for (family, case, (count, max), note) in cases {
+            rows.push(Row::new(
+                precision,
+                subject,
+                family.name(),
+                case,
+                count,
+                max,
+                note,
+            ));
         }
     }
 }

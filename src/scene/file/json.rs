@@ -253,55 +253,62 @@ pub(super) struct Object<'c, 'f, 'a, N> {
     pub(super) entries: N,
 }
 
-/// The visits of a streamed value of the wrong kind: each described as
-/// [`Describe`] does and reported at the value's place.
-macro_rules! wrong_kinds {
-    ($expected:literal) => {
-        fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-            f.write_str($expected)
+/// The `DeserializeSeed` and `Visitor` of a streamed value `$T` whose
+/// payload `$P` reads the rest: the visits of any other kind fail with
+/// "expected `$expected`, got …" (the value described as [`Describe`]
+/// does), reported at the value's place; the two visits of arrays and
+/// objects, `$visits`, are the type's own.
+macro_rules! streamed {
+    ($T:ident<$P:ident: $Reads:ident>, $expected:literal, $($visits:item)*) => {
+        impl<'de, $P: $Reads<'de>> DeserializeSeed<'de> for $T<'_, '_, '_, $P> {
+            type Value = $P::Out;
+
+            fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<$P::Out, D::Error> {
+                d.deserialize_any(self)
+            }
         }
-        fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
-            self.wrong(Describe.visit_unit()?)
+
+        impl<$P> $T<'_, '_, '_, $P> {
+            fn wrong<T, E: de::Error>(&self, got: String) -> Result<T, E> {
+                Err(self.cx.fail(self.cx.err(
+                    self.at,
+                    format!(concat!("expected ", $expected, ", got {}"), got),
+                )))
+            }
         }
-        fn visit_bool<E: de::Error>(self, v: bool) -> Result<Self::Value, E> {
-            self.wrong(Describe.visit_bool(v)?)
-        }
-        fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
-            self.wrong(Describe.visit_u64(v)?)
-        }
-        fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
-            self.wrong(Describe.visit_i64(v)?)
-        }
-        fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
-            self.wrong(Describe.visit_f64(v)?)
-        }
-        fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
-            self.wrong(Describe.visit_str(v)?)
+
+        impl<'de, $P: $Reads<'de>> Visitor<'de> for $T<'_, '_, '_, $P> {
+            type Value = $P::Out;
+
+            fn expecting(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
+                f.write_str($expected)
+            }
+            fn visit_unit<E: de::Error>(self) -> Result<Self::Value, E> {
+                self.wrong(Describe.visit_unit()?)
+            }
+            fn visit_bool<E: de::Error>(self, v: bool) -> Result<Self::Value, E> {
+                self.wrong(Describe.visit_bool(v)?)
+            }
+            fn visit_u64<E: de::Error>(self, v: u64) -> Result<Self::Value, E> {
+                self.wrong(Describe.visit_u64(v)?)
+            }
+            fn visit_i64<E: de::Error>(self, v: i64) -> Result<Self::Value, E> {
+                self.wrong(Describe.visit_i64(v)?)
+            }
+            fn visit_f64<E: de::Error>(self, v: f64) -> Result<Self::Value, E> {
+                self.wrong(Describe.visit_f64(v)?)
+            }
+            fn visit_str<E: de::Error>(self, v: &str) -> Result<Self::Value, E> {
+                self.wrong(Describe.visit_str(v)?)
+            }
+
+            $($visits)*
         }
     };
 }
 
-impl<'de, I: Items<'de>> DeserializeSeed<'de> for Array<'_, '_, '_, I> {
-    type Value = I::Out;
-
-    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<I::Out, D::Error> {
-        d.deserialize_any(self)
-    }
-}
-
-impl<I> Array<'_, '_, '_, I> {
-    fn wrong<T, E: de::Error>(&self, got: String) -> Result<T, E> {
-        Err(self.cx.fail(
-            self.cx
-                .err(self.at, format!("expected an array, got {got}")),
-        ))
-    }
-}
-
-impl<'de, I: Items<'de>> Visitor<'de> for Array<'_, '_, '_, I> {
-    type Value = I::Out;
-
-    wrong_kinds!("an array");
+streamed! {
+    Array<I: Items>, "an array",
 
     fn visit_map<A: MapAccess<'de>>(self, map: A) -> Result<I::Out, A::Error> {
         self.wrong(Describe.visit_map(map)?)
@@ -312,27 +319,8 @@ impl<'de, I: Items<'de>> Visitor<'de> for Array<'_, '_, '_, I> {
     }
 }
 
-impl<'de, N: Entries<'de>> DeserializeSeed<'de> for Object<'_, '_, '_, N> {
-    type Value = N::Out;
-
-    fn deserialize<D: Deserializer<'de>>(self, d: D) -> Result<N::Out, D::Error> {
-        d.deserialize_any(self)
-    }
-}
-
-impl<N> Object<'_, '_, '_, N> {
-    fn wrong<T, E: de::Error>(&self, got: String) -> Result<T, E> {
-        Err(self.cx.fail(
-            self.cx
-                .err(self.at, format!("expected an object, got {got}")),
-        ))
-    }
-}
-
-impl<'de, N: Entries<'de>> Visitor<'de> for Object<'_, '_, '_, N> {
-    type Value = N::Out;
-
-    wrong_kinds!("an object");
+streamed! {
+    Object<N: Entries>, "an object",
 
     fn visit_seq<A: SeqAccess<'de>>(self, seq: A) -> Result<N::Out, A::Error> {
         self.cx.started.set(true);
@@ -677,8 +665,21 @@ impl Cx<'_> {
         key: &str,
         default: DVec3,
     ) -> Result<DVec3, FileError> {
-        f.get(key)
-            .map_or(Ok(default), |v| self.vec3(v, &at.key(key)))
+        Ok(self
+            .optional(f, at, key, |v, at| self.vec3(v, at))?
+            .unwrap_or(default))
+    }
+
+    /// The field `key` of `f`, read by `read` at its place; `None` when
+    /// absent.
+    pub(super) fn optional<'v, T>(
+        &self,
+        f: &Fields<'v>,
+        at: &At,
+        key: &str,
+        read: impl FnOnce(&'v Json, &At) -> Result<T, FileError>,
+    ) -> Result<Option<T>, FileError> {
+        f.get(key).map(|v| read(v, &at.key(key))).transpose()
     }
 }
 

@@ -248,25 +248,22 @@ impl Cx<'_> {
             "sphere" => {
                 let center = vec("center")?;
                 let radius = self.number(self.required(&f, at, "radius")?, &at.key("radius"))?;
-                let segments = match f.get("segments") {
-                    None => DEFAULT_SEGMENTS,
-                    Some(v) => {
-                        let s_at = at.key("segments");
-                        let s = self.uint(v, &s_at)?;
-                        // Out-of-range counts are reported by `sphere`;
-                        // beyond u32 they are reported here.
-                        u32::try_from(s).map_err(|_| {
-                            self.err(
-                                &s_at,
-                                format!(
-                                    "must be in {}..={}, got {s}",
-                                    primitive::MIN_SEGMENTS,
-                                    primitive::MAX_SEGMENTS
-                                ),
-                            )
-                        })?
-                    }
-                };
+                let segments = self.optional(&f, at, "segments", |v, s_at| {
+                    let s = self.uint(v, s_at)?;
+                    // Out-of-range counts are reported by `sphere`; beyond
+                    // u32 they are reported here.
+                    u32::try_from(s).map_err(|_| {
+                        self.err(
+                            s_at,
+                            format!(
+                                "must be in {}..={}, got {s}",
+                                primitive::MIN_SEGMENTS,
+                                primitive::MAX_SEGMENTS
+                            ),
+                        )
+                    })
+                })?;
+                let segments = segments.unwrap_or(DEFAULT_SEGMENTS);
                 primitive::sphere(center, radius, segments)
             }
             "box" => primitive::cuboid(vec("min")?, vec("max")?),

@@ -65,33 +65,23 @@ pub(super) fn point(
 ) -> Result<Receiver, FileError> {
     let f = cx.object(v, at, &["p", "object", "normal"])?;
     let p = cx.vec3(cx.required(&f, at, "p")?, &at.key("p"))?;
-    let object = match f.get("object") {
-        None => None,
-        Some(v) => {
-            let at = at.key("object");
-            let id = cx.uint(v, &at)?;
-            match u32::try_from(id) {
-                Ok(id) if (id as usize) < mesh_count => Some(id),
-                _ => {
-                    return Err(cx.err(
-                        &at,
-                        format!(
-                            "{id} is out of range (the scene has {mesh_count} mesh{})",
-                            if mesh_count == 1 { "" } else { "es" }
-                        ),
-                    ))
-                }
-            }
+    let object = cx.optional(&f, at, "object", |v, at| {
+        let id = cx.uint(v, at)?;
+        match u32::try_from(id) {
+            Ok(id) if (id as usize) < mesh_count => Ok(id),
+            _ => Err(cx.err(
+                at,
+                format!(
+                    "{id} is out of range (the scene has {mesh_count} mesh{})",
+                    if mesh_count == 1 { "" } else { "es" }
+                ),
+            )),
         }
-    };
-    let normal = match f.get("normal") {
-        None => None,
-        Some(v) => {
-            let at = at.key("normal");
-            let n = cx.vec3(v, &at)?;
-            Some(crate::kernel::eft::unit(n).ok_or_else(|| cx.err(&at, "has zero length"))?)
-        }
-    };
+    })?;
+    let normal = cx.optional(&f, at, "normal", |v, at| {
+        let n = cx.vec3(v, at)?;
+        crate::kernel::eft::unit(n).ok_or_else(|| cx.err(at, "has zero length"))
+    })?;
     Ok(Receiver {
         position: p,
         normal,
