@@ -19,7 +19,7 @@ mod tri;
 
 pub use boundary::Search;
 pub(super) use boundary::UnionScratch;
-use boundary::{union_area_in, union_area_tree};
+use boundary::{union_area_in, union_area_tree, Images};
 pub(super) use tri::{Measure, Tri};
 
 /// The area of `∪ triangles ∩ measure`, by Green's theorem over the
@@ -79,21 +79,21 @@ pub(super) fn union_area_sweeping_from<const B: bool>(
     sweep_from: usize,
 ) -> (f64, f64) {
     // Two copies of the loop: the test of [`Interior`] left out of the
-    // one most receivers run (in it, the choice cost 1 % of the built-in
-    // scenes' instructions).
+    // one most receivers run (chosen by measurement: see
+    // benches/README.md § The union's constants and its two copies of
+    // the loop).
     let deep = scratch.interior.build(tris, half);
+    let images = Images {
+        tris,
+        weights,
+        measure,
+        half,
+        sweep_from,
+    };
     match (scratch.search, deep) {
-        (Search::Grid, true) => {
-            union_area_in::<true, B>(tris, weights, measure, half, scratch, sweep_from)
-        }
-        (Search::Grid, false) => {
-            union_area_in::<false, B>(tris, weights, measure, half, scratch, sweep_from)
-        }
-        (Search::Tree, true) => {
-            union_area_tree::<true, B>(tris, weights, measure, half, scratch, sweep_from)
-        }
-        (Search::Tree, false) => {
-            union_area_tree::<false, B>(tris, weights, measure, half, scratch, sweep_from)
-        }
+        (Search::Grid, true) => union_area_in::<true, B>(images, scratch),
+        (Search::Grid, false) => union_area_in::<false, B>(images, scratch),
+        (Search::Tree, true) => union_area_tree::<true, B>(images, scratch),
+        (Search::Tree, false) => union_area_tree::<false, B>(images, scratch),
     }
 }
