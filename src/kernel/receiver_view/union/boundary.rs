@@ -34,10 +34,13 @@ use glam::DVec2;
 /// likewise); and the compensated sum's (`2 ε` of the sum and `4 n ε²` of
 /// the terms' magnitudes).
 pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
-    images: Images<'_>,
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    measure: Measure,
+    half: f64,
     scratch: &mut UnionScratch,
+    sweep_from: usize,
 ) -> (f64, f64) {
-    let (tris, measure, half) = (images.tris, images.measure, images.half);
     scratch.grid.build::<DEEP>(tris, half);
     scratch.edges.build(tris, half);
     scratch.stamp.clear();
@@ -108,7 +111,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             }
         }
     };
-    walk_edges::<DEEP, B>(images, settle, search)
+    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
 }
 
 /// [`union_area_in`] with the edges' searches in a [`Tree`] instead of the
@@ -119,10 +122,13 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
 /// shared edges and the raster of a deep pile settle the same edges first
 /// ([`walk_edges`]).
 pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
-    images: Images<'_>,
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    measure: Measure,
+    half: f64,
     scratch: &mut UnionScratch,
+    sweep_from: usize,
 ) -> (f64, f64) {
-    let (tris, measure, half) = (images.tris, images.measure, images.half);
     scratch.tree.build(tris, half);
     scratch.edges.build(tris, half);
     let UnionScratch {
@@ -155,20 +161,7 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
             }
         }
     };
-    walk_edges::<DEEP, B>(images, settle, search)
-}
-
-/// What the union's area is taken of: the images, each one's edges' area
-/// allowances (see [`union_area_in`]), the measure, and the square
-/// `[−half, half]²` they are clipped to; and the fewest edges on one of
-/// its sides for which that side is swept.
-#[derive(Clone, Copy)]
-pub(super) struct Images<'a> {
-    pub(super) tris: &'a [Tri],
-    pub(super) weights: &'a [[f64; 3]],
-    pub(super) measure: Measure,
-    pub(super) half: f64,
-    pub(super) sweep_from: usize,
+    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
 }
 
 /// What settles an edge before any search: the sweep of the square's
@@ -188,17 +181,14 @@ struct Settle<'s> {
 /// bound); with `B`, the bound's allowances of [`union_area_in`] too.
 #[inline(always)]
 fn walk_edges<const DEEP: bool, const B: bool>(
-    images: Images<'_>,
+    tris: &[Tri],
+    weights: &[[f64; 3]],
+    measure: Measure,
+    half: f64,
     settle: Settle<'_>,
+    sweep_from: usize,
     mut search: impl FnMut(usize, DVec2, DVec2, &mut Sum, &mut f64),
 ) -> (f64, f64) {
-    let Images {
-        tris,
-        weights,
-        measure,
-        half,
-        sweep_from,
-    } = images;
     let Settle {
         sides,
         edges,

@@ -19,7 +19,7 @@ mod tri;
 
 pub use boundary::Search;
 pub(super) use boundary::UnionScratch;
-use boundary::{union_area_in, union_area_tree, Images};
+use boundary::{union_area_in, union_area_tree};
 pub(super) use tri::{Measure, Tri};
 
 /// The area of `∪ triangles ∩ measure`, by Green's theorem over the
@@ -83,17 +83,18 @@ pub(super) fn union_area_sweeping_from<const B: bool>(
     // benches/README.md § The union's constants and its two copies of
     // the loop).
     let deep = scratch.interior.build(tris, half);
-    let images = Images {
-        tris,
-        weights,
-        measure,
-        half,
-        sweep_from,
-    };
     match (scratch.search, deep) {
-        (Search::Grid, true) => union_area_in::<true, B>(images, scratch),
-        (Search::Grid, false) => union_area_in::<false, B>(images, scratch),
-        (Search::Tree, true) => union_area_tree::<true, B>(images, scratch),
-        (Search::Tree, false) => union_area_tree::<false, B>(images, scratch),
+        (Search::Grid, true) => {
+            union_area_in::<true, B>(tris, weights, measure, half, scratch, sweep_from)
+        }
+        (Search::Grid, false) => {
+            union_area_in::<false, B>(tris, weights, measure, half, scratch, sweep_from)
+        }
+        (Search::Tree, true) => {
+            union_area_tree::<true, B>(tris, weights, measure, half, scratch, sweep_from)
+        }
+        (Search::Tree, false) => {
+            union_area_tree::<false, B>(tris, weights, measure, half, scratch, sweep_from)
+        }
     }
 }

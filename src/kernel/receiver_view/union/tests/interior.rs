@@ -186,14 +186,8 @@ fn the_interior_drops_edges_and_keeps_the_area() {
                 });
             }
         }
-        let images = Images {
-            tris: &tris,
-            weights: &[],
-            measure,
-            half: h,
-            sweep_from: SWEEP_FROM,
-        };
-        let without = union_area_in::<false, false>(images, &mut scratch).0;
+        let without =
+            union_area_in::<false, false>(&tris, &[], measure, h, &mut scratch, SWEEP_FROM).0;
         assert_eq!(
             with.to_bits(),
             without.to_bits(),
