@@ -86,6 +86,24 @@ mod avx {
     #[derive(Clone, Copy, Debug)]
     pub(in super::super) struct Avx8(pub(in super::super) V3);
 
+    /// The lane operations that are one AVX instruction on two vectors.
+    macro_rules! binary {
+        ($($name:ident: $op:ident),* $(,)?) => {$(
+            #[inline(always)]
+            fn $name(self, a: __m256, b: __m256) -> __m256 {
+                self.0.avx.$op(a, b)
+            }
+        )*};
+    }
+
+    impl Avx8 {
+        /// A comparison's lanes as bits.
+        #[inline(always)]
+        fn bits(self, m: __m256) -> u32 {
+            self.0.avx._mm256_movemask_ps(m) as u32
+        }
+    }
+
     impl Lanes<8> for Avx8 {
         type F = __m256;
         #[inline(always)]
@@ -96,35 +114,20 @@ mod avx {
         fn splat(self, x: f32) -> __m256 {
             self.0.avx._mm256_set1_ps(x)
         }
-        #[inline(always)]
-        fn add(self, a: __m256, b: __m256) -> __m256 {
-            self.0.avx._mm256_add_ps(a, b)
-        }
-        #[inline(always)]
-        fn sub(self, a: __m256, b: __m256) -> __m256 {
-            self.0.avx._mm256_sub_ps(a, b)
-        }
-        #[inline(always)]
-        fn mul(self, a: __m256, b: __m256) -> __m256 {
-            self.0.avx._mm256_mul_ps(a, b)
-        }
-        #[inline(always)]
-        fn max(self, a: __m256, b: __m256) -> __m256 {
-            self.0.avx._mm256_max_ps(a, b)
-        }
-        #[inline(always)]
-        fn min(self, a: __m256, b: __m256) -> __m256 {
-            self.0.avx._mm256_min_ps(a, b)
+        binary! {
+            add: _mm256_add_ps,
+            sub: _mm256_sub_ps,
+            mul: _mm256_mul_ps,
+            max: _mm256_max_ps,
+            min: _mm256_min_ps,
         }
         #[inline(always)]
         fn le(self, a: __m256, b: __m256) -> u32 {
-            let m = self.0.avx._mm256_cmp_ps::<_CMP_LE_OQ>(a, b);
-            self.0.avx._mm256_movemask_ps(m) as u32
+            self.bits(self.0.avx._mm256_cmp_ps::<_CMP_LE_OQ>(a, b))
         }
         #[inline(always)]
         fn lt(self, a: __m256, b: __m256) -> u32 {
-            let m = self.0.avx._mm256_cmp_ps::<_CMP_LT_OQ>(a, b);
-            self.0.avx._mm256_movemask_ps(m) as u32
+            self.bits(self.0.avx._mm256_cmp_ps::<_CMP_LT_OQ>(a, b))
         }
     }
 }

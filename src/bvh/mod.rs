@@ -315,8 +315,8 @@ fn f32_up(v: f64) -> f32 {
 
 /// The binary tree over `boxes` our tree is collapsed from, one box a
 /// leaf (the 4-wide node test then culls single triangles, cheaper than
-/// their exact test: measured 1.2–2× the rays/s of 4 or 8 per leaf on
-/// benches/rays.rs): [`ploc_tree`], then our reinsertion (`reinsert.rs`:
+/// their exact test: chosen by measurement, see benches/README.md §
+/// Building the tree): [`ploc_tree`], then our reinsertion (`reinsert.rs`:
 /// the improvement of obvhs's reinsertion passes, whose searches are
 /// quadratic on heavily overlapping boxes, within a budget of order
 /// `n log n`). Also returns the reinsertion's work.
@@ -373,10 +373,9 @@ impl Bvh {
         // Exact copies (the same three corners in the same order, so that
         // every rounded answer is the same bits) are indexed once, as their
         // first: a copy blocks nothing its first does not, and ties go to
-        // the lower index anyway. Without this, 10⁴ copies of one triangle
-        // took the build 2.8 s (identical boxes cannot be split) and every
-        // ray through them 10⁴ tests. The pass costs about 15 ms per 10⁵
-        // triangles (2.4 % of their build).
+        // the lower index anyway. Without this, identical boxes, which
+        // cannot be split, slow the build, and every ray through them tests
+        // each copy (measured in benches/README.md § Building the tree).
         let mut seen = std::collections::HashSet::with_capacity(occluders.len());
         for (i, t) in occluders.triangles().iter().enumerate() {
             if !t.iter().all(|v| v.is_finite()) {

@@ -27,10 +27,9 @@
 //! The pruning needs areas that differ: where boxes overlap heavily — a
 //! soup of large triangles crossing one another — every subtree's area is
 //! close to its parent's, the credit hardly falls on the way down, and a
-//! search visits most of the tree. With every node a candidate the build
-//! was then quadratic (obvhs's optimiser, used before: 30,000 such
-//! triangles took 3.6 s, 100,000 34 s; now 0.19 s and 0.72 s, see
-//! benches/README.md § Building the tree). So the searches share a
+//! search visits most of the tree. With every node a candidate (obvhs's
+//! optimiser) the build is quadratic there (measured in benches/README.md
+//! § Building the tree). So the searches share a
 //! budget of [`VISITS_PER_NODE_LOG`]` · n · (⌊log₂ n⌋ + 1)` node visits (`n` the
 //! node count): a search that exhausts it keeps the best target found so
 //! far, and no search follows. Ordinary scenes need under a third of it
@@ -179,6 +178,7 @@ fn best_target(
 
 #[cfg(test)]
 mod tests {
+    use super::super::tests::scattered_triangle;
     use super::super::{binary_tree, ploc_tree};
     use super::*;
     use crate::arbitrary::mesh::icosphere;
@@ -250,10 +250,10 @@ mod tests {
 
     /// On heavily overlapping boxes the searches hit the budget, so the
     /// work grows as `n log n`: four times the triangles, at most about
-    /// 4.7 times the visits (the budget's `n (⌊log₂ n⌋ + 1)`). Without the
-    /// budget — the unbounded search, as obvhs's optimiser runs it — 1,000
-    /// → 4,000 triangles took 9.7× the visits, 165 → 398 a node. The tree
-    /// stays a tree over every triangle, cheaper than PLOC's.
+    /// 4.7 times the visits (the budget's `n (⌊log₂ n⌋ + 1)`; without the
+    /// budget the visits grow quadratically, benches/README.md § Building
+    /// the tree). The tree stays a tree over every triangle, cheaper than
+    /// PLOC's.
     #[test]
     fn work_on_overlapping_boxes_grows_as_n_log_n() {
         let mut visits = Vec::new();
@@ -278,22 +278,9 @@ mod tests {
     #[test]
     fn ordinary_scenes_need_at_most_half_the_budget() {
         let mut rng = Rng::new(29);
+        let (lo, hi) = (DVec3::new(-1.0, -1.0, 0.1), DVec3::new(1.0, 1.0, 0.9));
         let soup: Vec<[DVec3; 3]> = (0..20_000)
-            .map(|_| {
-                let c = DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(0.1, 0.9),
-                );
-                [0, 1, 2].map(|_| {
-                    c + DVec3::splat(0.01)
-                        * DVec3::new(
-                            rng.uniform(-1.0, 1.0),
-                            rng.uniform(-1.0, 1.0),
-                            rng.uniform(-1.0, 1.0),
-                        )
-                })
-            })
+            .map(|_| scattered_triangle(&mut rng, lo, hi, 0.01))
             .collect();
         let sphere = icosphere(5);
         let sphere: Vec<[DVec3; 3]> = sphere
@@ -326,21 +313,7 @@ mod tests {
             let n = 2 + rng.below(600) as usize;
             let size = rng.log_uniform(-4.0, 1.0);
             let triangles: Vec<[DVec3; 3]> = (0..n)
-                .map(|_| {
-                    let c = DVec3::new(
-                        rng.uniform(-1.0, 1.0),
-                        rng.uniform(-1.0, 1.0),
-                        rng.uniform(-1.0, 1.0),
-                    );
-                    [0, 1, 2].map(|_| {
-                        c + size
-                            * DVec3::new(
-                                rng.uniform(-1.0, 1.0),
-                                rng.uniform(-1.0, 1.0),
-                                rng.uniform(-1.0, 1.0),
-                            )
-                    })
-                })
+                .map(|_| scattered_triangle(&mut rng, -DVec3::ONE, DVec3::ONE, size))
                 .collect();
             let boxes = boxes(&triangles);
             let ploc = ploc_tree(&boxes);

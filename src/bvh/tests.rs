@@ -22,8 +22,9 @@ fn coordinate(rng: &mut Rng, centre: f64, scale: f64) -> f64 {
 }
 
 /// A triangle whose corners lie within `r` on each axis of a centre drawn
-/// uniformly from the box `lo..hi` (the soups of the tests below).
-fn scattered_triangle(rng: &mut Rng, lo: DVec3, hi: DVec3, r: f64) -> [DVec3; 3] {
+/// uniformly from the box `lo..hi` (the soups of the tests below and of
+/// `reinsert.rs`'s).
+pub(super) fn scattered_triangle(rng: &mut Rng, lo: DVec3, hi: DVec3, r: f64) -> [DVec3; 3] {
     let c = DVec3::new(
         rng.uniform(lo.x, hi.x),
         rng.uniform(lo.y, hi.y),
@@ -277,8 +278,8 @@ fn shallow_and_agrees(seed: u64, change: impl Fn(f64) -> [DVec3; 3]) {
 }
 
 /// Parallel layers stacked closely (one triangle lifted by 10⁻⁴ a layer,
-/// shuffled), which `nested.rs` takes as one run (PLOC chained on them as
-/// on nested ones: 10⁴ layers took 2.9 s): the tree holds each once, its
+/// shuffled), which `nested.rs` takes as one run (PLOC chains on them as
+/// on nested ones: benches/README.md § Building the tree): the tree holds each once, its
 /// boxes contain their triangles, it is shallow, and rays answer as the
 /// triangles do.
 #[test]

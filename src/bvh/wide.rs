@@ -69,12 +69,10 @@ impl WideNode {
 /// The cost of visiting a node, in the surface area heuristic the collapse
 /// minimises, per unit of its area.
 const NODE_COST: f32 = 1.0;
-/// The cost of testing a pack, per unit of its area. A node visit costs
-/// about 50 instructions and four cache lines, a pack's test about 190
-/// and three to five lines; equal costs were measured best (higher pack
-/// costs make smaller packs — fewer instructions on the soup of
-/// `examples/ray_corpus.rs`, 1.3: 3,730 against 4,126 a ray — but more
-/// nodes and memory, 9.0 against 6.9 MB, and more time).
+/// The cost of testing a pack, per unit of its area: equal to a node
+/// visit's, chosen by measurement (higher pack costs make smaller packs,
+/// fewer instructions a ray but more nodes, memory and time; see
+/// benches/README.md § Building the tree).
 const PACK_COST: f32 = 1.0;
 
 /// An entry of the binary tree, made explicit for the collapse.

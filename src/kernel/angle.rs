@@ -6,9 +6,9 @@
 //! the operating system and its version. This one is the same arithmetic
 //! everywhere, so the references built on it give bit-identical answers on
 //! every platform. It is within 1.5 ulp (measured maximum over 10⁶ stiff
-//! cases: 1.37 ulp in `f64`, 1.41 ulp in `f32`; `tests/angle.rs`), and costs
-//! about 1.3× glibc's `atan2` (13.7 ns against 10.6 ns per call in one run on
-//! the benchmark machine, `benches/README.md`).
+//! cases: 1.37 ulp in `f64`, 1.41 ulp in `f32`; `tests/angle.rs`), at a
+//! cost somewhat above glibc's `atan2` (measured in `benches/README.md` §
+//! Disk occlusion against a ray–triangle test).
 //!
 //! Method: with `t = min(|x|, |y|) / max(|x|, |y|) ∈ [0, 1]`, pick one of
 //! `c ∈ {0, ½, 1}` and write `atan t = atan c + atan u` with
@@ -19,7 +19,7 @@
 //! double-word constants, and the octant and quadrant are restored by
 //! `π/2 − ·` and `π − ·` on the unevaluated sum.
 
-use crate::kernel::float::Float;
+use crate::kernel::float::{both_precisions, Float};
 use crate::kernel::lanes::Real;
 
 /// The constants of one precision's arctangent.
@@ -223,35 +223,31 @@ pub(crate) fn core<T: AngleFloat, R: Real<Scalar = T>>(
     (hi + lo).copysign(y)
 }
 
-/// `f64` angle kernels.
-pub mod f64 {
-    /// The four-quadrant arctangent of `y / x`, in `[−π, π]`, with the same
-    /// special values as the IEEE `atan2` for signed zeros (`atan2(±0, +0) =
-    /// ±0`, `atan2(±0, −0) = ±π`).
-    ///
-    /// **Accuracy**: within 1.5 ulp of the true angle (measured maximum over
-    /// 10⁶ stiff cases against a 256-bit evaluation, 1.37 ulp in `f64`,
-    /// 1.41 in `f32`: `tests/angle.rs`); the result for small angles
-    /// (`|y| ≪ x`) keeps full relative accuracy, which thin circular
-    /// segments rely on. Exactly odd: `atan2(−y, x) = −atan2(y, x)` bit for
-    /// bit.
-    ///
-    /// **Edge of the domain**: NaN input gives `0` (no kernel returns NaN;
-    /// this is the documented total answer); infinite input is passed to
-    /// the platform's `atan2` (its standard special values).
-    #[must_use]
-    #[inline]
-    pub fn atan2(y: f64, x: f64) -> f64 {
-        super::atan2(y, x)
-    }
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        /// The four-quadrant arctangent of `y / x`, in `[−π, π]`, with the same
+        /// special values as the IEEE `atan2` for signed zeros (`atan2(±0, +0) =
+        /// ±0`, `atan2(±0, −0) = ±π`).
+        ///
+        /// **Accuracy**: within 1.5 ulp of the true angle (measured maximum over
+        /// 10⁶ stiff cases against a 256-bit evaluation, 1.37 ulp in `f64`,
+        /// 1.41 in `f32`: `tests/angle.rs`); the result for small angles
+        /// (`|y| ≪ x`) keeps full relative accuracy, which thin circular
+        /// segments rely on. Exactly odd: `atan2(−y, x) = −atan2(y, x)` bit for
+        /// bit.
+        ///
+        /// **Edge of the domain**: NaN input gives `0` (no kernel returns NaN;
+        /// this is the documented total answer); infinite input is passed to
+        /// the platform's `atan2` (its standard special values).
+        #[must_use]
+        #[inline]
+        pub fn atan2(y: $T, x: $T) -> $T {
+            super::atan2(y, x)
+        }
+    };
 }
 
-/// `f32` angle kernels.
-pub mod f32 {
-    /// [`f64::atan2`](super::f64::atan2) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn atan2(y: f32, x: f32) -> f32 {
-        super::atan2(y, x)
-    }
-}
+both_precisions!(precision);

@@ -35,7 +35,7 @@
 //! Both functions are in [`f32`](mod@f32) and [`f64`](mod@f64) from one body.
 
 use crate::kernel::falloff::{self, Falloff, FalloffFloat};
-use crate::kernel::float::Float;
+use crate::kernel::float::{both_precisions, Float};
 
 /// [`f64::max_distortion`] in either precision.
 #[inline]
@@ -66,117 +66,96 @@ pub(crate) fn intensity<T: FalloffFloat>(d: T, dmax: T, falloff: Falloff) -> T {
     falloff::eval(falloff, penumbra_position(d, dmax))
 }
 
-/// `f64` versions.
-pub mod f64 {
-    use crate::kernel::falloff::Falloff;
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use crate::kernel::falloff::Falloff;
 
-    /// SSOC's maximal distortion at receiver depth `z_receiver` for a
-    /// silhouette edge at depth `z_near` and a sphere light of radius
-    /// `light_radius`: `dmax = 2r·(1/z_n − 1/z_p)`, in light-image-plane
-    /// units (SSOC §3.2.1; [footprint radius](crate::definitions#footprint-radius)).
-    ///
-    /// **Domain**: `r ≥ 0`, `0 < z_n < z_p ≤ +∞`, depths along the light
-    /// frame's `+z`. `z_p = +∞` gives the limit `2r/z_n`.
-    ///
-    /// **Edge of the domain**: a receiver not behind the edge
-    /// (`z_p ≤ z_n`) gives `0` (no penumbra from this edge), and so does
-    /// any input outside the domain: `r ≤ 0`, `z_n ≤ 0`, `z_n = +∞`, or a
-    /// NaN anywhere. Never NaN, never negative; `+∞` only when the true
-    /// value exceeds the largest finite number (or `r = +∞`).
-    ///
-    /// **Numerics**: the difference of reciprocals cancels as `z_p → z_n`;
-    /// it is evaluated as `(w·r/z_n)·2` with `w = 1 − z_n/z_p` formed as
-    /// `(z_p − z_n)/z_p` for `z_p ≤ 2z_n`, where the difference is exact
-    /// (Sterbenz: a receiver a few ulps behind the edge keeps a relative
-    /// error of a few ulps), and as `1 − z_n/z_p` beyond, where nothing
-    /// cancels. No product `z_n·z_p` can overflow. Each step is a
-    /// correctly rounded monotone function, so `dmax` is non-decreasing
-    /// in `z_p` at every float, not only up to rounding.
-    ///
-    /// **Accuracy**: `w` is within `2·2⁻⁵³` relative (`f32`: `2·2⁻²⁴`),
-    /// the product and the quotient round once each and the doubling is
-    /// exact: relative error at most `4·2⁻⁵³`, i.e. 4 ulp, when
-    /// `r·(1 − z_n/z_p)` is a normal number. Measured against a
-    /// double-double evaluation over the stiff generator
-    /// (`tests/distortion.rs`, 4·10⁶ samples): max 2.54 ulp (`f64`),
-    /// 2.66 ulp (`f32`); table in `docs/accuracy/kernels.md`.
-    #[must_use]
-    #[inline]
-    pub fn max_distortion(light_radius: f64, z_near: f64, z_receiver: f64) -> f64 {
-        super::max_distortion(light_radius, z_near, z_receiver)
-    }
+        /// SSOC's maximal distortion at receiver depth `z_receiver` for a
+        /// silhouette edge at depth `z_near` and a sphere light of radius
+        /// `light_radius`: `dmax = 2r·(1/z_n − 1/z_p)`, in light-image-plane
+        /// units (SSOC §3.2.1; [footprint radius](crate::definitions#footprint-radius)).
+        ///
+        /// **Domain**: `r ≥ 0`, `0 < z_n < z_p ≤ +∞`, depths along the light
+        /// frame's `+z`. `z_p = +∞` gives the limit `2r/z_n`.
+        ///
+        /// **Edge of the domain**: a receiver not behind the edge
+        /// (`z_p ≤ z_n`) gives `0` (no penumbra from this edge), and so does
+        /// any input outside the domain: `r ≤ 0`, `z_n ≤ 0`, `z_n = +∞`, or a
+        /// NaN anywhere. Never NaN, never negative; `+∞` only when the true
+        /// value exceeds the largest finite number (or `r = +∞`).
+        ///
+        /// **Numerics**: the difference of reciprocals cancels as `z_p → z_n`;
+        /// it is evaluated as `(w·r/z_n)·2` with `w = 1 − z_n/z_p` formed as
+        /// `(z_p − z_n)/z_p` for `z_p ≤ 2z_n`, where the difference is exact
+        /// (Sterbenz: a receiver a few ulps behind the edge keeps a relative
+        /// error of a few ulps), and as `1 − z_n/z_p` beyond, where nothing
+        /// cancels. No product `z_n·z_p` can overflow. Each step is a
+        /// correctly rounded monotone function, so `dmax` is non-decreasing
+        /// in `z_p` at every float, not only up to rounding.
+        ///
+        /// **Accuracy**: `w` is within `2·2⁻⁵³` relative (`f32`: `2·2⁻²⁴`),
+        /// the product and the quotient round once each and the doubling is
+        /// exact: relative error at most `4·2⁻⁵³`, i.e. 4 ulp, when
+        /// `r·(1 − z_n/z_p)` is a normal number. Measured against a
+        /// double-double evaluation over the stiff generator
+        /// (`tests/distortion.rs`, 4·10⁶ samples): max 2.54 ulp (`f64`),
+        /// 2.66 ulp (`f32`); table in `docs/accuracy/kernels.md`.
+        #[must_use]
+        #[inline]
+        pub fn max_distortion(light_radius: $T, z_near: $T, z_receiver: $T) -> $T {
+            super::max_distortion(light_radius, z_near, z_receiver)
+        }
 
-    /// The normalised penumbra position `t = 1 − d/dmax ∈ [0, 1]` of a
-    /// fragment whose distortion to the outer edge of the distortion
-    /// region is `d`, when the largest distortion at its depth is `dmax`
-    /// (SSOC eq. 1): `1` at the outer edge of the penumbra (`d = 0`),
-    /// `0` at the inner edge (`d = dmax`).
-    ///
-    /// **Domain**: `0 ≤ d ≤ dmax`, `dmax > 0`; evaluated as
-    /// `(dmax − d)/dmax`, the subtraction exact for `d ≥ dmax/2`
-    /// (Sterbenz), so at most two roundings (relative error ≤ `2·2⁻⁵³`,
-    /// i.e. 2 ulp; measured max 1.39 ulp in `f64`, 1.45 ulp in `f32`),
-    /// and the quotient never leaves `[0, 1]` (no division of a large
-    /// `d` by a tiny `dmax`).
-    ///
-    /// **Edge of the domain** (total, never NaN):
-    /// - `d ≤ 0` (including `−0` and `−∞`): `1`, whatever `dmax` is;
-    /// - `d ≥ dmax`, or `d > 0` with `dmax ≤ 0` or NaN: `0` — the hard step
-    ///   of a zero-width penumbra;
-    /// - `dmax = +∞` with finite `d`: `1` (the limit);
-    /// - `d` NaN: `0`.
-    #[must_use]
-    #[inline]
-    pub fn penumbra_position(d: f64, dmax: f64) -> f64 {
-        super::penumbra_position(d, dmax)
-    }
+        /// The normalised penumbra position `t = 1 − d/dmax ∈ [0, 1]` of a
+        /// fragment whose distortion to the outer edge of the distortion
+        /// region is `d`, when the largest distortion at its depth is `dmax`
+        /// (SSOC eq. 1): `1` at the outer edge of the penumbra (`d = 0`),
+        /// `0` at the inner edge (`d = dmax`).
+        ///
+        /// **Domain**: `0 ≤ d ≤ dmax`, `dmax > 0`; evaluated as
+        /// `(dmax − d)/dmax`, the subtraction exact for `d ≥ dmax/2`
+        /// (Sterbenz), so at most two roundings (relative error ≤ `2·2⁻⁵³`,
+        /// i.e. 2 ulp; measured max 1.39 ulp in `f64`, 1.45 ulp in `f32`),
+        /// and the quotient never leaves `[0, 1]` (no division of a large
+        /// `d` by a tiny `dmax`).
+        ///
+        /// **Edge of the domain** (total, never NaN):
+        /// - `d ≤ 0` (including `−0` and `−∞`): `1`, whatever `dmax` is;
+        /// - `d ≥ dmax`, or `d > 0` with `dmax ≤ 0` or NaN: `0` — the hard step
+        ///   of a zero-width penumbra;
+        /// - `dmax = +∞` with finite `d`: `1` (the limit);
+        /// - `d` NaN: `0`.
+        #[must_use]
+        #[inline]
+        pub fn penumbra_position(d: $T, dmax: $T) -> $T {
+            super::penumbra_position(d, dmax)
+        }
 
-    /// SSOC's shadow intensity (eq. 1 with the paper's smoothing,
-    /// §3.2.2): `falloff(1 − d/dmax)` = `falloff(`[`penumbra_position`]`)`,
-    /// `1` fully lit, `0` fully shadowed.
-    ///
-    /// **Domain and edge of the domain**: as [`penumbra_position`]:
-    /// `d ≤ 0` gives `1`; `dmax = 0` (a receiver at the edge's depth or in
-    /// front of it, see [`max_distortion`]) is a hard step, `1` for
-    /// `d ≤ 0` and `0` for `d > 0`; `d` beyond `dmax` gives `0`; NaN `d`
-    /// gives `0`. Never NaN; always in `[0, 1]`; non-increasing in `d`.
-    ///
-    /// **Accuracy**: the error of `t` (≤ 2 ulp relative) times the
-    /// falloff's slope (≤ 1.5 for Bernstein, ≤ 4/π for the exact
-    /// falloff), plus the falloff's own error (see
-    /// [`falloff::bernstein`](crate::kernel::falloff::f64::bernstein),
-    /// [`falloff::disk_edge_falloff`](crate::kernel::falloff::f64::disk_edge_falloff)); measured:
-    /// `tests/distortion.rs`, `docs/accuracy/kernels.md`.
-    #[must_use]
-    #[inline]
-    pub fn intensity(d: f64, dmax: f64, falloff: Falloff) -> f64 {
-        super::intensity(d, dmax, falloff)
-    }
+        /// SSOC's shadow intensity (eq. 1 with the paper's smoothing,
+        /// §3.2.2): `falloff(1 − d/dmax)` = `falloff(`[`penumbra_position`]`)`,
+        /// `1` fully lit, `0` fully shadowed.
+        ///
+        /// **Domain and edge of the domain**: as [`penumbra_position`]:
+        /// `d ≤ 0` gives `1`; `dmax = 0` (a receiver at the edge's depth or in
+        /// front of it, see [`max_distortion`]) is a hard step, `1` for
+        /// `d ≤ 0` and `0` for `d > 0`; `d` beyond `dmax` gives `0`; NaN `d`
+        /// gives `0`. Never NaN; always in `[0, 1]`; non-increasing in `d`.
+        ///
+        /// **Accuracy**: the error of `t` (≤ 2 ulp relative) times the
+        /// falloff's slope (≤ 1.5 for Bernstein, ≤ 4/π for the exact
+        /// falloff), plus the falloff's own error (see
+        /// [`falloff::bernstein`](crate::kernel::falloff::f64::bernstein),
+        /// [`falloff::disk_edge_falloff`](crate::kernel::falloff::f64::disk_edge_falloff)); measured:
+        /// `tests/distortion.rs`, `docs/accuracy/kernels.md`.
+        #[must_use]
+        #[inline]
+        pub fn intensity(d: $T, dmax: $T, falloff: Falloff) -> $T {
+            super::intensity(d, dmax, falloff)
+        }
+    };
 }
 
-/// `f32` versions: [`f64`](mod@f64)'s, in single precision (its docs give
-/// both precisions' bounds).
-pub mod f32 {
-    use crate::kernel::falloff::Falloff;
-
-    /// [`f64::max_distortion`](super::f64::max_distortion) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn max_distortion(light_radius: f32, z_near: f32, z_receiver: f32) -> f32 {
-        super::max_distortion(light_radius, z_near, z_receiver)
-    }
-
-    /// [`f64::penumbra_position`](super::f64::penumbra_position) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn penumbra_position(d: f32, dmax: f32) -> f32 {
-        super::penumbra_position(d, dmax)
-    }
-
-    /// [`f64::intensity`](super::f64::intensity) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn intensity(d: f32, dmax: f32, falloff: Falloff) -> f32 {
-        super::intensity(d, dmax, falloff)
-    }
-}
+both_precisions!(precision);

@@ -48,6 +48,7 @@ pub enum Falloff {
 
 use crate::kernel::angle::{self, AngleFloat};
 use crate::kernel::eft::two_prod;
+use crate::kernel::float::both_precisions;
 
 /// The falloff kernels' constants of one precision.
 pub(crate) trait FalloffFloat: AngleFloat {
@@ -155,16 +156,26 @@ fn pow2<T: FalloffFloat>(e: i32) -> T {
     T::of(2.0).powi(e)
 }
 
+/// Both falloffs' value outside `(0, 1)`: `0` for `t ≤ 0` and NaN, `1`
+/// for `t ≥ 1`; `None` inside.
+#[inline(always)]
+fn at_an_end<T: FalloffFloat>(t: T) -> Option<T> {
+    if t.is_nan() || t <= T::of(0.0) {
+        Some(T::of(0.0))
+    } else if t >= T::of(1.0) {
+        Some(T::of(1.0))
+    } else {
+        None
+    }
+}
+
 /// [`f64::bernstein`] in either precision.
 #[inline]
 pub(crate) fn bernstein<T: FalloffFloat>(t: T) -> T {
+    if let Some(end) = at_an_end(t) {
+        return end;
+    }
     let k = T::of;
-    if t.is_nan() || t <= k(0.0) {
-        return k(0.0);
-    }
-    if t >= k(1.0) {
-        return k(1.0);
-    }
     if t < T::TINY {
         // 3t², computed at scale 2^(2·SCALE_EXP).
         let ts = t * pow2(T::SCALE_EXP);
@@ -210,13 +221,10 @@ fn one_minus<T: FalloffFloat>(hi: T, lo: T) -> T {
 /// [`f64::disk_edge_falloff`] in either precision.
 #[inline]
 pub(crate) fn disk_edge_falloff<T: FalloffFloat>(t: T) -> T {
+    if let Some(end) = at_an_end(t) {
+        return end;
+    }
     let k = T::of;
-    if t.is_nan() || t <= k(0.0) {
-        return k(0.0);
-    }
-    if t >= k(1.0) {
-        return k(1.0);
-    }
     let series_max = T::SERIES_MAX;
     if t < T::TINY {
         // (16/(3π)) t^(3/2), computed at scale 2^(3·SCALE_EXP/2).
@@ -330,119 +338,98 @@ pub(crate) fn eval<T: FalloffFloat>(falloff: Falloff, t: T) -> T {
     }
 }
 
-/// `f64` versions.
-pub mod f64 {
-    use super::Falloff;
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use super::Falloff;
 
-    /// The Bernstein smoothstep `3t² − 2t³` (SSOC, Mo, Popescu, Wyman,
-    /// §3.2.2: "the Bernstein interpolant s = 3t² − 2t³").
-    ///
-    /// **Domain**: `[0, 1]`; below `0` the result is `0`, above `1` it is
-    /// `1` (clamped). NaN gives `0`. Never NaN.
-    ///
-    /// **Properties**: `bernstein(0) = 0`, `bernstein(1/2) = 1/2`,
-    /// `bernstein(1) = 1` exactly; non-decreasing (checked at adjacent
-    /// floats, and for every `f32` in `[0, 1]`); `t > 1/2` is evaluated
-    /// as `1 − bernstein(1 − t)` with `1 − t` exact, so
-    /// `bernstein(t) + bernstein(1 − t) = 1` to about an ulp.
-    ///
-    /// **Numerics**: `t²(3 − 2t)` with the rounding errors of the square,
-    /// the difference and the product carried along (error-free
-    /// transformations: exact products with or without hardware FMA)
-    /// and one final rounding; below `TINY`
-    /// (`2⁻⁴⁰⁰` in `f64`, `2⁻⁴⁰` in `f32`) `3t²` at an exact power-of-two
-    /// scale, so no intermediate is subnormal while the result is normal.
-    ///
-    /// **Accuracy**: measured against a double-double evaluation over the
-    /// stiff generator (`tests/falloff.rs`): max 0.50 ulp (`f64` and
-    /// `f32`) for normal results, 0.75 ulp for subnormal results (two
-    /// roundings); table in `docs/accuracy/kernels.md`.
-    #[must_use]
-    #[inline]
-    pub fn bernstein(t: f64) -> f64 {
-        super::bernstein(t)
-    }
+        /// The Bernstein smoothstep `3t² − 2t³` (SSOC, Mo, Popescu, Wyman,
+        /// §3.2.2: "the Bernstein interpolant s = 3t² − 2t³").
+        ///
+        /// **Domain**: `[0, 1]`; below `0` the result is `0`, above `1` it is
+        /// `1` (clamped). NaN gives `0`. Never NaN.
+        ///
+        /// **Properties**: `bernstein(0) = 0`, `bernstein(1/2) = 1/2`,
+        /// `bernstein(1) = 1` exactly; non-decreasing (checked at adjacent
+        /// floats, and for every `f32` in `[0, 1]`); `t > 1/2` is evaluated
+        /// as `1 − bernstein(1 − t)` with `1 − t` exact, so
+        /// `bernstein(t) + bernstein(1 − t) = 1` to about an ulp.
+        ///
+        /// **Numerics**: `t²(3 − 2t)` with the rounding errors of the square,
+        /// the difference and the product carried along (error-free
+        /// transformations: exact products with or without hardware FMA)
+        /// and one final rounding; below `TINY`
+        /// (`2⁻⁴⁰⁰` in `f64`, `2⁻⁴⁰` in `f32`) `3t²` at an exact power-of-two
+        /// scale, so no intermediate is subnormal while the result is normal.
+        ///
+        /// **Accuracy**: measured against a double-double evaluation over the
+        /// stiff generator (`tests/falloff.rs`): max 0.50 ulp (`f64` and
+        /// `f32`) for normal results, 0.75 ulp for subnormal results (two
+        /// roundings); table in `docs/accuracy/kernels.md`.
+        #[must_use]
+        #[inline]
+        pub fn bernstein(t: $T) -> $T {
+            super::bernstein(t)
+        }
 
-    /// The exact fraction of a uniform disk on the lit side of a straight
-    /// edge, `t` the normalised position across the penumbra:
-    ///
-    /// `F(t) = (acos(1 − 2t) − (1 − 2t)·√(4t(1 − t))) / π`,
-    ///
-    /// the area of the circular segment of height `2t` of the unit disk
-    /// over `π`.
-    ///
-    /// **Domain**: `[0, 1]`; below `0` the result is `0`, above `1` it is
-    /// `1`, NaN gives `0`. Never NaN. `F(0) = 0`, `F(1/2) = 1/2` and
-    /// `F(1) = 1` exactly; non-decreasing (checked at adjacent floats
-    /// across every branch point, and for every `f32` in `[0, 1]`);
-    /// `F(t) + F(1 − t) = 1` to about an ulp.
-    ///
-    /// **Numerics**: the formula as written takes `acos` near `±1` and
-    /// cancels catastrophically for thin slivers. Instead:
-    /// - `t ≤ 0.3`: the series `F = (16/(3π)) t^(3/2) Σ c_k t^k` (see
-    ///   `SERIES` in the source: truncation below 0.05 ulp), its roundings
-    ///   carried along by error-free transformations; below `TINY`
-    ///   (`2⁻⁴⁰⁰`, `f32`: `2⁻⁴⁰`) `t^(3/2)` at an exact power-of-two scale,
-    ///   so the relative accuracy holds for every normal result;
-    /// - `0.3 < t < 0.7`: with `h = 1 − 2t` (exact there, Sterbenz),
-    ///   `F = 1/2 − (asin h + h√(1 − h²))/π`: `asin h` of an exact
-    ///   argument `|h| < 0.4`, as `atan2(h, √(1 − h²))` by the crate's
-    ///   portable [`atan2`](crate::kernel::angle::f64::atan2) (so the
-    ///   result has the same bits on every platform; the sum is
-    ///   stationary in the root's error), a sum of like-signed terms,
-    ///   the sum and the product by `1/π` compensated, and a final
-    ///   subtraction that stays in the result's binade (`F > 0.2523`);
-    /// - `t ≥ 0.7`: `1 − F(1 − t)`, `1 − t` exact, one final rounding.
-    ///
-    /// **Accuracy**: measured against a double-double series evaluation
-    /// (`tests/falloff.rs`; 4·10⁶ samples of the stiff generator, 8·10⁶
-    /// uniform): max 0.95 ulp (`f64`) and 0.96 ulp (`f32`), in the centre
-    /// form, from `atan2`'s error; below 0.75 ulp for `t ≤ 0.3` and
-    /// `t ≥ 0.7`. Table in `docs/accuracy/kernels.md`.
-    ///
-    /// **Source**: circular-segment area.
-    #[must_use]
-    #[inline]
-    pub fn disk_edge_falloff(t: f64) -> f64 {
-        super::disk_edge_falloff(t)
-    }
+        /// The exact fraction of a uniform disk on the lit side of a straight
+        /// edge, `t` the normalised position across the penumbra:
+        ///
+        /// `F(t) = (acos(1 − 2t) − (1 − 2t)·√(4t(1 − t))) / π`,
+        ///
+        /// the area of the circular segment of height `2t` of the unit disk
+        /// over `π`.
+        ///
+        /// **Domain**: `[0, 1]`; below `0` the result is `0`, above `1` it is
+        /// `1`, NaN gives `0`. Never NaN. `F(0) = 0`, `F(1/2) = 1/2` and
+        /// `F(1) = 1` exactly; non-decreasing (checked at adjacent floats
+        /// across every branch point, and for every `f32` in `[0, 1]`);
+        /// `F(t) + F(1 − t) = 1` to about an ulp.
+        ///
+        /// **Numerics**: the formula as written takes `acos` near `±1` and
+        /// cancels catastrophically for thin slivers. Instead:
+        /// - `t ≤ 0.3`: the series `F = (16/(3π)) t^(3/2) Σ c_k t^k` (see
+        ///   `SERIES` in the source: truncation below 0.05 ulp), its roundings
+        ///   carried along by error-free transformations; below `TINY`
+        ///   (`2⁻⁴⁰⁰`, `f32`: `2⁻⁴⁰`) `t^(3/2)` at an exact power-of-two scale,
+        ///   so the relative accuracy holds for every normal result;
+        /// - `0.3 < t < 0.7`: with `h = 1 − 2t` (exact there, Sterbenz),
+        ///   `F = 1/2 − (asin h + h√(1 − h²))/π`: `asin h` of an exact
+        ///   argument `|h| < 0.4`, as `atan2(h, √(1 − h²))` by the crate's
+        ///   portable [`atan2`](crate::kernel::angle::f64::atan2) (so the
+        ///   result has the same bits on every platform; the sum is
+        ///   stationary in the root's error), a sum of like-signed terms,
+        ///   the sum and the product by `1/π` compensated, and a final
+        ///   subtraction that stays in the result's binade (`F > 0.2523`);
+        /// - `t ≥ 0.7`: `1 − F(1 − t)`, `1 − t` exact, one final rounding.
+        ///
+        /// **Accuracy**: measured against a double-double series evaluation
+        /// (`tests/falloff.rs`; 4·10⁶ samples of the stiff generator, 8·10⁶
+        /// uniform): max 0.95 ulp (`f64`) and 0.96 ulp (`f32`), in the centre
+        /// form, from `atan2`'s error; below 0.75 ulp for `t ≤ 0.3` and
+        /// `t ≥ 0.7`. Table in `docs/accuracy/kernels.md`.
+        ///
+        /// **Source**: circular-segment area.
+        #[must_use]
+        #[inline]
+        pub fn disk_edge_falloff(t: $T) -> $T {
+            super::disk_edge_falloff(t)
+        }
 
-    /// The chosen falloff curve at `t` (see [`Falloff`]): `t` clamped to
-    /// `[0, 1]` for [`Falloff::Linear`], [`bernstein`] or
-    /// [`disk_edge_falloff`]. NaN gives `0`; never NaN.
-    #[must_use]
-    #[inline]
-    pub fn eval(falloff: Falloff, t: f64) -> f64 {
-        super::eval(falloff, t)
-    }
+        /// The chosen falloff curve at `t` (see [`Falloff`]): `t` clamped to
+        /// `[0, 1]` for [`Falloff::Linear`], [`bernstein`] or
+        /// [`disk_edge_falloff`]. NaN gives `0`; never NaN.
+        #[must_use]
+        #[inline]
+        pub fn eval(falloff: Falloff, t: $T) -> $T {
+            super::eval(falloff, t)
+        }
+    };
 }
 
-/// `f32` versions: [`f64`](mod@f64)'s, in single precision (its docs give
-/// both precisions' bounds).
-pub mod f32 {
-    use super::Falloff;
-
-    /// [`f64::bernstein`](super::f64::bernstein) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn bernstein(t: f32) -> f32 {
-        super::bernstein(t)
-    }
-
-    /// [`f64::disk_edge_falloff`](super::f64::disk_edge_falloff) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn disk_edge_falloff(t: f32) -> f32 {
-        super::disk_edge_falloff(t)
-    }
-
-    /// [`f64::eval`](super::f64::eval) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn eval(falloff: Falloff, t: f32) -> f32 {
-        super::eval(falloff, t)
-    }
-}
+both_precisions!(precision);
 
 #[cfg(test)]
 mod tests {
@@ -487,15 +474,7 @@ mod tests {
         a
     }
 
-    #[test]
-    fn series_coefficients_match_the_recurrence_f64() {
-        series_coefficients_match_the_recurrence::<f64>();
-    }
-
-    #[test]
-    fn series_coefficients_match_the_recurrence_f32() {
-        series_coefficients_match_the_recurrence::<f32>();
-    }
+    test_in_both_precisions!(series_coefficients_match_the_recurrence);
 
     fn fixed_points<T: FalloffFloat>() {
         let k = T::of;
@@ -509,13 +488,5 @@ mod tests {
         }
     }
 
-    #[test]
-    fn fixed_points_f64() {
-        fixed_points::<f64>();
-    }
-
-    #[test]
-    fn fixed_points_f32() {
-        fixed_points::<f32>();
-    }
+    test_in_both_precisions!(fixed_points);
 }

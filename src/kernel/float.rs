@@ -12,7 +12,7 @@
 //! would be rounded twice); [`Float::of`] is for the exact ones (small
 //! integers, halves).
 
-use crate::kernel::lanes::Real;
+use crate::kernel::lanes::{forward, Real};
 use core::fmt::{Debug, Display};
 use core::ops::{Add, AddAssign, Div, Mul, Neg, Sub};
 
@@ -77,19 +77,6 @@ pub(crate) trait VectorOps<T>:
 {
 }
 
-impl<T, V> VectorOps<T> for V where
-    V: Copy
-        + PartialEq
-        + Debug
-        + Display
-        + Add<Output = V>
-        + Sub<Output = V>
-        + Neg<Output = V>
-        + Mul<T, Output = V>
-        + Div<T, Output = V>
-{
-}
-
 /// What the kernels use of glam's 2D vectors.
 pub(crate) trait Vector2<T>: VectorOps<T> {
     const ZERO: Self;
@@ -124,6 +111,16 @@ pub(crate) trait Vector3<T>: VectorOps<T> {
     fn any_orthonormal_vector(self) -> Self;
     fn is_finite(self) -> bool;
     fn dot(self, other: Self) -> T;
+}
+
+/// Trait methods that read glam's coordinate fields of the same name.
+macro_rules! fields {
+    ($T:ty; $($name:ident),*) => {$(
+        #[inline(always)]
+        fn $name(self) -> $T {
+            self.$name
+        }
+    )*};
 }
 
 macro_rules! float {
@@ -162,44 +159,8 @@ macro_rules! float {
                 u64::from(self.to_bits())
             }
             #[inline(always)]
-            fn is_finite(self) -> bool {
-                <$T>::is_finite(self)
-            }
-            #[inline(always)]
-            fn is_nan(self) -> bool {
-                <$T>::is_nan(self)
-            }
-            #[inline(always)]
-            fn log2(self) -> $T {
-                <$T>::log2(self)
-            }
-            #[inline(always)]
-            fn floor(self) -> $T {
-                <$T>::floor(self)
-            }
-            #[inline(always)]
-            fn ceil(self) -> $T {
-                <$T>::ceil(self)
-            }
-            #[inline(always)]
             fn wide2(v: glam::$V2) -> glam::DVec2 {
                 glam::DVec2::from(v)
-            }
-            #[inline(always)]
-            fn powi(self, n: i32) -> $T {
-                <$T>::powi(self, n)
-            }
-            #[inline(always)]
-            fn clamp(self, min: $T, max: $T) -> $T {
-                <$T>::clamp(self, min, max)
-            }
-            #[inline(always)]
-            fn signum(self) -> $T {
-                <$T>::signum(self)
-            }
-            #[inline(always)]
-            fn sin(self) -> $T {
-                <$T>::sin(self)
             }
             #[inline(always)]
             fn total_cmp(&self, other: &$T) -> core::cmp::Ordering {
@@ -209,119 +170,85 @@ macro_rules! float {
             fn atan2_std(self, x: $T) -> $T {
                 <$T>::atan2(self, x)
             }
+            forward!(<$T>;
+                fn is_finite(self) -> bool;
+                fn is_nan(self) -> bool;
+                fn log2(self) -> $T;
+                fn floor(self) -> $T;
+                fn ceil(self) -> $T;
+                fn powi(self, n: i32) -> $T;
+                fn clamp(self, min: $T, max: $T) -> $T;
+                fn signum(self) -> $T;
+                fn sin(self) -> $T;
+            );
         }
+
+        impl VectorOps<$T> for glam::$V2 {}
+        impl VectorOps<$T> for glam::$V3 {}
 
         impl Vector2<$T> for glam::$V2 {
             const ZERO: Self = glam::$V2::ZERO;
             const X: Self = glam::$V2::X;
             #[inline(always)]
-            fn perp(self) -> Self {
-                glam::$V2::perp(self)
-            }
-            #[inline(always)]
-            fn min(self, other: Self) -> Self {
-                glam::$V2::min(self, other)
-            }
-            #[inline(always)]
-            fn max(self, other: Self) -> Self {
-                glam::$V2::max(self, other)
-            }
-            #[inline(always)]
-            fn length(self) -> $T {
-                glam::$V2::length(self)
-            }
-            #[inline(always)]
-            fn length_squared(self) -> $T {
-                glam::$V2::length_squared(self)
-            }
-            #[inline(always)]
             fn new(x: $T, y: $T) -> Self {
                 glam::$V2::new(x, y)
             }
-            #[inline(always)]
-            fn x(self) -> $T {
-                self.x
-            }
-            #[inline(always)]
-            fn y(self) -> $T {
-                self.y
-            }
-            #[inline(always)]
-            fn abs(self) -> Self {
-                glam::$V2::abs(self)
-            }
-            #[inline(always)]
-            fn max_element(self) -> $T {
-                glam::$V2::max_element(self)
-            }
-            #[inline(always)]
-            fn is_finite(self) -> bool {
-                glam::$V2::is_finite(self)
-            }
-            #[inline(always)]
-            fn dot(self, other: Self) -> $T {
-                glam::$V2::dot(self, other)
-            }
+            fields!($T; x, y);
+            forward!(<glam::$V2>;
+                fn perp(self) -> Self;
+                fn min(self, other: Self) -> Self;
+                fn max(self, other: Self) -> Self;
+                fn length(self) -> $T;
+                fn length_squared(self) -> $T;
+                fn abs(self) -> Self;
+                fn max_element(self) -> $T;
+                fn is_finite(self) -> bool;
+                fn dot(self, other: Self) -> $T;
+            );
         }
 
         impl Vector3<$T> for glam::$V3 {
             const ZERO: Self = glam::$V3::ZERO;
-            #[inline(always)]
-            fn length(self) -> $T {
-                glam::$V3::length(self)
-            }
-            #[inline(always)]
-            fn cross(self, other: Self) -> Self {
-                glam::$V3::cross(self, other)
-            }
-            #[inline(always)]
-            fn try_normalize(self) -> Option<Self> {
-                glam::$V3::try_normalize(self)
-            }
-            #[inline(always)]
-            fn any_orthonormal_vector(self) -> Self {
-                glam::$V3::any_orthonormal_vector(self)
-            }
-            #[inline(always)]
-            fn x(self) -> $T {
-                self.x
-            }
-            #[inline(always)]
-            fn y(self) -> $T {
-                self.y
-            }
-            #[inline(always)]
-            fn z(self) -> $T {
-                self.z
-            }
+            fields!($T; x, y, z);
             #[inline(always)]
             fn with_z(mut self, z: $T) -> Self {
                 self.z = z;
                 self
             }
-            #[inline(always)]
-            fn is_finite(self) -> bool {
-                glam::$V3::is_finite(self)
-            }
-            #[inline(always)]
-            fn dot(self, other: Self) -> $T {
-                glam::$V3::dot(self, other)
-            }
-            #[inline(always)]
-            fn abs(self) -> Self {
-                glam::$V3::abs(self)
-            }
-            #[inline(always)]
-            fn max_element(self) -> $T {
-                glam::$V3::max_element(self)
-            }
-            #[inline(always)]
-            fn normalize_or_zero(self) -> Self {
-                glam::$V3::normalize_or_zero(self)
-            }
+            forward!(<glam::$V3>;
+                fn length(self) -> $T;
+                fn cross(self, other: Self) -> Self;
+                fn try_normalize(self) -> Option<Self>;
+                fn any_orthonormal_vector(self) -> Self;
+                fn is_finite(self) -> bool;
+                fn dot(self, other: Self) -> $T;
+                fn abs(self) -> Self;
+                fn max_element(self) -> $T;
+                fn normalize_or_zero(self) -> Self;
+            );
         }
     };
 }
+
+/// A kernel family's public `f64` and `f32` modules, from the one list of
+/// its public items that the family's own macro `$items` declares for a
+/// precision given as `($T, $V2, $V3)` (the scalar and glam's vectors):
+/// each contract is written once, and each module shows it in full.
+macro_rules! both_precisions {
+    ($items:ident) => {
+        /// `f64` versions.
+        pub mod f64 {
+            $items!(f64, DVec2, DVec3);
+        }
+
+        /// `f32` versions: the same contracts in single precision (their
+        /// docs give both precisions' bounds).
+        pub mod f32 {
+            $items!(f32, Vec2, Vec3);
+        }
+    };
+}
+pub(crate) use both_precisions;
 
 float!(f64, DVec2, DVec3);
 float!(f32, Vec2, Vec3);

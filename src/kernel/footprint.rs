@@ -22,7 +22,7 @@
 //! analysis of the crate uses. Everything is in [`f32`](mod@f32) and
 //! [`f64`](mod@f64) from one body.
 
-use crate::kernel::float::{Float, Vector2, Vector3};
+use crate::kernel::float::{both_precisions, Float, Vector2, Vector3};
 
 /// [`f64::gamma`] in either precision (inlined, so that a constant `n`
 /// folds to a constant).
@@ -133,185 +133,129 @@ pub(crate) fn map_edge<T: Float>(
     Some(((pa - s) / ra, (pb - s) / rb))
 }
 
-/// `f64` versions.
-pub mod f64 {
-    use glam::{DVec2, DVec3};
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use glam::{$V2, $V3};
 
-    /// `γ(n) = n·u/(1 − n·u)`, `u = ε/2` the unit roundoff: `n` rounded
-    /// operations (additions, products, quotients) multiply a result by
-    /// a factor in `[1 − γ(n), 1 + γ(n)]` (Higham, *Accuracy and
-    /// Stability of Numerical Algorithms*, §3.1). Valid for `n·u < 1`.
-    #[must_use]
-    pub const fn gamma(n: u32) -> f64 {
-        let nu = n as f64 * (f64::EPSILON / 2.0);
-        nu / (1.0 - nu)
-    }
+        /// `γ(n) = n·u/(1 − n·u)`, `u = ε/2` the unit roundoff: `n` rounded
+        /// operations (additions, products, quotients) multiply a result by
+        /// a factor in `[1 − γ(n), 1 + γ(n)]` (Higham, *Accuracy and
+        /// Stability of Numerical Algorithms*, §3.1). Valid for `n·u < 1`.
+        #[must_use]
+        pub const fn gamma(n: u32) -> $T {
+            let nu = n as $T * ($T::EPSILON / 2.0);
+            nu / (1.0 - nu)
+        }
 
-    /// The footprint radius `R = r·(1/z_q − 1/z_p)` of a light of
-    /// radius `light_radius` seen from a receiver at depth `z_receiver`
-    /// through depth `z_occluder`, in light-image-plane units (module
-    /// docs).
-    ///
-    /// **Domain**: `r ≥ 0`, `0 < z_q < z_p ≤ +∞`. `z_p = +∞` gives the
-    /// limit `r/z_q`.
-    ///
-    /// **Edge of the domain**: a receiver not behind the occluder
-    /// (`z_p ≤ z_q`) sees no footprint there: `0`; so does any input
-    /// outside the domain (`r ≤ 0`, `z_q ≤ 0`, `z_q = +∞`, a NaN).
-    /// Never NaN, never negative; `+∞` only when the true value
-    /// overflows (or `r = +∞`).
-    ///
-    /// **Numerics**: the difference of reciprocals cancels as
-    /// `z_p → z_q`; it is evaluated as `(r·w)/z_q` with `w = 1 −
-    /// z_q/z_p` formed as `(z_p − z_q)/z_p` for `z_p ≤ 2z_q`, where the
-    /// difference is exact (Sterbenz), and as `1 − z_q/z_p` beyond,
-    /// where nothing cancels. No product `z_q·z_p` can overflow. Each
-    /// step is correctly rounded and monotone, so `R` never decreases
-    /// with `z_p`.
-    ///
-    /// **Accuracy**: relative error at most `4u` (4 ulp) when the result
-    /// is a normal number; measured through [`max_distortion`], which is
-    /// exactly `2R` (`docs/accuracy/kernels.md`: max 2.54 ulp in `f64`,
-    /// 2.66 ulp in `f32`).
-    ///
-    /// [`max_distortion`]: crate::kernel::distortion::f64::max_distortion
-    #[must_use]
-    #[inline]
-    pub fn radius(light_radius: f64, z_occluder: f64, z_receiver: f64) -> f64 {
-        super::radius(light_radius, z_occluder, z_receiver)
-    }
+        /// The footprint radius `R = r·(1/z_q − 1/z_p)` of a light of
+        /// radius `light_radius` seen from a receiver at depth `z_receiver`
+        /// through depth `z_occluder`, in light-image-plane units (module
+        /// docs).
+        ///
+        /// **Domain**: `r ≥ 0`, `0 < z_q < z_p ≤ +∞`. `z_p = +∞` gives the
+        /// limit `r/z_q`.
+        ///
+        /// **Edge of the domain**: a receiver not behind the occluder
+        /// (`z_p ≤ z_q`) sees no footprint there: `0`; so does any input
+        /// outside the domain (`r ≤ 0`, `z_q ≤ 0`, `z_q = +∞`, a NaN).
+        /// Never NaN, never negative; `+∞` only when the true value
+        /// overflows (or `r = +∞`).
+        ///
+        /// **Numerics**: the difference of reciprocals cancels as
+        /// `z_p → z_q`; it is evaluated as `(r·w)/z_q` with `w = 1 −
+        /// z_q/z_p` formed as `(z_p − z_q)/z_p` for `z_p ≤ 2z_q`, where the
+        /// difference is exact (Sterbenz), and as `1 − z_q/z_p` beyond,
+        /// where nothing cancels. No product `z_q·z_p` can overflow. Each
+        /// step is correctly rounded and monotone, so `R` never decreases
+        /// with `z_p`.
+        ///
+        /// **Accuracy**: relative error at most `4u` (4 ulp) when the result
+        /// is a normal number; measured through [`max_distortion`], which is
+        /// exactly `2R` (`docs/accuracy/kernels.md`: max 2.54 ulp in `f64`,
+        /// 2.66 ulp in `f32`).
+        ///
+        /// [`max_distortion`]: crate::kernel::distortion::f64::max_distortion
+        #[must_use]
+        #[inline]
+        pub fn radius(light_radius: $T, z_occluder: $T, z_receiver: $T) -> $T {
+            super::radius(light_radius, z_occluder, z_receiver)
+        }
 
-    /// The depth at which a light of radius `light_radius`, seen
-    /// through depth `z_occluder`, has a footprint of radius `reach`:
-    /// the `z_p` solving `r·(1/z_q − 1/z_p) = reach`, i.e.
-    /// `1/z_p = 1/z_q − reach/r`; receivers shallower than it have a
-    /// smaller footprint. `+∞` when no depth reaches that far (`reach ≥
-    /// r/z_q`), `z_q` for `reach ≤ 0`; NaN input gives `+∞` (no bound).
-    ///
-    /// **Accuracy**: a few roundings (relative `γ(4)` on `1/z_p` away
-    /// from cancellation): callers widen it by a relative margin.
-    #[must_use]
-    #[inline]
-    pub fn reach_depth(light_radius: f64, z_occluder: f64, reach: f64) -> f64 {
-        super::reach_depth(light_radius, z_occluder, reach)
-    }
+        /// The depth at which a light of radius `light_radius`, seen
+        /// through depth `z_occluder`, has a footprint of radius `reach`:
+        /// the `z_p` solving `r·(1/z_q − 1/z_p) = reach`, i.e.
+        /// `1/z_p = 1/z_q − reach/r`; receivers shallower than it have a
+        /// smaller footprint. `+∞` when no depth reaches that far (`reach ≥
+        /// r/z_q`), `z_q` for `reach ≤ 0`; NaN input gives `+∞` (no bound).
+        ///
+        /// **Accuracy**: a few roundings (relative `γ(4)` on `1/z_p` away
+        /// from cancellation): callers widen it by a relative margin.
+        #[must_use]
+        #[inline]
+        pub fn reach_depth(light_radius: $T, z_occluder: $T, reach: $T) -> $T {
+            super::reach_depth(light_radius, z_occluder, reach)
+        }
 
-    /// The light-image-plane projection `(x/z, y/z)` of a light-frame
-    /// point. Not finite for `z = 0` or non-finite input; callers keep
-    /// `z > 0` (see [`clip_near`]).
-    #[must_use]
-    #[inline]
-    pub fn project(q: DVec3) -> DVec2 {
-        super::project::<f64>(q)
-    }
+        /// The light-image-plane projection `(x/z, y/z)` of a light-frame
+        /// point. Not finite for `z = 0` or non-finite input; callers keep
+        /// `z > 0` (see [`clip_near`]).
+        #[must_use]
+        #[inline]
+        pub fn project(q: $V3) -> $V2 {
+            super::project::<$T>(q)
+        }
 
-    /// The part of the light-frame segment `[a, b]` at depth `z ≥ near`
-    /// (in front of a near plane), its order kept; `None` when none is.
-    /// An end already in front is returned bit for bit, and the cut is
-    /// interpolated from the end nearer the plane whichever way the
-    /// segment runs, so an edge shared by two triangles is cut at the
-    /// same point from both, and a far end does not swamp it.
-    #[must_use]
-    #[inline]
-    pub fn clip_near(a: DVec3, b: DVec3, near: f64) -> Option<(DVec3, DVec3)> {
-        super::clip_near::<f64>(a, b, near)
-    }
+        /// The part of the light-frame segment `[a, b]` at depth `z ≥ near`
+        /// (in front of a near plane), its order kept; `None` when none is.
+        /// An end already in front is returned bit for bit, and the cut is
+        /// interpolated from the end nearer the plane whichever way the
+        /// segment runs, so an edge shared by two triangles is cut at the
+        /// same point from both, and a far end does not swamp it.
+        #[must_use]
+        #[inline]
+        pub fn clip_near(a: $V3, b: $V3, near: $T) -> Option<($V3, $V3)> {
+            super::clip_near::<$T>(a, b, near)
+        }
 
-    /// The part of `[a, b]` at depth `z < far` (in front of a receiver
-    /// at depth `far`), its order kept; `None` when none is. Ends
-    /// already in front are returned bit for bit.
-    #[must_use]
-    #[inline]
-    pub fn clip_far(a: DVec3, b: DVec3, far: f64) -> Option<(DVec3, DVec3)> {
-        super::clip_far::<f64>(a, b, far)
-    }
+        /// The part of `[a, b]` at depth `z < far` (in front of a receiver
+        /// at depth `far`), its order kept; `None` when none is. Ends
+        /// already in front are returned bit for bit.
+        #[must_use]
+        #[inline]
+        pub fn clip_far(a: $V3, b: $V3, far: $T) -> Option<($V3, $V3)> {
+            super::clip_far::<$T>(a, b, far)
+        }
 
-    /// An occluder edge mapped into the unit footprint of a receiver:
-    /// the edge's light-frame ends `la`, `lb` (depths `> 0`) with their
-    /// projections `a`, `b`; the receiver at image point `s`, depth
-    /// `z_p`; the light's radius `r`. The edge is first clipped to the
-    /// part in front of the receiver (depth below `z_p·(1 − 10⁻⁶)`, a
-    /// relative hair that keeps the radii away from the `0/0` at the
-    /// receiver's own depth); each end is then mapped with its own
-    /// depth's [`radius`], `(a − s)/R_a`, so that a chain of edges
-    /// stays closed. `None` when no part is in front or a radius is
-    /// not positive.
-    ///
-    /// The image of a straight edge is straight only when its ends
-    /// share a depth; a sloped edge's mapped chord is the method's
-    /// approximation (SISM §5.1's single point of projection).
-    #[must_use]
-    pub fn map_edge(
-        a: DVec2,
-        b: DVec2,
-        la: DVec3,
-        lb: DVec3,
-        s: DVec2,
-        z_p: f64,
-        r: f64,
-    ) -> Option<(DVec2, DVec2)> {
-        super::map_edge::<f64>((a, b), (la, lb), s, z_p, r, 1.0 - 1e-6)
-    }
+        /// An occluder edge mapped into the unit footprint of a receiver:
+        /// the edge's light-frame ends `la`, `lb` (depths `> 0`) with their
+        /// projections `a`, `b`; the receiver at image point `s`, depth
+        /// `z_p`; the light's radius `r`. The edge is first clipped to the
+        /// part in front of the receiver (depth below `z_p·(1 − 10⁻⁶)`, a
+        /// relative hair that keeps the radii away from the `0/0` at the
+        /// receiver's own depth); each end is then mapped with its own
+        /// depth's [`radius`], `(a − s)/R_a`, so that a chain of edges
+        /// stays closed. `None` when no part is in front or a radius is
+        /// not positive.
+        ///
+        /// The image of a straight edge is straight only when its ends
+        /// share a depth; a sloped edge's mapped chord is the method's
+        /// approximation (SISM §5.1's single point of projection).
+        #[must_use]
+        pub fn map_edge(
+            a: $V2,
+            b: $V2,
+            la: $V3,
+            lb: $V3,
+            s: $V2,
+            z_p: $T,
+            r: $T,
+        ) -> Option<($V2, $V2)> {
+            super::map_edge::<$T>((a, b), (la, lb), s, z_p, r, 1.0 - 1e-6)
+        }
+    };
 }
 
-/// `f32` versions: [`f64`](mod@f64)'s, in single precision (its docs give
-/// both precisions' bounds).
-pub mod f32 {
-    use glam::{Vec2, Vec3};
-
-    /// [`f64::gamma`](super::f64::gamma) in `f32`.
-    #[must_use]
-    pub const fn gamma(n: u32) -> f32 {
-        let nu = n as f32 * (f32::EPSILON / 2.0);
-        nu / (1.0 - nu)
-    }
-
-    /// [`f64::radius`](super::f64::radius) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn radius(light_radius: f32, z_occluder: f32, z_receiver: f32) -> f32 {
-        super::radius(light_radius, z_occluder, z_receiver)
-    }
-
-    /// [`f64::reach_depth`](super::f64::reach_depth) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn reach_depth(light_radius: f32, z_occluder: f32, reach: f32) -> f32 {
-        super::reach_depth(light_radius, z_occluder, reach)
-    }
-
-    /// [`f64::project`](super::f64::project) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn project(q: Vec3) -> Vec2 {
-        super::project::<f32>(q)
-    }
-
-    /// [`f64::clip_near`](super::f64::clip_near) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn clip_near(a: Vec3, b: Vec3, near: f32) -> Option<(Vec3, Vec3)> {
-        super::clip_near::<f32>(a, b, near)
-    }
-
-    /// [`f64::clip_far`](super::f64::clip_far) in `f32`.
-    #[must_use]
-    #[inline]
-    pub fn clip_far(a: Vec3, b: Vec3, far: f32) -> Option<(Vec3, Vec3)> {
-        super::clip_far::<f32>(a, b, far)
-    }
-
-    /// [`f64::map_edge`](super::f64::map_edge) in `f32`.
-    #[must_use]
-    pub fn map_edge(
-        a: Vec2,
-        b: Vec2,
-        la: Vec3,
-        lb: Vec3,
-        s: Vec2,
-        z_p: f32,
-        r: f32,
-    ) -> Option<(Vec2, Vec2)> {
-        super::map_edge::<f32>((a, b), (la, lb), s, z_p, r, 1.0 - 1e-6)
-    }
-}
+both_precisions!(precision);

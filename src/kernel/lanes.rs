@@ -77,6 +77,19 @@ pub(crate) trait Real:
     fn any(mask: Self::Mask) -> bool;
 }
 
+/// Trait methods that call the type's own method of the same name with
+/// the same arguments: `forward!(<Type>; fn name(self, arg: A) -> R; …);`
+/// (`#[inline(always)]`, so a call is the type's operation itself).
+macro_rules! forward {
+    (<$ty:ty>; $(fn $name:ident(self $(, $arg:ident: $A:ty)*) -> $R:ty;)*) => {$(
+        #[inline(always)]
+        fn $name(self $(, $arg: $A)*) -> $R {
+            <$ty>::$name(self $(, $arg)*)
+        }
+    )*};
+}
+pub(crate) use forward;
+
 macro_rules! scalar_real {
     ($T:ident) => {
         impl Real for $T {
@@ -87,34 +100,15 @@ macro_rules! scalar_real {
             fn splat(x: $T) -> $T {
                 x
             }
-            #[inline(always)]
-            fn sqrt(self) -> $T {
-                <$T>::sqrt(self)
-            }
-            #[inline(always)]
-            fn abs(self) -> $T {
-                <$T>::abs(self)
-            }
-            #[inline(always)]
-            fn min(self, other: $T) -> $T {
-                <$T>::min(self, other)
-            }
-            #[inline(always)]
-            fn max(self, other: $T) -> $T {
-                <$T>::max(self, other)
-            }
-            #[inline(always)]
-            fn mul_add(self, b: $T, c: $T) -> $T {
-                <$T>::mul_add(self, b, c)
-            }
-            #[inline(always)]
-            fn copysign(self, sign: $T) -> $T {
-                <$T>::copysign(self, sign)
-            }
-            #[inline(always)]
-            fn is_sign_negative(self) -> bool {
-                <$T>::is_sign_negative(self)
-            }
+            forward!(<$T>;
+                fn sqrt(self) -> $T;
+                fn abs(self) -> $T;
+                fn min(self, other: $T) -> $T;
+                fn max(self, other: $T) -> $T;
+                fn mul_add(self, b: $T, c: $T) -> $T;
+                fn copysign(self, sign: $T) -> $T;
+                fn is_sign_negative(self) -> bool;
+            );
             #[inline(always)]
             fn lt(self, other: $T) -> bool {
                 self < other

@@ -96,7 +96,7 @@
 
 use crate::kernel::angle::{self, AngleFloat};
 use crate::kernel::eft::two_prod;
-use crate::kernel::float::{Float, Vector2, Vector3};
+use crate::kernel::float::{both_precisions, Float, Vector2, Vector3};
 use crate::kernel::predicate::{orient2d, orient3d, Sign};
 use glam::DVec2;
 
@@ -493,181 +493,133 @@ pub(crate) fn law_of_sines_fraction<T: LinearFloat>(
     }
 }
 
-/// `f64` versions.
-pub mod f64 {
-    use super::OccluderSide;
-    use glam::{DVec2, DVec3};
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use super::OccluderSide;
+        use glam::{$V2, $V3};
 
-    /// [`VisiblePart`](super::VisiblePart) in `f64`.
-    pub type VisiblePart = super::VisiblePart<f64>;
+        #[doc = concat!("[`VisiblePart`](super::VisiblePart) in `", stringify!($T), "`.")]
+        pub type VisiblePart = super::VisiblePart<$T>;
 
-    impl VisiblePart {
-        /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
-        pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
+        impl VisiblePart {
+            /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
+            pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
 
-        /// Nothing visible: the empty interval at 0.
-        pub const EMPTY: VisiblePart = super::empty_of(0.0);
+            /// Nothing visible: the empty interval at 0.
+            pub const EMPTY: VisiblePart = super::empty_of(0.0);
 
-        /// The interval `[start, end]` of the light's parameter, clamped
-        /// to `[0, 1]` (an empty interval where `end ≤ start`, or for a
-        /// NaN bound), with its fraction `end − start` and the endpoint
-        /// weights `A = (end² − start²)/2`, `B = fraction − A`, each
-        /// formed without cancellation: `A = (end − start)(end +
-        /// start)/2`, `B = (end − start)(2 − end − start)/2`.
-        #[must_use]
-        pub fn interval(start: f64, end: f64) -> VisiblePart {
-            super::interval(start, end)
+            /// The interval `[start, end]` of the light's parameter, clamped
+            /// to `[0, 1]` (an empty interval where `end ≤ start`, or for a
+            /// NaN bound), with its fraction `end − start` and the endpoint
+            /// weights `A = (end² − start²)/2`, `B = fraction − A`, each
+            /// formed without cancellation: `A = (end − start)(end +
+            /// start)/2`, `B = (end − start)(2 − end − start)/2`.
+            #[must_use]
+            pub fn interval(start: $T, end: $T) -> VisiblePart {
+                super::interval(start, end)
+            }
+
+            /// The part visible in both `self` and `other` (the
+            /// intersection of the intervals), as [`VisiblePart::interval`].
+            #[must_use]
+            pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
+                super::interval(self.start.max(other.start), self.end.min(other.end))
+            }
         }
 
-        /// The part visible in both `self` and `other` (the
-        /// intersection of the intervals), as [`VisiblePart::interval`].
+        /// The visible part of the segment light `[l, r]` seen from the
+        /// fragment `f` past the occluding edge point `e`, the occluder lying
+        /// on `side` of the shadow line (OESS substep 4.3). 2D coordinates in the plane through the light and
+        /// the fragment.
+        ///
+        /// **Domain**: finite points, `l ≠ r`, `f` off the light's line; for
+        /// exact decisions, magnitudes as [`orient2d`](crate::kernel::predicate::orient2d).
+        ///
+        /// **Edge of the domain** (see the module docs): fully visible
+        /// ([`VisiblePart::FULL`]) when `e` does not lie between `f` and the
+        /// light's line, when the shadow line is parallel to the light,
+        /// `e = f`, `f` on the light's line, `l = r`, or any coordinate is
+        /// non-finite. When the shadow line meets the light's line outside
+        /// the segment, the light is wholly visible or wholly hidden
+        /// (`fraction = 0`, `start = end`, both weights `0`) as `side` says.
+        /// Never NaN.
+        ///
+        /// **Properties**: `fraction ∈ [0, 1]`, weights `≥ 0`,
+        /// `weight_l + weight_r = fraction` to a few ulps; swapping `l` and
+        /// `r` together with `side` swaps the weights and mirrors the
+        /// interval bit for bit; scaling all points by a power of two changes
+        /// nothing.
+        ///
+        /// **Accuracy**: `|ŝ − s_P| ≤ s_P(1 − s_P)(2u/sin θ_L + 2u/sin θ_R + 4u) + 2u·s_P`
+        /// to first order, `θ_L`, `θ_R` the angles at `f` between the shadow
+        /// line and `fl`, `fr` (module docs); measured in
+        /// `tests/linear_light.rs`, `docs/accuracy/kernels.md`.
         #[must_use]
-        pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
-            super::interval(self.start.max(other.start), self.end.min(other.end))
+        pub fn visible_part(l: $V2, r: $V2, f: $V2, e: $V2, side: OccluderSide) -> VisiblePart {
+            super::visible_part::<$T>(l, r, f, e, side)
         }
-    }
 
-    /// The visible part of the segment light `[l, r]` seen from the
-    /// fragment `f` past the occluding edge point `e`, the occluder lying
-    /// on `side` of the shadow line (OESS substep 4.3). 2D coordinates in the plane through the light and
-    /// the fragment.
-    ///
-    /// **Domain**: finite points, `l ≠ r`, `f` off the light's line; for
-    /// exact decisions, magnitudes as [`orient2d`](crate::kernel::predicate::orient2d).
-    ///
-    /// **Edge of the domain** (see the module docs): fully visible
-    /// ([`VisiblePart::FULL`]) when `e` does not lie between `f` and the
-    /// light's line, when the shadow line is parallel to the light,
-    /// `e = f`, `f` on the light's line, `l = r`, or any coordinate is
-    /// non-finite. When the shadow line meets the light's line outside
-    /// the segment, the light is wholly visible or wholly hidden
-    /// (`fraction = 0`, `start = end`, both weights `0`) as `side` says.
-    /// Never NaN.
-    ///
-    /// **Properties**: `fraction ∈ [0, 1]`, weights `≥ 0`,
-    /// `weight_l + weight_r = fraction` to a few ulps; swapping `l` and
-    /// `r` together with `side` swaps the weights and mirrors the
-    /// interval bit for bit; scaling all points by a power of two changes
-    /// nothing.
-    ///
-    /// **Accuracy**: `|ŝ − s_P| ≤ s_P(1 − s_P)(2u/sin θ_L + 2u/sin θ_R + 4u) + 2u·s_P`
-    /// to first order, `θ_L`, `θ_R` the angles at `f` between the shadow
-    /// line and `fl`, `fr` (module docs); measured in
-    /// `tests/linear_light.rs`, `docs/accuracy/kernels.md`.
-    #[must_use]
-    pub fn visible_part(l: DVec2, r: DVec2, f: DVec2, e: DVec2, side: OccluderSide) -> VisiblePart {
-        super::visible_part::<f64>(l, r, f, e, side)
-    }
+        /// [`visible_part`] for 3D points: `e` is projected orthogonally onto
+        /// the plane through `l`, `r`, `f` (OESS interpolates its occluding
+        /// edges so that `e` lies in that plane; the projection absorbs
+        /// rounding), and the configuration is expressed in an orthonormal
+        /// frame of that plane with origin `l` and first axis along `r − l`.
+        ///
+        /// **Domain and edge of the domain**: as [`visible_part`]; fully
+        /// visible also when `f` is within rounding of the light's line (the
+        /// plane is then undefined). Magnitudes are rescaled by powers of
+        /// two, so any finite input works; the decisions are exact for the
+        /// projected 2D configuration.
+        ///
+        /// **Accuracy**: the projection perturbs each 2D coordinate by a few
+        /// ulps of the configuration's largest coordinate (after rescaling);
+        /// the effect on `s_P` follows the conditioning of [`visible_part`].
+        /// `tests/linear_light.rs` bounds the perturbation by `32u` times the
+        /// largest coordinate (embedding rotation included); measured errors
+        /// stay below 0.15 of that bound.
+        #[must_use]
+        pub fn visible_part_3d(l: $V3, r: $V3, f: $V3, e: $V3, side: OccluderSide) -> VisiblePart {
+            super::visible_part_3d::<$T>(l, r, f, e, side)
+        }
 
-    /// [`visible_part`] for 3D points: `e` is projected orthogonally onto
-    /// the plane through `l`, `r`, `f` (OESS interpolates its occluding
-    /// edges so that `e` lies in that plane; the projection absorbs
-    /// rounding), and the configuration is expressed in an orthonormal
-    /// frame of that plane with origin `l` and first axis along `r − l`.
-    ///
-    /// **Domain and edge of the domain**: as [`visible_part`]; fully
-    /// visible also when `f` is within rounding of the light's line (the
-    /// plane is then undefined). Magnitudes are rescaled by powers of
-    /// two, so any finite input works; the decisions are exact for the
-    /// projected 2D configuration.
-    ///
-    /// **Accuracy**: the projection perturbs each 2D coordinate by a few
-    /// ulps of the configuration's largest coordinate (after rescaling);
-    /// the effect on `s_P` follows the conditioning of [`visible_part`].
-    /// `tests/linear_light.rs` bounds the perturbation by `32u` times the
-    /// largest coordinate (embedding rotation included); measured errors
-    /// stay below 0.15 of that bound.
-    #[must_use]
-    pub fn visible_part_3d(
-        l: DVec3,
-        r: DVec3,
-        f: DVec3,
-        e: DVec3,
-        side: OccluderSide,
-    ) -> VisiblePart {
-        super::visible_part_3d::<f64>(l, r, f, e, side)
-    }
-
-    /// The paper's law-of-sines form of the visible fraction (OESS
-    /// eq. 1): `i = sin β · sin δ / (sin α · sin(π − δ − γ)) = |LP|/|LR|`,
-    /// the fraction from `L` to the point `P` where the ray from `f`
-    /// through `e` meets the light (see the module docs for the angles).
-    /// For comparison with [`visible_part`], which is the stable form.
-    ///
-    /// Angles are `atan2(|cross|, dot)` of rescaled difference vectors, by
-    /// the crate's portable [`atan2`](crate::kernel::angle::f64::atan2);
-    /// the sines are the platform's.
-    ///
-    /// **Domain**: `Some` exactly when `f` is off the light's line and
-    /// the ray from `f` through `e` meets the closed segment `[l, r]`
-    /// (decided exactly); `None` otherwise (including `l = r`, `e = f`,
-    /// non-finite input). Inside the domain the value is clamped to
-    /// `[0, 1]`; if the computed `sin α` vanishes (`f` within rounding of
-    /// the light's line) the quotient is clamped too, and `0/0` gives
-    /// `None`.
-    ///
-    /// **Accuracy**: numerically weaker than [`visible_part`]: a sine near
-    /// `π` has an absolute error of a few `u`, so the relative error grows
-    /// like `u/|π − angle|` as `α`, `β`, `γ` or `δ + γ` approach `π`
-    /// (module docs). Measured (`tests/linear_light.rs`): on
-    /// well-conditioned configurations within `2.1e-15` (`f64`) and
-    /// `1.2e-6` (`f32`) of the exact value, about 3–4 times the stable
-    /// form's error; with the fragment `1e-8` above the middle of a unit
-    /// light, `1.2e-9` off, and with a grazing shadow line at that height,
-    /// `3.5e-8` off, where the stable form is exact to the last bit.
-    #[must_use]
-    pub fn law_of_sines_fraction(l: DVec2, r: DVec2, f: DVec2, e: DVec2) -> Option<f64> {
-        super::law_of_sines_fraction::<f64>(l, r, f, e)
-    }
+        /// The paper's law-of-sines form of the visible fraction (OESS
+        /// eq. 1): `i = sin β · sin δ / (sin α · sin(π − δ − γ)) = |LP|/|LR|`,
+        /// the fraction from `L` to the point `P` where the ray from `f`
+        /// through `e` meets the light (see the module docs for the angles).
+        /// For comparison with [`visible_part`], which is the stable form.
+        ///
+        /// Angles are `atan2(|cross|, dot)` of rescaled difference vectors, by
+        /// the crate's portable [`atan2`](crate::kernel::angle::f64::atan2);
+        /// the sines are the platform's.
+        ///
+        /// **Domain**: `Some` exactly when `f` is off the light's line and
+        /// the ray from `f` through `e` meets the closed segment `[l, r]`
+        /// (decided exactly); `None` otherwise (including `l = r`, `e = f`,
+        /// non-finite input). Inside the domain the value is clamped to
+        /// `[0, 1]`; if the computed `sin α` vanishes (`f` within rounding of
+        /// the light's line) the quotient is clamped too, and `0/0` gives
+        /// `None`.
+        ///
+        /// **Accuracy**: numerically weaker than [`visible_part`]: a sine near
+        /// `π` has an absolute error of a few `u`, so the relative error grows
+        /// like `u/|π − angle|` as `α`, `β`, `γ` or `δ + γ` approach `π`
+        /// (module docs). Measured (`tests/linear_light.rs`): on
+        /// well-conditioned configurations within `2.1e-15` (`f64`) and
+        /// `1.2e-6` (`f32`) of the exact value, about 3–4 times the stable
+        /// form's error; with the fragment `1e-8` above the middle of a unit
+        /// light, `1.2e-9` off, and with a grazing shadow line at that height,
+        /// `3.5e-8` off, where the stable form is exact to the last bit.
+        #[must_use]
+        pub fn law_of_sines_fraction(l: $V2, r: $V2, f: $V2, e: $V2) -> Option<$T> {
+            super::law_of_sines_fraction::<$T>(l, r, f, e)
+        }
+    };
 }
 
-/// `f32` versions: [`f64`](mod@f64)'s, in single precision (its docs give
-/// both precisions' bounds).
-pub mod f32 {
-    use super::OccluderSide;
-    use glam::{Vec2, Vec3};
-
-    /// [`VisiblePart`](super::VisiblePart) in `f32`.
-    pub type VisiblePart = super::VisiblePart<f32>;
-
-    impl VisiblePart {
-        /// The whole light visible: `[0, 1]`, `i = 1`, `A = B = 1/2`.
-        pub const FULL: VisiblePart = super::full_of(0.0, 0.5, 1.0);
-
-        /// Nothing visible: the empty interval at 0.
-        pub const EMPTY: VisiblePart = super::empty_of(0.0);
-
-        /// As `f64`'s [`interval`](crate::kernel::linear_light::f64::VisiblePart::interval).
-        #[must_use]
-        pub fn interval(start: f32, end: f32) -> VisiblePart {
-            super::interval(start, end)
-        }
-
-        /// As `f64`'s [`intersect`](crate::kernel::linear_light::f64::VisiblePart::intersect).
-        #[must_use]
-        pub fn intersect(&self, other: &VisiblePart) -> VisiblePart {
-            super::interval(self.start.max(other.start), self.end.min(other.end))
-        }
-    }
-
-    /// [`f64::visible_part`](super::f64::visible_part) in `f32`.
-    #[must_use]
-    pub fn visible_part(l: Vec2, r: Vec2, f: Vec2, e: Vec2, side: OccluderSide) -> VisiblePart {
-        super::visible_part::<f32>(l, r, f, e, side)
-    }
-
-    /// [`f64::visible_part_3d`](super::f64::visible_part_3d) in `f32`.
-    #[must_use]
-    pub fn visible_part_3d(l: Vec3, r: Vec3, f: Vec3, e: Vec3, side: OccluderSide) -> VisiblePart {
-        super::visible_part_3d::<f32>(l, r, f, e, side)
-    }
-
-    /// [`f64::law_of_sines_fraction`](super::f64::law_of_sines_fraction) in `f32`.
-    #[must_use]
-    pub fn law_of_sines_fraction(l: Vec2, r: Vec2, f: Vec2, e: Vec2) -> Option<f32> {
-        super::law_of_sines_fraction::<f32>(l, r, f, e)
-    }
-}
+both_precisions!(precision);
 
 #[cfg(test)]
 mod tests {

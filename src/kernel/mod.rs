@@ -21,6 +21,24 @@
 //! Scalar kernels exist in `f32` and `f64` as submodules generated from one
 //! body (`disk::f32`, `disk::f64`, …).
 
+/// For each generic test function `name::<T>()`, a module `name` of two
+/// `#[test]`s, `in_f64` and `in_f32`, that run it in each precision.
+#[cfg(test)]
+macro_rules! test_in_both_precisions {
+    ($name:ident) => {
+        mod $name {
+            #[test]
+            fn in_f64() {
+                super::$name::<f64>();
+            }
+            #[test]
+            fn in_f32() {
+                super::$name::<f32>();
+            }
+        }
+    };
+}
+
 pub mod angle;
 pub mod catalogue;
 pub mod disk;

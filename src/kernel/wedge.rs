@@ -126,7 +126,7 @@ pub enum WedgePlaneKind {
     Side1,
 }
 
-use crate::kernel::float::{Float, Vector2, Vector3};
+use crate::kernel::float::{both_precisions, Float, Vector2, Vector3};
 use crate::kernel::footprint::gamma;
 use crate::kernel::predicate::{orient2d, Sign};
 
@@ -522,184 +522,132 @@ fn penumbra_quad<T: Float>(
     }
 }
 
-/// `f64` versions.
-pub mod f64 {
-    use super::WedgeError;
-    use glam::{DVec2, DVec3};
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use super::WedgeError;
+        use glam::{$V2, $V3};
 
-    /// [`WedgePlane`](super::WedgePlane) in `f64`.
-    pub type WedgePlane = super::WedgePlane<DVec3, f64>;
+        #[doc = concat!("[`WedgePlane`](super::WedgePlane) in `", stringify!($T), "`.")]
+        pub type WedgePlane = super::WedgePlane<$V3, $T>;
 
-    /// [`PenumbraWedge`](super::PenumbraWedge) in `f64`.
-    pub type PenumbraWedge = super::PenumbraWedge<DVec3, f64>;
+        #[doc = concat!("[`PenumbraWedge`](super::PenumbraWedge) in `", stringify!($T), "`.")]
+        pub type PenumbraWedge = super::PenumbraWedge<$V3, $T>;
 
-    /// [`PenumbraQuad`](super::PenumbraQuad) in `f64`.
-    pub type PenumbraQuad = super::PenumbraQuad<DVec2, f64>;
+        #[doc = concat!("[`PenumbraQuad`](super::PenumbraQuad) in `", stringify!($T), "`.")]
+        pub type PenumbraQuad = super::PenumbraQuad<$V2, $T>;
 
-    /// [`QuadBound`](super::QuadBound) in `f64`.
-    pub type QuadBound = super::QuadBound<DVec2, f64>;
+        #[doc = concat!("[`QuadBound`](super::QuadBound) in `", stringify!($T), "`.")]
+        pub type QuadBound = super::QuadBound<$V2, $T>;
 
-    impl PenumbraWedge {
-        /// The wedge of edge `[e0, e1]` and the sphere light
-        /// (`center`, `radius`).
+        impl PenumbraWedge {
+            /// The wedge of edge `[e0, e1]` and the sphere light
+            /// (`center`, `radius`).
+            ///
+            /// Domain: finite input, `radius > 0`, `e0 ≠ e1`, the edge
+            /// outside the light, magnitudes relative to the light centre
+            /// such that their squares neither overflow nor lose all
+            /// precision (about `1e±150` for `f64`, `1e±18` for `f32`).
+            /// Every plane is verified (module docs); a plane that cannot be
+            /// verified is left out, so [`contains`](Self::contains) stays
+            /// conservative for every accepted input.
+            ///
+            /// # Errors
+            ///
+            /// [`WedgeError::NonFinite`], [`WedgeError::NonPositiveRadius`],
+            /// [`WedgeError::ZeroLengthEdge`],
+            /// [`WedgeError::EdgeTouchesLight`] (the rounded distance from
+            /// the centre to the segment is `≤ radius`),
+            /// [`WedgeError::OutOfRange`].
+            pub fn new(e0: $V3, e1: $V3, center: $V3, radius: $T) -> Result<Self, WedgeError> {
+                super::new_wedge::<$T>((e0, e1), center, radius)
+            }
+
+            /// `true` for every point the edge can partially occlude the
+            /// light from — every point of `W` in the module docs, exactly,
+            /// in spite of rounding: each plane test adds the forward error
+            /// bound `γ(8) Σ_j |n_j| |p_j − c_j|` of its dot product in
+            /// favour of inclusion. May be `true` for points near `W` too
+            /// (measured tightness in `tests/wedge.rs`). `false` for a
+            /// non-finite `p`.
+            #[must_use]
+            pub fn contains(&self, p: $V3) -> bool {
+                super::wedge_contains::<$T>(self, p)
+            }
+        }
+
+        impl PenumbraQuad {
+            /// `true` when `q` is inside the rectangle (closed), decided with
+            /// the exact `orient2d` on the corners.
+            #[must_use]
+            pub fn contains(&self, q: $V2) -> bool {
+                super::quad_contains::<$T>(self, q)
+            }
+        }
+
+        /// The penumbra quad of the edge `[e0, e1]` for a sphere light of
+        /// radius `radius`, in the **light frame** ([light frame](crate::definitions#light-frame): light centre
+        /// at the origin, `+z` toward the scene, image plane `z = 1`,
+        /// `(x, y, z) ↦ (x/z, y/z)`): a rectangle containing the projection
+        /// of every receiver at depth `z_p ≤ z_max` that the edge partially
+        /// occludes (SISM §2.2, the coarse test).
         ///
-        /// Domain: finite input, `radius > 0`, `e0 ≠ e1`, the edge
-        /// outside the light, magnitudes relative to the light centre
-        /// such that their squares neither overflow nor lose all
-        /// precision (about `1e±150` for `f64`, `1e±18` for `f32`).
-        /// Every plane is verified (module docs); a plane that cannot be
-        /// verified is left out, so [`contains`](Self::contains) stays
-        /// conservative for every accepted input.
+        /// The edge is first clipped to `z ≤ z_max` (points deeper than
+        /// every receiver cannot occlude it, since occluders lie strictly
+        /// between receiver and light). With `z_min` the edge's least depth
+        /// and `K = max √(1 + |π(q)|²)` over the clipped edge's endpoints
+        /// (`1/cos` of the largest off-axis angle), the quad is the
+        /// projected clipped edge extended by `R` at both ends and on both
+        /// sides, with
+        ///
+        /// ```text
+        /// R = r · K · (1 − z_min/z_max) / (z_min − r).
+        /// ```
+        ///
+        /// **Proof.** If `q ∈ (p, y)` with `y` in the facing disk
+        /// (`|y| ≤ r`), then `p ∥ q − σy` with `σ = t/(1+t) ∈ (0, 1)`, and
+        /// `z_p (1 − σ) = q_z − σ y_z ≥ q_z − σ r` gives
+        /// `σ ≤ (z_p − q_z)/(z_p − r)`. Projecting the ball of radius `σr`
+        /// around `q`: `|π(q + δ) − π(q)| = |δ_xy − π(q) δ_z| / (q_z + δ_z) ≤
+        /// |δ| √(1 + |π(q)|²) / (q_z − |δ|)`, increasing in `|δ| ≤ σ r`;
+        /// substituting `σ`'s bound gives `|π(p) − π(q)| ≤ K_q r (z_p − q_z)
+        /// / (z_p (q_z − r))`, increasing in `z_p ≤ z_max` and decreasing in
+        /// `q_z ≥ z_min`. `|π(q)|` is convex along the projected segment, so
+        /// `K` is reached at an endpoint.
+        ///
+        /// SISM's footprint radius `r (1/z_min − 1/z_max)` ([footprint radius](crate::definitions#footprint-radius)) is
+        /// exact for a light disk in the plane `z = 0`, i.e. on the light's
+        /// axis; the exact facing disk tilts with `p`, and its footprint is
+        /// a slightly larger ellipse off-axis. The bound here is larger than
+        /// SISM's by the factor `K z_min / (z_min − r)` (1 on the axis for
+        /// `r ≪ z_min`; 1.28 at 30° off-axis with `r = z_min/10`).
+        ///
+        /// Rounding: `R` is rounded up (`γ(10)`, ten rounded operations on
+        /// positive quantities), the clip parameter is rounded toward the
+        /// far end, and the half extents get `γ(16)` times the magnitudes
+        /// of the projected endpoints, the length and `R`, which covers the
+        /// projection, the clipping, the direction of `axis` and the
+        /// corners' own rounding.
         ///
         /// # Errors
         ///
         /// [`WedgeError::NonFinite`], [`WedgeError::NonPositiveRadius`],
-        /// [`WedgeError::ZeroLengthEdge`],
-        /// [`WedgeError::EdgeTouchesLight`] (the rounded distance from
-        /// the centre to the segment is `≤ radius`),
-        /// [`WedgeError::OutOfRange`].
-        pub fn new(e0: DVec3, e1: DVec3, center: DVec3, radius: f64) -> Result<Self, WedgeError> {
-            super::new_wedge::<f64>((e0, e1), center, radius)
+        /// [`WedgeError::NonPositiveDepthBound`]. A zero-length edge is
+        /// accepted (a square around its projection).
+        pub fn penumbra_quad(
+            e0: $V3,
+            e1: $V3,
+            radius: $T,
+            z_max: $T,
+        ) -> Result<QuadBound, WedgeError> {
+            super::penumbra_quad::<$T>((e0, e1), radius, z_max)
         }
-
-        /// `true` for every point the edge can partially occlude the
-        /// light from — every point of `W` in the module docs, exactly,
-        /// in spite of rounding: each plane test adds the forward error
-        /// bound `γ(8) Σ_j |n_j| |p_j − c_j|` of its dot product in
-        /// favour of inclusion. May be `true` for points near `W` too
-        /// (measured tightness in `tests/wedge.rs`). `false` for a
-        /// non-finite `p`.
-        #[must_use]
-        pub fn contains(&self, p: DVec3) -> bool {
-            super::wedge_contains::<f64>(self, p)
-        }
-    }
-
-    impl PenumbraQuad {
-        /// `true` when `q` is inside the rectangle (closed), decided with
-        /// the exact `orient2d` on the corners.
-        #[must_use]
-        pub fn contains(&self, q: DVec2) -> bool {
-            super::quad_contains::<f64>(self, q)
-        }
-    }
-
-    /// The penumbra quad of the edge `[e0, e1]` for a sphere light of
-    /// radius `radius`, in the **light frame** ([light frame](crate::definitions#light-frame): light centre
-    /// at the origin, `+z` toward the scene, image plane `z = 1`,
-    /// `(x, y, z) ↦ (x/z, y/z)`): a rectangle containing the projection
-    /// of every receiver at depth `z_p ≤ z_max` that the edge partially
-    /// occludes (SISM §2.2, the coarse test).
-    ///
-    /// The edge is first clipped to `z ≤ z_max` (points deeper than
-    /// every receiver cannot occlude it, since occluders lie strictly
-    /// between receiver and light). With `z_min` the edge's least depth
-    /// and `K = max √(1 + |π(q)|²)` over the clipped edge's endpoints
-    /// (`1/cos` of the largest off-axis angle), the quad is the
-    /// projected clipped edge extended by `R` at both ends and on both
-    /// sides, with
-    ///
-    /// ```text
-    /// R = r · K · (1 − z_min/z_max) / (z_min − r).
-    /// ```
-    ///
-    /// **Proof.** If `q ∈ (p, y)` with `y` in the facing disk
-    /// (`|y| ≤ r`), then `p ∥ q − σy` with `σ = t/(1+t) ∈ (0, 1)`, and
-    /// `z_p (1 − σ) = q_z − σ y_z ≥ q_z − σ r` gives
-    /// `σ ≤ (z_p − q_z)/(z_p − r)`. Projecting the ball of radius `σr`
-    /// around `q`: `|π(q + δ) − π(q)| = |δ_xy − π(q) δ_z| / (q_z + δ_z) ≤
-    /// |δ| √(1 + |π(q)|²) / (q_z − |δ|)`, increasing in `|δ| ≤ σ r`;
-    /// substituting `σ`'s bound gives `|π(p) − π(q)| ≤ K_q r (z_p − q_z)
-    /// / (z_p (q_z − r))`, increasing in `z_p ≤ z_max` and decreasing in
-    /// `q_z ≥ z_min`. `|π(q)|` is convex along the projected segment, so
-    /// `K` is reached at an endpoint.
-    ///
-    /// SISM's footprint radius `r (1/z_min − 1/z_max)` ([footprint radius](crate::definitions#footprint-radius)) is
-    /// exact for a light disk in the plane `z = 0`, i.e. on the light's
-    /// axis; the exact facing disk tilts with `p`, and its footprint is
-    /// a slightly larger ellipse off-axis. The bound here is larger than
-    /// SISM's by the factor `K z_min / (z_min − r)` (1 on the axis for
-    /// `r ≪ z_min`; 1.28 at 30° off-axis with `r = z_min/10`).
-    ///
-    /// Rounding: `R` is rounded up (`γ(10)`, ten rounded operations on
-    /// positive quantities), the clip parameter is rounded toward the
-    /// far end, and the half extents get `γ(16)` times the magnitudes
-    /// of the projected endpoints, the length and `R`, which covers the
-    /// projection, the clipping, the direction of `axis` and the
-    /// corners' own rounding.
-    ///
-    /// # Errors
-    ///
-    /// [`WedgeError::NonFinite`], [`WedgeError::NonPositiveRadius`],
-    /// [`WedgeError::NonPositiveDepthBound`]. A zero-length edge is
-    /// accepted (a square around its projection).
-    pub fn penumbra_quad(
-        e0: DVec3,
-        e1: DVec3,
-        radius: f64,
-        z_max: f64,
-    ) -> Result<QuadBound, WedgeError> {
-        super::penumbra_quad::<f64>((e0, e1), radius, z_max)
-    }
+    };
 }
 
-/// `f32` versions: [`f64`](mod@f64)'s, in single precision (its docs give
-/// both precisions' bounds).
-pub mod f32 {
-    use super::WedgeError;
-    use glam::{Vec2, Vec3};
-
-    /// [`WedgePlane`](super::WedgePlane) in `f32`.
-    pub type WedgePlane = super::WedgePlane<Vec3, f32>;
-
-    /// [`PenumbraWedge`](super::PenumbraWedge) in `f32`.
-    pub type PenumbraWedge = super::PenumbraWedge<Vec3, f32>;
-
-    /// [`PenumbraQuad`](super::PenumbraQuad) in `f32`.
-    pub type PenumbraQuad = super::PenumbraQuad<Vec2, f32>;
-
-    /// [`QuadBound`](super::QuadBound) in `f32`.
-    pub type QuadBound = super::QuadBound<Vec2, f32>;
-
-    impl PenumbraWedge {
-        /// As `f64`'s [`new`](crate::kernel::wedge::f64::PenumbraWedge::new).
-        ///
-        /// # Errors
-        ///
-        /// See `f64`'s.
-        pub fn new(e0: Vec3, e1: Vec3, center: Vec3, radius: f32) -> Result<Self, WedgeError> {
-            super::new_wedge::<f32>((e0, e1), center, radius)
-        }
-
-        /// As `f64`'s [`contains`](crate::kernel::wedge::f64::PenumbraWedge::contains).
-        #[must_use]
-        pub fn contains(&self, p: Vec3) -> bool {
-            super::wedge_contains::<f32>(self, p)
-        }
-    }
-
-    impl PenumbraQuad {
-        /// As `f64`'s [`contains`](crate::kernel::wedge::f64::PenumbraQuad::contains).
-        #[must_use]
-        pub fn contains(&self, q: Vec2) -> bool {
-            super::quad_contains::<f32>(self, q)
-        }
-    }
-
-    /// [`f64::penumbra_quad`](super::f64::penumbra_quad) in `f32`.
-    ///
-    /// # Errors
-    ///
-    /// As `f64`'s.
-    pub fn penumbra_quad(
-        e0: Vec3,
-        e1: Vec3,
-        radius: f32,
-        z_max: f32,
-    ) -> Result<QuadBound, WedgeError> {
-        super::penumbra_quad::<f32>((e0, e1), radius, z_max)
-    }
-}
+both_precisions!(precision);
 
 #[cfg(test)]
 mod tests {
@@ -772,24 +720,11 @@ mod tests {
             new(e, DVec3::X * 5.0, c, f64::NAN),
             Err(WedgeError::NonFinite)
         );
-        assert_eq!(
-            new(
-                DVec3::new(-1.0, 0.5, 0.0),
-                DVec3::new(1.0, 0.5, 0.0),
-                c,
-                1.0
-            ),
-            Err(WedgeError::EdgeTouchesLight)
-        );
-        assert_eq!(
-            new(
-                DVec3::new(-1.0, 1.0, 0.0),
-                DVec3::new(1.0, 1.0, 0.0),
-                c,
-                1.0
-            ),
-            Err(WedgeError::EdgeTouchesLight)
-        );
+        // Within the light, and tangent to it.
+        for y in [0.5, 1.0] {
+            let (a, b) = (DVec3::new(-1.0, y, 0.0), DVec3::new(1.0, y, 0.0));
+            assert_eq!(new(a, b, c, 1.0), Err(WedgeError::EdgeTouchesLight));
+        }
     }
 
     #[test]

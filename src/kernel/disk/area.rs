@@ -442,13 +442,5 @@ mod tests {
         }
     }
 
-    #[test]
-    fn both_branch_free_forms_are_the_scalar_kernel_f64() {
-        both_branch_free_forms_are_the_scalar_kernel::<f64>();
-    }
-
-    #[test]
-    fn both_branch_free_forms_are_the_scalar_kernel_f32() {
-        both_branch_free_forms_are_the_scalar_kernel::<f32>();
-    }
+    test_in_both_precisions!(both_branch_free_forms_are_the_scalar_kernel);
 }

@@ -45,189 +45,163 @@ mod area;
 mod edge;
 mod occlusion;
 
-/// `f64` disk-occlusion kernels.
-pub mod f64 {
-    use super::{area, occlusion};
-    use glam::DVec2;
+use crate::kernel::float::both_precisions;
 
-    /// Signed area of the triangle `(0, a, b)` intersected with the disk
-    /// of radius `r` centred at the origin.
-    ///
-    /// Positive when `0, a, b` turn counter-clockwise (the origin lies to
-    /// the left of `a → b`), negative when clockwise, zero when they are
-    /// collinear. Summed over the oriented boundary of a polygon it gives
-    /// the polygon's signed area inside the disk (Green's theorem): see
-    /// [`polygon_disk_area`].
-    ///
-    /// **Domain**: all finite `a`, `b` and `r ≥ 0`. The result depends
-    /// only on the shape, and inputs are rescaled by an exact power of two
-    /// when needed, so the accuracy below holds at any magnitude provided
-    /// `r ≥ 10⁻¹⁰⁰ · max|coordinate|` (`f64`; `10⁻¹²` for `f32`). Beyond
-    /// that ratio the sector angles' intermediate products underflow and
-    /// the area, of order `r²`, is lost (measured: 456 ε r² at a ratio of
-    /// `10⁻¹⁰⁴`, the sectors dropped entirely below `10⁻¹⁰⁸`). Where the
-    /// area itself is subnormal (`r ≲ 10⁻¹⁵⁴`, `f32`: `10⁻¹⁹`) its error
-    /// is that of the subnormal spacing, not a multiple of `ε r²`.
-    ///
-    /// **Edge of the domain**: `r = 0`, a zero-length edge, or `0, a, b`
-    /// collinear give `0`. Endpoints on the circle, the line tangent to
-    /// the circle, and edges far longer than `r` need no special case.
-    /// Non-finite input (NaN or ±∞ anywhere) or a negative `r` gives `0`.
-    /// The result overflows to ±∞ only if the true area does.
-    ///
-    /// Reversing the edge negates the result exactly (bit for bit).
-    ///
-    /// **Accuracy**: absolute error at most `3 ε r²` (the tested
-    /// budget; measured maximum against a 256-bit evaluation of a
-    /// different formulation over 1.5·10⁵ stiff edges: `1.96 ε r²` in
-    /// `f64`, `1.70 ε r²` in `f32`; `docs/accuracy/kernels.md`).
-    ///
-    /// **Source**: the standard decomposition into a triangle inside the
-    /// disk and circular sectors outside it, in the edge's own frame.
-    #[must_use]
-    pub fn segment_disk_area(r: f64, a: DVec2, b: DVec2) -> f64 {
-        area::segment_disk_area(r, a, b)
-    }
+/// The public items of one precision `($T, $V2, $V3)`, declared once
+/// with their contracts, each forwarding to the generic body above;
+/// `both_precisions!` makes the modules `f64` and `f32` of them.
+macro_rules! precision {
+    ($T:ident, $V2:ident, $V3:ident) => {
+        use super::{area, occlusion};
+        use glam::$V2;
 
-    /// [`segment_disk_area`] of many edges: `out` is replaced by one area
-    /// per edge, `out[i]` equal to `segment_disk_area(r, edges[i].0,
-    /// edges[i].1)` bit for bit (same domain, same accuracy, same
-    /// special values).
-    ///
-    /// Faster per edge than a loop over [`segment_disk_area`]: the edges
-    /// are evaluated without branches, several at once — auto-vectorised
-    /// for the build's target, and with the `simd` feature on x86-64 in
-    /// AVX2 registers with hardware FMA where the processor has them
-    /// (detected at run time). Edges the branch-free form does not cover
-    /// (non-finite or very large coordinates, `r` outside the kernel's
-    /// safe range, an angle with both parts zero) are evaluated by
-    /// [`segment_disk_area`] itself. `benches/README.md` gives the
-    /// measured cost.
-    pub fn segment_disk_areas(r: f64, edges: &[(DVec2, DVec2)], out: &mut Vec<f64>) {
-        area::segment_disk_areas(r, edges, out)
-    }
+        /// Signed area of the triangle `(0, a, b)` intersected with the disk
+        /// of radius `r` centred at the origin.
+        ///
+        /// Positive when `0, a, b` turn counter-clockwise (the origin lies to
+        /// the left of `a → b`), negative when clockwise, zero when they are
+        /// collinear. Summed over the oriented boundary of a polygon it gives
+        /// the polygon's signed area inside the disk (Green's theorem): see
+        /// [`polygon_disk_area`].
+        ///
+        /// **Domain**: all finite `a`, `b` and `r ≥ 0`. The result depends
+        /// only on the shape, and inputs are rescaled by an exact power of two
+        /// when needed, so the accuracy below holds at any magnitude provided
+        /// `r ≥ 10⁻¹⁰⁰ · max|coordinate|` (`f64`; `10⁻¹²` for `f32`). Beyond
+        /// that ratio the sector angles' intermediate products underflow and
+        /// the area, of order `r²`, is lost (measured: 456 ε r² at a ratio of
+        /// `10⁻¹⁰⁴`, the sectors dropped entirely below `10⁻¹⁰⁸`). Where the
+        /// area itself is subnormal (`r ≲ 10⁻¹⁵⁴`, `f32`: `10⁻¹⁹`) its error
+        /// is that of the subnormal spacing, not a multiple of `ε r²`.
+        ///
+        /// **Edge of the domain**: `r = 0`, a zero-length edge, or `0, a, b`
+        /// collinear give `0`. Endpoints on the circle, the line tangent to
+        /// the circle, and edges far longer than `r` need no special case.
+        /// Non-finite input (NaN or ±∞ anywhere) or a negative `r` gives `0`.
+        /// The result overflows to ±∞ only if the true area does.
+        ///
+        /// Reversing the edge negates the result exactly (bit for bit).
+        ///
+        /// **Accuracy**: absolute error at most `3 ε r²` (the tested
+        /// budget; measured maximum against a 256-bit evaluation of a
+        /// different formulation over 1.5·10⁵ stiff edges: `1.96 ε r²` in
+        /// `f64`, `1.70 ε r²` in `f32`; `docs/accuracy/kernels.md`).
+        ///
+        /// **Source**: the standard decomposition into a triangle inside the
+        /// disk and circular sectors outside it, in the edge's own frame.
+        #[must_use]
+        pub fn segment_disk_area(r: $T, a: $V2, b: $V2) -> $T {
+            area::segment_disk_area(r, a, b)
+        }
 
-    /// Signed area of the polygon `vertices` intersected with the disk of
-    /// radius `r` centred at the origin: the sum of
-    /// [`segment_disk_area`] over its edges, the closing edge included,
-    /// accumulated with Neumaier's compensated summation.
-    ///
-    /// Positive for a counter-clockwise polygon, negative for a clockwise
-    /// one. For a self-intersecting polygon it is the winding-number
-    /// weighted area inside the disk (the general form of Green's
-    /// theorem).
-    ///
-    /// When no edge comes within `r` of the centre the answer is exact:
-    /// `0` for a polygon that misses the disk, `±πr²` (times the winding
-    /// number) for one that contains it, decided with the exact
-    /// [`orient2d`](crate::kernel::predicate::orient2d). Fully lit and
-    /// fully covered lights therefore read exactly 1 and 0.
-    ///
-    /// **Edge of the domain**: fewer than three vertices give `0`;
-    /// non-finite vertices contribute `0` for their two edges, as in
-    /// [`segment_disk_area`]. A radius so large that `πr²` overflows gives
-    /// ±∞ or a finite value, never NaN.
-    ///
-    /// **Accuracy**: each edge as [`segment_disk_area`]; the compensated
-    /// sum adds no error growing with the number of edges. Tested budget
-    /// `5 ε r²` (measured maximum over 2·10⁴ stiff polygons of 3–12
-    /// vertices, long grazing edges included: `4.29 ε r²` in `f64`,
-    /// `3.53 ε r²` in `f32`).
-    #[must_use]
-    pub fn polygon_disk_area(r: f64, vertices: &[DVec2]) -> f64 {
-        area::polygon_disk_area(r, vertices)
-    }
+        /// [`segment_disk_area`] of many edges: `out` is replaced by one area
+        /// per edge, `out[i]` equal to `segment_disk_area(r, edges[i].0,
+        /// edges[i].1)` bit for bit (same domain, same accuracy, same
+        /// special values).
+        ///
+        /// Faster per edge than a loop over [`segment_disk_area`]: the edges
+        /// are evaluated without branches, several at once — auto-vectorised
+        /// for the build's target, and with the `simd` feature on x86-64 in
+        /// AVX2 registers with hardware FMA where the processor has them
+        /// (detected at run time). Edges the branch-free form does not cover
+        /// (non-finite or very large coordinates, `r` outside the kernel's
+        /// safe range, an angle with both parts zero) are evaluated by
+        /// [`segment_disk_area`] itself. `benches/README.md` gives the
+        /// measured cost.
+        pub fn segment_disk_areas(r: $T, edges: &[($V2, $V2)], out: &mut Vec<$T>) {
+            area::segment_disk_areas(r, edges, out)
+        }
 
-    /// Johnson et al.'s signed circle-segment occlusion (SISM, I3D 2009,
-    /// eq. 3), for the unit disk: the normalised area of the circular
-    /// segment cut by one silhouette edge, with the edge clipped to the
-    /// disk.
-    ///
-    /// The edge lies on the line at distance `|d|` from the disk centre;
-    /// its clipped endpoints are at positions `−w0` and `+w1` along the
-    /// line, measured from the foot of the perpendicular (so `w0 + w1` is
-    /// the clipped length and the paper's
-    /// `θ = acos((d² − w0 w1)/√((d² + w0²)(d² + w1²)))` is the angle the
-    /// clipped edge subtends at the centre). The result is
-    ///
-    /// `± (θ − |d|(w0 + w1)) / 2π`,
-    ///
-    /// positive when `d` is positive (the centre, i.e. the receiver, lies
-    /// outside the edge: the occluder covers the minor segment),
-    /// negative when `d` is negative (the receiver is inside the edge and
-    /// counted by the umbra pass, so the minor segment is visible light
-    /// to subtract). The sign is read from `d`'s sign bit, so `−0.0`
-    /// selects the inside: at `|d| = 0` the value jumps by one half, as
-    /// the umbra count jumps by one.
-    ///
-    /// **Domain**: any finite `d`, `w0`, `w1`. Endpoints beyond the circle
-    /// are clipped to it (`|w| ≤ √(1 − d²)`), as the paper assumes they
-    /// are; `|d| ≥ 1` gives `0`. A reversed edge (`w0 + w1 < 0`) gives the
-    /// negated value, so the kernel is additive when an edge is split
-    /// anywhere. `d = 0` is the limit `d → 0⁺`: an endpoint at the centre
-    /// subtends a right angle on its side. Non-finite input gives `0`.
-    ///
-    /// **Accuracy**: `θ` from `atan2(|d|(w0 + w1), d² − w0 w1)`, never
-    /// `acos`; for thin segments `θ − sin θ` comes from its series and
-    /// the remainder `(1 − ρ) sin θ`, `ρ = |p0||p1|`, is computed without
-    /// cancellation, so slivers keep their relative accuracy. Measured
-    /// against a 256-bit evaluation of the endpoint-angle form: absolute
-    /// error ≤ `0.56 ε` over 1.5·10⁵ stiff edges (budget `1 ε`); relative
-    /// error of thin full-chord segments down to `h = 1 − 10⁻¹⁵`
-    /// ≤ `8 ε` (budget `9 ε`), both precisions.
-    #[must_use]
-    pub fn circle_segment_occlusion(d: f64, w0: f64, w1: f64) -> f64 {
-        occlusion::circle_segment_occlusion(d, w0, w1)
-    }
+        /// Signed area of the polygon `vertices` intersected with the disk of
+        /// radius `r` centred at the origin: the sum of
+        /// [`segment_disk_area`] over its edges, the closing edge included,
+        /// accumulated with Neumaier's compensated summation.
+        ///
+        /// Positive for a counter-clockwise polygon, negative for a clockwise
+        /// one. For a self-intersecting polygon it is the winding-number
+        /// weighted area inside the disk (the general form of Green's
+        /// theorem).
+        ///
+        /// When no edge comes within `r` of the centre the answer is exact:
+        /// `0` for a polygon that misses the disk, `±πr²` (times the winding
+        /// number) for one that contains it, decided with the exact
+        /// [`orient2d`](crate::kernel::predicate::orient2d). Fully lit and
+        /// fully covered lights therefore read exactly 1 and 0.
+        ///
+        /// **Edge of the domain**: fewer than three vertices give `0`;
+        /// non-finite vertices contribute `0` for their two edges, as in
+        /// [`segment_disk_area`]. A radius so large that `πr²` overflows gives
+        /// ±∞ or a finite value, never NaN.
+        ///
+        /// **Accuracy**: each edge as [`segment_disk_area`]; the compensated
+        /// sum adds no error growing with the number of edges. Tested budget
+        /// `5 ε r²` (measured maximum over 2·10⁴ stiff polygons of 3–12
+        /// vertices, long grazing edges included: `4.29 ε r²` in `f64`,
+        /// `3.53 ε r²` in `f32`).
+        #[must_use]
+        pub fn polygon_disk_area(r: $T, vertices: &[$V2]) -> $T {
+            area::polygon_disk_area(r, vertices)
+        }
 
-    /// [`circle_segment_occlusion`] of many edges: `out` is replaced by
-    /// one value per edge, `out[i]` equal to
-    /// `circle_segment_occlusion(d, w0, w1)` of `edges[i] = (d, w0, w1)`
-    /// bit for bit (same domain, accuracy and special values).
-    ///
-    /// Faster per edge than a loop over [`circle_segment_occlusion`]:
-    /// the edges are evaluated without branches, several at once, as in
-    /// [`segment_disk_areas`] (AVX2 where the processor has it, with the
-    /// `simd` feature). Edges the branch-free form does not cover
-    /// (non-finite input, `|d|` at least 1 or nonzero below the
-    /// kernel's safe range, an edge of zero length after clipping) are
-    /// evaluated by [`circle_segment_occlusion`] itself.
-    /// `benches/README.md` gives the measured cost.
-    pub fn circle_segment_occlusions(edges: &[(f64, f64, f64)], out: &mut Vec<f64>) {
-        occlusion::circle_segment_occlusions(edges, out)
-    }
+        /// Johnson et al.'s signed circle-segment occlusion (SISM, I3D 2009,
+        /// eq. 3), for the unit disk: the normalised area of the circular
+        /// segment cut by one silhouette edge, with the edge clipped to the
+        /// disk.
+        ///
+        /// The edge lies on the line at distance `|d|` from the disk centre;
+        /// its clipped endpoints are at positions `−w0` and `+w1` along the
+        /// line, measured from the foot of the perpendicular (so `w0 + w1` is
+        /// the clipped length and the paper's
+        /// `θ = acos((d² − w0 w1)/√((d² + w0²)(d² + w1²)))` is the angle the
+        /// clipped edge subtends at the centre). The result is
+        ///
+        /// `± (θ − |d|(w0 + w1)) / 2π`,
+        ///
+        /// positive when `d` is positive (the centre, i.e. the receiver, lies
+        /// outside the edge: the occluder covers the minor segment),
+        /// negative when `d` is negative (the receiver is inside the edge and
+        /// counted by the umbra pass, so the minor segment is visible light
+        /// to subtract). The sign is read from `d`'s sign bit, so `−0.0`
+        /// selects the inside: at `|d| = 0` the value jumps by one half, as
+        /// the umbra count jumps by one.
+        ///
+        /// **Domain**: any finite `d`, `w0`, `w1`. Endpoints beyond the circle
+        /// are clipped to it (`|w| ≤ √(1 − d²)`), as the paper assumes they
+        /// are; `|d| ≥ 1` gives `0`. A reversed edge (`w0 + w1 < 0`) gives the
+        /// negated value, so the kernel is additive when an edge is split
+        /// anywhere. `d = 0` is the limit `d → 0⁺`: an endpoint at the centre
+        /// subtends a right angle on its side. Non-finite input gives `0`.
+        ///
+        /// **Accuracy**: `θ` from `atan2(|d|(w0 + w1), d² − w0 w1)`, never
+        /// `acos`; for thin segments `θ − sin θ` comes from its series and
+        /// the remainder `(1 − ρ) sin θ`, `ρ = |p0||p1|`, is computed without
+        /// cancellation, so slivers keep their relative accuracy. Measured
+        /// against a 256-bit evaluation of the endpoint-angle form: absolute
+        /// error ≤ `0.56 ε` over 1.5·10⁵ stiff edges (budget `1 ε`); relative
+        /// error of thin full-chord segments down to `h = 1 − 10⁻¹⁵`
+        /// ≤ `8 ε` (budget `9 ε`), both precisions.
+        #[must_use]
+        pub fn circle_segment_occlusion(d: $T, w0: $T, w1: $T) -> $T {
+            occlusion::circle_segment_occlusion(d, w0, w1)
+        }
+
+        /// [`circle_segment_occlusion`] of many edges: `out` is replaced by
+        /// one value per edge, `out[i]` equal to
+        /// `circle_segment_occlusion(d, w0, w1)` of `edges[i] = (d, w0, w1)`
+        /// bit for bit (same domain, accuracy and special values).
+        ///
+        /// Faster per edge than a loop over [`circle_segment_occlusion`]:
+        /// the edges are evaluated without branches, several at once, as in
+        /// [`segment_disk_areas`] (AVX2 where the processor has it, with the
+        /// `simd` feature). Edges the branch-free form does not cover
+        /// (non-finite input, `|d|` at least 1 or nonzero below the
+        /// kernel's safe range, an edge of zero length after clipping) are
+        /// evaluated by [`circle_segment_occlusion`] itself.
+        /// `benches/README.md` gives the measured cost.
+        pub fn circle_segment_occlusions(edges: &[($T, $T, $T)], out: &mut Vec<$T>) {
+            occlusion::circle_segment_occlusions(edges, out)
+        }
+    };
 }
 
-/// `f32` disk-occlusion kernels: [`f64`](mod@f64)'s, in single precision (its docs give both precisions' bounds).
-pub mod f32 {
-    use super::{area, occlusion};
-    use glam::Vec2;
-
-    /// [`f64::segment_disk_area`](super::f64::segment_disk_area) in `f32`.
-    #[must_use]
-    pub fn segment_disk_area(r: f32, a: Vec2, b: Vec2) -> f32 {
-        area::segment_disk_area(r, a, b)
-    }
-
-    /// [`f64::segment_disk_areas`](super::f64::segment_disk_areas) in `f32`.
-    pub fn segment_disk_areas(r: f32, edges: &[(Vec2, Vec2)], out: &mut Vec<f32>) {
-        area::segment_disk_areas(r, edges, out)
-    }
-
-    /// [`f64::polygon_disk_area`](super::f64::polygon_disk_area) in `f32`.
-    #[must_use]
-    pub fn polygon_disk_area(r: f32, vertices: &[Vec2]) -> f32 {
-        area::polygon_disk_area(r, vertices)
-    }
-
-    /// [`f64::circle_segment_occlusion`](super::f64::circle_segment_occlusion) in `f32`.
-    #[must_use]
-    pub fn circle_segment_occlusion(d: f32, w0: f32, w1: f32) -> f32 {
-        occlusion::circle_segment_occlusion(d, w0, w1)
-    }
-
-    /// [`f64::circle_segment_occlusions`](super::f64::circle_segment_occlusions) in `f32`.
-    pub fn circle_segment_occlusions(edges: &[(f32, f32, f32)], out: &mut Vec<f32>) {
-        occlusion::circle_segment_occlusions(edges, out)
-    }
-}
+both_precisions!(precision);

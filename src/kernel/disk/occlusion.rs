@@ -262,13 +262,5 @@ mod tests {
         assert!(vector >= 3000, "{vector} edges on the vector path");
     }
 
-    #[test]
-    fn branch_free_occlusion_is_the_scalar_kernel_f64() {
-        branch_free_occlusion_is_the_scalar_kernel::<f64>();
-    }
-
-    #[test]
-    fn branch_free_occlusion_is_the_scalar_kernel_f32() {
-        branch_free_occlusion_is_the_scalar_kernel::<f32>();
-    }
+    test_in_both_precisions!(branch_free_occlusion_is_the_scalar_kernel);
 }

@@ -36,7 +36,8 @@
 //!    penumbra (measured in `docs/accuracy/ssoc.md`); the tangent plane is
 //!    the receiver's own surface there, whatever its slope. If the
 //!    distorted point lies in no distortion region,
-//!    `V = 1`; else eq. 1, `V = falloff(1 − d/dmax)` — the Bernstein
+//!    `V = 1`; else eq. 1, `V = falloff(1 − d/dmax)`
+//!    ([`intensity`](crate::kernel::distortion::f64::intensity)) — the Bernstein
 //!    smoothstep as in the paper (§3.2.2), or the exact disk falloff;
 //! 4. **overlapping penumbrae** (§3.2.3, §4): the map is read again at the
 //!    distorted point; if it names another edge, the paper's three cases
@@ -107,7 +108,7 @@ use super::centre::{left, projected_edges, EdgeSource, ProjectedEdge, Selection}
 use super::options::{from_options, method_options};
 use super::{per_receiver, Horizon, Input, MethodError, Output, Requires};
 use crate::kernel::distortion::f64 as distortion;
-use crate::kernel::falloff::{f64 as falloff, Falloff};
+use crate::kernel::falloff::Falloff;
 use crate::kernel::footprint::f64::{self as footprint, project};
 use crate::render::raster::{LightMaps, LightView, MAX_RESOLUTION};
 use crate::render::stages::fit_key;
@@ -403,7 +404,7 @@ impl Ssoc {
             let (c, r) = (t.x as i64, t.y as i64);
             // The map of the distorted point's side names its edge.
             let next = [prep.distortion.at(blocked, c, r)];
-            v *= falloff::eval(self.falloff, 1.0 - ratio(reading.d, reading.dmax));
+            v *= distortion::intensity(reading.d, reading.dmax, self.falloff);
             if count >= self.lookups as usize {
                 return v;
             }
@@ -460,17 +461,6 @@ impl Ssoc {
 /// texel (a shared corner of the silhouette, where the outward directions
 /// are radial and may differ by up to 180°).
 const SAME_REGION_COS: f64 = std::f64::consts::FRAC_1_SQRT_2;
-
-/// `d / dmax` in `[0, 1]`; `dmax = 0` is a hard step.
-fn ratio(d: f64, dmax: f64) -> f64 {
-    if dmax > 0.0 {
-        (d / dmax).clamp(0.0, 1.0)
-    } else if d > 0.0 {
-        1.0
-    } else {
-        0.0
-    }
-}
 
 /// What SSOC and its backprojected variant need: the shadow map and the
 /// distortion maps built from the silhouettes.

@@ -18,9 +18,9 @@ use glam::DVec2;
 /// [`union_area_sweeping_from`](super::union_area_sweeping_from), with
 /// `DEEP` whether [`Interior`] is built (and the grid lists the fine level
 /// by area). The helpers it calls per edge, per candidate and per triangle
-/// are `#[inline(always)]`: with two copies of this loop the compiler kept
-/// them out of line, and the built-in scenes' exact frames took up to 4 %
-/// more instructions.
+/// are `#[inline(always)]`, else the compiler keeps them out of line in its
+/// two copies (chosen by measurement: see benches/README.md § The union's
+/// constants and its two copies of the loop).
 ///
 /// The bound (`B`) sums: each edge's allowance unless it is shared (an
 /// edge and its exact reverse move together, both sides covered) or

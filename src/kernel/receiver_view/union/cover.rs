@@ -16,10 +16,9 @@ pub(super) struct Cover {
 }
 
 impl Cover {
-    /// The most spans of an edge followed span by span (ours: an edge of
-    /// the pile of images in `benches/references.rs` collects about 20 at
-    /// 4096 images; at 16384, where edges collect more, 64 cost more time
-    /// than 128).
+    /// The most spans of an edge followed span by span (ours, chosen by
+    /// measurement: see benches/README.md § The union's constants and its
+    /// two copies of the loop).
     pub(super) const TRACKED: usize = 128;
 
     /// Takes `span` (pending spans in `pending`); whether the edge is now

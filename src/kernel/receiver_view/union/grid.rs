@@ -7,9 +7,8 @@ use glam::DVec2;
 /// fine grid of about one cell per triangle, in which a triangle is listed
 /// in every cell its bounds overlap, in index order (by decreasing area
 /// under a deep pile of images, where a larger triangle is likelier to
-/// cover the searched edge and end its search: 16.2 tests per covered
-/// edge instead of 19.6 on the pile of 4096 images in
-/// `benches/references.rs`); and above it coarse
+/// cover the searched edge and end its search: fewer tests per covered
+/// edge, measured in benches/README.md); and above it coarse
 /// levels, level `k` with `2^k` cells a side, for the triangles that would
 /// span more than [`Grid::LARGE`] fine cells along an axis, each listed at
 /// the finest level whose cells are at least as wide as its bounds (at most

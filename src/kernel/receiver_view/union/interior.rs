@@ -41,23 +41,11 @@ use glam::DVec2;
 /// blocks of [`Interior::BLOCK`] cells a side, those all marked listed in
 /// [`Interior::full`]): where every block along the course in a row of
 /// blocks is all marked, so is every cell the walk over the cells would
-/// take in those rows, and that walk is left out of them. On the pile of
-/// 4096 images below, the 25,277 questions (edges, and passages of
-/// [`searched_cells`](super::boundary::searched_cells)) walk 54,030 rows of blocks and 60,948 rows of cells
-/// (128,244 when the cells were walked whole wherever a block failed);
-/// at 16384 images 53,238 questions, 166,938 and 18,121 rows.
+/// take in those rows, and that walk is left out of them.
 ///
-/// Measured on the pile of 4096 images in `benches/references.rs`: of its
-/// 12,138 edges, 9,143 of the 10,336 covered whole are dropped here,
-/// leaving 31,438 span tests for the covered edges instead of 167,384;
-/// the raster is 768 cells a side (72 KB). The 2,995 edges left are
-/// searched only in the fine cells whose passage the raster does not cover
-/// ([`searched_cells`](super::boundary::searched_cells): 5,422 of the 21,452 in their ranges), which takes
-/// their candidates from 451,561 to 133,994 and their span tests from
-/// 99,215 to 58,849. A shallow pile gains nothing
-/// (1024 images, depth 1: 2.8 → 3.6 ms), hence the thresholds, which no
-/// built-in scene's receiver reaches (`large-light` has the most images
-/// per receiver, up to 960, at most about two deep).
+/// Built only under deep piles, where it pays: the thresholds were chosen
+/// by measurement (see benches/README.md § The union's constants and its
+/// two copies of the loop, which has the counts and times).
 #[derive(Debug, Default)]
 pub(super) struct Interior {
     /// Cells a side, a multiple of 64 (0: not built).
@@ -80,14 +68,14 @@ impl Interior {
     pub(super) const FEWEST: usize = 256;
 
     /// The least depth (summed area over the area of the common bounds)
-    /// it is built for (ours: the pile of `benches/references.rs`, about
-    /// one deep per 1000 images, at 2048, 2400, 2800 and 4096 images: 7.9
-    /// → 8.2, 9.97 → 10.1, 12.1 → 11.0 and 21.2 → 13.6 ms with it).
+    /// it is built for (ours, chosen by measurement: see benches/README.md
+    /// § The union's constants and its two copies of the loop).
     const DEPTH: f64 = 2.5;
 
-    /// Cells across the mean width of a triangle's bounds (ours: 16, 24,
-    /// 32 and 48 put the pile of 4096 images at 15.1, 14.3, 14.0 and 17.5
-    /// ms: finer cells drop more edges but cost more to mark and walk).
+    /// Cells across the mean width of a triangle's bounds: finer cells drop
+    /// more edges but cost more to mark and walk (ours, chosen by
+    /// measurement: see benches/README.md § The union's constants and its
+    /// two copies of the loop).
     const ACROSS: f64 = 32.0;
 
     /// The most cells a side.
@@ -96,8 +84,9 @@ impl Interior {
     /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
     pub(super) const BLOCK: usize = 8;
 
-    /// The triangles the depth is estimated from (ours: 64 put the pile of
-    /// 2048 images, 2 deep, above 2.5).
+    /// The triangles the depth is estimated from (ours, chosen by
+    /// measurement: see benches/README.md § The union's constants and its
+    /// two copies of the loop).
     const SAMPLES: usize = 256;
 
     /// Marks the cells inside `tris`' triangles, if the pile is deep;
@@ -108,8 +97,7 @@ impl Interior {
             return false;
         }
         // The depth and mean width from an even sample of the triangles
-        // (a pass over all of them cost 1 % of the instructions of the
-        // built-in scenes, whose piles are shallow).
+        // (cheaper than a pass over all of them on shallow piles).
         let step = tris.len() / Interior::SAMPLES;
         let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(-f64::INFINITY));
         let (mut area, mut width) = (0.0, 0.0);

@@ -79,8 +79,9 @@ pub(super) fn union_area_sweeping_from<const B: bool>(
     sweep_from: usize,
 ) -> (f64, f64) {
     // Two copies of the loop: the test of [`Interior`] left out of the
-    // one most receivers run (in it, the choice cost 1 % of the built-in
-    // scenes' instructions).
+    // one most receivers run (chosen by measurement: see
+    // benches/README.md § The union's constants and its two copies of
+    // the loop).
     let deep = scratch.interior.build(tris, half);
     match (scratch.search, deep) {
         (Search::Grid, true) => {
