@@ -3,7 +3,7 @@
 //! (over the grid or the tree) of the triangles that may cover it, and the
 //! pieces it leaves uncovered.
 
-use super::bound::{covered_span_bounded, cut_errors};
+use super::bound::{covered_span_bounded, cut_errors, outside_deep, Deep};
 use super::cover::Cover;
 use super::grid::{Grid, Level};
 use super::interior::Interior;
@@ -35,7 +35,7 @@ use glam::DVec2;
 /// the terms' magnitudes).
 pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
     tris: &[Tri],
-    weights: &[[f64; 3]],
+    (weights, reach): (&[[f64; 3]], f64),
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
@@ -54,6 +54,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
         interior,
         searched,
         bounded,
+        deep,
         ..
     } = scratch;
     let (grid, interior) = (&*grid, &*interior);
@@ -66,9 +67,14 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
     let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
         let (lo, hi) = (a.min(b), a.max(b));
         intervals.clear();
+        let band = Deep::of(reach, (b - a).length());
         if B {
             bounded.clear();
+            deep.clear();
         }
+        // A covered passage lies deep enough where the raster's margin
+        // holds the band (see [`walk_edges`]).
+        let passage_deep = B && reach < 0.25 * interior.margin();
         let mut cover = Cover::default();
         let mut whole = false;
         let (fx0, fy0, fx1, fy1) = grid.fine.range(lo, hi, half);
@@ -78,6 +84,9 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
                 if B {
                     // A covered passage: its ends are never a piece's.
                     bounded.push([u.0, u.1, 0.0, 0.0]);
+                    if passage_deep {
+                        deep.push(u);
+                    }
                 }
                 cover.add(u, intervals)
             });
@@ -94,7 +103,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             // is on the boundary. Most edges are covered whole, and their
             // search ends at the span that completes the cover (see
             // [`Cover`]).
-            if let Some(span) = span_of::<B>(a, b, i, j, tris, (lo, hi), bounded) {
+            if let Some(span) = span_of::<B>(a, b, (i, j), tris, (lo, hi), (band, bounded, deep)) {
                 whole = cover.add(span, intervals);
             }
             !whole
@@ -110,8 +119,17 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
                 *bound += cut_errors(a, b, bounded);
             }
         }
+        outside_deep(deep, band.x)
     };
-    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
+    walk_edges::<DEEP, B>(
+        tris,
+        (weights, reach),
+        measure,
+        half,
+        settle,
+        sweep_from,
+        search,
+    )
 }
 
 /// [`union_area_in`] with the edges' searches in a [`Tree`] instead of the
@@ -123,7 +141,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
 /// ([`walk_edges`]).
 pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
     tris: &[Tri],
-    weights: &[[f64; 3]],
+    (weights, reach): (&[[f64; 3]], f64),
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
@@ -138,6 +156,7 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
         sides,
         interior,
         bounded,
+        deep,
         ..
     } = scratch;
     let settle = Settle {
@@ -146,13 +165,22 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
         interior,
     };
     let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
+        let band = Deep::of(reach, (b - a).length());
         if B {
             bounded.clear();
+            deep.clear();
         }
         let (lo, hi) = (a.min(b), a.max(b));
         spans.clear();
         let whole = tree.search(&Ray::new(a, b), spans, |j| {
-            span_of::<B>(a, b, i, j as usize, tris, (lo, hi), bounded)
+            span_of::<B>(
+                a,
+                b,
+                (i, j as usize),
+                tris,
+                (lo, hi),
+                (band, &mut *bounded, &mut *deep),
+            )
         });
         if !whole {
             add_uncovered(a, b, &mut spans.list, measure, sum);
@@ -160,8 +188,17 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
                 *bound += cut_errors(a, b, bounded);
             }
         }
+        outside_deep(deep, band.x)
     };
-    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
+    walk_edges::<DEEP, B>(
+        tris,
+        (weights, reach),
+        measure,
+        half,
+        settle,
+        sweep_from,
+        search,
+    )
 }
 
 /// What settles an edge before any search: the sweep of the square's
@@ -182,19 +219,19 @@ struct Settle<'s> {
 #[inline(always)]
 fn walk_edges<const DEEP: bool, const B: bool>(
     tris: &[Tri],
-    weights: &[[f64; 3]],
+    (weights, reach): (&[[f64; 3]], f64),
     measure: Measure,
     half: f64,
     settle: Settle<'_>,
     sweep_from: usize,
-    mut search: impl FnMut(usize, DVec2, DVec2, &mut Sum, &mut f64),
+    mut search: impl FnMut(usize, DVec2, DVec2, &mut Sum, &mut f64) -> f64,
 ) -> (f64, f64) {
     let Settle {
         sides,
         edges,
         interior,
     } = settle;
-    let widest = prepare_sides_and_bands::<DEEP, B>(tris, weights, half, sides, sweep_from);
+    prepare_sides(tris, half, sides, sweep_from);
     let mut sum = Sum::default();
     let mut bound = 0.0;
     for (i, ti) in tris.iter().enumerate() {
@@ -214,17 +251,17 @@ fn walk_edges<const DEEP: bool, const B: bool>(
             }
             if DEEP && interior.covers(a, b) {
                 // Covered whole, as the search would find (see
-                // [`Interior`]), with a margin: if the edge's band is far
-                // narrower, the exact edge is covered too.
-                if B && (widest >= 0.25 * interior.margin() || widest.is_nan()) {
+                // [`Interior`]), with a margin: if the images' reach is
+                // far smaller, the band lies in marked cells.
+                if B && !(reach < 0.25 * interior.margin()) {
                     bound += weights[i][k];
                 }
                 continue;
             }
+            let outside = search(i, a, b, &mut sum, &mut bound);
             if B {
-                bound += weights[i][k];
+                bound += weights[i][k] * outside.min(1.0);
             }
-            search(i, a, b, &mut sum, &mut bound);
         }
     }
     if B {
@@ -234,18 +271,8 @@ fn walk_edges<const DEEP: bool, const B: bool>(
 }
 
 /// The common start of [`union_area_in`] and [`union_area_tree`]: each
-/// side of the square swept if it holds `sweep_from` edges or more, and
-/// (with `B` under a deep pile) the widest band of any edge — each
-/// allowance is at least twice its width times its length: the raster's
-/// margin covers an edge's exact position only if the covering
-/// triangle's and its own are within it.
-pub(super) fn prepare_sides_and_bands<const DEEP: bool, const B: bool>(
-    tris: &[Tri],
-    weights: &[[f64; 3]],
-    half: f64,
-    sides: &mut [SideSet; 4],
-    sweep_from: usize,
-) -> f64 {
+/// side of the square swept if it holds `sweep_from` edges or more.
+pub(super) fn prepare_sides(tris: &[Tri], half: f64, sides: &mut [SideSet; 4], sweep_from: usize) {
     let mut counts = [0usize; 4];
     for t in tris {
         for k in 0..3 {
@@ -258,19 +285,6 @@ pub(super) fn prepare_sides_and_bands<const DEEP: bool, const B: bool>(
     for (set, &count) in sides.iter_mut().zip(&counts) {
         set.clear();
         set.active = count >= sweep_from;
-    }
-    if B && DEEP {
-        tris.iter()
-            .zip(weights)
-            .flat_map(|(t, w)| {
-                (0..3).map(move |k| {
-                    let (a, b) = t.edge(k);
-                    w[k] / (2.0 * (b - a).length())
-                })
-            })
-            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
-    } else {
-        0.0
     }
 }
 
@@ -321,16 +335,16 @@ pub(super) fn searched_cells(
 
 /// The span of the edge `a → b` (of triangle `i`, its bounds `lo..hi`)
 /// that triangle `j` covers, as the grid's search finds it; with `B`, the
-/// same span with its ends' errors pushed to `bounded`.
+/// same span with its ends' errors pushed to `bounded`, and where `j`
+/// holds the edge's band ([`Deep`]) to `deep`.
 #[inline(always)]
 pub(super) fn span_of<const B: bool>(
     a: DVec2,
     b: DVec2,
-    i: usize,
-    j: usize,
+    (i, j): (usize, usize),
     tris: &[Tri],
     (lo, hi): (DVec2, DVec2),
-    bounded: &mut Vec<[f64; 4]>,
+    (band, bounded, deep): (Deep, &mut Vec<[f64; 4]>, &mut Vec<(f64, f64)>),
 ) -> Option<(f64, f64)> {
     let tj = &tris[j];
     if j == i || tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
@@ -338,7 +352,10 @@ pub(super) fn span_of<const B: bool>(
     }
     let span = covered_span(a, b, tj, j < i);
     if B && span.is_some() {
-        bounded.extend(covered_span_bounded(a, b, tj, j < i));
+        if let Some((bounds, inside)) = covered_span_bounded(a, b, tj, j < i, band) {
+            bounded.push(bounds);
+            deep.push(inside);
+        }
     }
     span
 }
@@ -380,4 +397,6 @@ pub(in crate::kernel::receiver_view) struct UnionScratch {
     searched: Vec<bool>,
     /// The spans with their ends' errors ([`cut_errors`]).
     bounded: Vec<[f64; 4]>,
+    /// Where the spans' triangles hold the edge's band ([`outside_deep`]).
+    deep: Vec<(f64, f64)>,
 }

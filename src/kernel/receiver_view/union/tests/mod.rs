@@ -59,9 +59,26 @@ fn sweeping_the_sides_gives_the_searched_area() {
             (Measure::Square, 1.0)
         };
         let tris = clipped_like(&mut rng, n, h);
-        let searched =
-            union_area_sweeping_from::<false>(&tris, &[], measure, h, &mut scratch, usize::MAX).0;
-        let swept = union_area_sweeping_from::<false>(&tris, &[], measure, h, &mut scratch, 1).0;
+        let searched = union_area_sweeping_from::<false>(
+            &tris,
+            &[],
+            f64::INFINITY,
+            measure,
+            h,
+            &mut scratch,
+            usize::MAX,
+        )
+        .0;
+        let swept = union_area_sweeping_from::<false>(
+            &tris,
+            &[],
+            f64::INFINITY,
+            measure,
+            h,
+            &mut scratch,
+            1,
+        )
+        .0;
         assert!(
             (searched - swept).abs() <= 1e-13,
             "case {case}: {n} triangles, searched {searched}, swept {swept}"
@@ -312,7 +329,7 @@ fn a_triangulated_polygon_is_its_outline() {
             let d = corner[n][n] - corner[0][0];
             (Measure::Square, 1.5, d.x * d.y)
         };
-        let area = union_area::<false>(&tris, &[], measure, half, &mut scratch).0;
+        let area = union_area::<false>(&tris, &[], f64::INFINITY, measure, half, &mut scratch).0;
         assert!(
             (area - expected).abs() <= 1e-14,
             "case {case}: {n}² squares, {area} against {expected}"
@@ -343,7 +360,15 @@ fn translates_along_the_base_are_the_swept_trapezoid_less_the_notches() {
             .collect();
         let l = (n - 1) as f64 * delta;
         let expected = 0.5 + l - (n - 1) as f64 * delta * delta / 2.0;
-        let area = union_area::<false>(&tris, &[], Measure::Square, 1.0, &mut scratch).0;
+        let area = union_area::<false>(
+            &tris,
+            &[],
+            f64::INFINITY,
+            Measure::Square,
+            1.0,
+            &mut scratch,
+        )
+        .0;
         assert!(
             (area - expected).abs() <= 1e-12,
             "{n} translates {delta} apart: {area} against {expected}"
@@ -375,8 +400,24 @@ fn nested_images_across_a_side_are_the_largest_one() {
         .max_by(|a, b| (a.hi.x - a.lo.x).total_cmp(&(b.hi.x - b.lo.x)))
         .expect("some");
     let mut scratch = UnionScratch::default();
-    let all = union_area::<false>(&tris, &[], Measure::Disk(1.0), h, &mut scratch).0;
-    let one = union_area::<false>(&[largest], &[], Measure::Disk(1.0), h, &mut scratch).0;
+    let all = union_area::<false>(
+        &tris,
+        &[],
+        f64::INFINITY,
+        Measure::Disk(1.0),
+        h,
+        &mut scratch,
+    )
+    .0;
+    let one = union_area::<false>(
+        &[largest],
+        &[],
+        f64::INFINITY,
+        Measure::Disk(1.0),
+        h,
+        &mut scratch,
+    )
+    .0;
     assert!(one > 0.1);
     assert!((all - one).abs() <= 1e-14, "{all} against {one}");
 }
