@@ -519,3 +519,71 @@ fn deep_case(case: usize, rng: &mut Rng, more: u64) -> (f64, Vec<Tri>) {
     let depth = rng.uniform(3.0, 6.0);
     (h, pile(case, rng, n, depth, h))
 }
+
+/// The bound leaves out only the parts of a band that another triangle
+/// holds at least twice the reach inside. Two strips across the square,
+/// each two triangles with every edge on a side of the square but one:
+/// the upper strip's lower edge `f` and the lower strip's upper edge `g`,
+/// a height `m` apart, overlapping (each covered whole by the other
+/// strip). The exact triangles are these with the ends of `f` moved up and
+/// those of `g` down by the reach `e` (every corner within `e`): where `m
+/// < 2e` a gap of height `2e − m` opens across the square, which only the
+/// two edges' bands hold, and the bound must count them; where `g` lies
+/// deep inside the upper strip (and `f` inside the lower), the bound
+/// counts of their bands only the stretches within `2e` of where they
+/// cross a strip's diagonal (the edges of the triangles holding them):
+/// `O(e²)`, not the bands' `4e` each. Ordinary (non-dyadic) heights and
+/// slopes.
+#[test]
+fn bands_held_deep_inside_other_triangles_are_left_out() {
+    let mut rng = Rng::new(40);
+    let mut scratch = UnionScratch::default();
+    for case in 0..400 {
+        let e = 10f64.powf(rng.uniform(-12.0, -6.0));
+        let (y0, y1) = (rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6));
+        // The vertical distance between the lines; across, `m cos θ`.
+        let m = e * rng.uniform(0.0, 6.0);
+        let cos = 2.0 / (2.0_f64).hypot(y1 - y0);
+        let (l, r) = (DVec2::new(-1.0, y0), DVec2::new(1.0, y1));
+        let (gl, gr) = (l + DVec2::Y * m, r + DVec2::Y * m);
+        let tris: Vec<Tri> = [
+            (l, r, DVec2::new(1.0, 1.0)),
+            (l, DVec2::new(1.0, 1.0), DVec2::new(-1.0, 1.0)),
+            (DVec2::new(-1.0, -1.0), DVec2::new(1.0, -1.0), gr),
+            (DVec2::new(-1.0, -1.0), gr, gl),
+        ]
+        .iter()
+        .map(|&(a, b, c)| Tri::new(a, b, c).expect("a triangle"))
+        .collect();
+        // Each edge's allowance: `2 e` along `f` and `g`, none on the
+        // sides or the shared diagonals.
+        let band = 2.0 * e * (r - l).length() * (1.0 + 4.0 * f64::EPSILON);
+        let weights: Vec<[f64; 3]> = tris
+            .iter()
+            .map(|t| {
+                [0, 1, 2].map(|k| {
+                    let (a, b) = t.edge(k);
+                    let on = |p: DVec2, q: DVec2| (a == p && b == q) || (a == q && b == p);
+                    if on(l, r) || on(gl, gr) {
+                        band
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .collect();
+        let (area, bound) =
+            union_area::<true>(&tris, &weights, e, Measure::Square, 1.0, &mut scratch);
+        let exact = 4.0 - 2.0 * (2.0 * e - m).max(0.0);
+        assert!(
+            (area - exact).abs() <= bound,
+            "case {case}: e {e:e}, m {m:e}: |{area} − {exact}| > {bound:e}"
+        );
+        if m * cos > 2.5 * e {
+            assert!(
+                bound < 0.01 * band,
+                "case {case}: e {e:e}, m {m:e}: bound {bound:e} with the bands held"
+            );
+        }
+    }
+}
