@@ -45,7 +45,7 @@ impl Method for Exact {
         let bvh = input.stages().bvh();
         let emitters = input.emitters();
         let answers = per_receiver(input, exact::Scratch::default, |s, index, r| {
-            if exact::domain(bvh, &emitters[index], r.position) == exact::Domain::Overflow {
+            if exact::domain(bvh, &emitters[index], r.position).refused() {
                 return Err(MethodError::Receiver {
                     index,
                     error: crate::scene::ReceiverError::OutOfRange,
