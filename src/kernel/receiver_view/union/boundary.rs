@@ -24,8 +24,15 @@ use glam::DVec2;
 ///
 /// The bound (`B`) sums: each edge's allowance unless it is shared (an
 /// edge and its exact reverse move together, both sides covered) or
-/// covered whole by the raster with a margin far above its width — the
-/// exact union's boundary lies within those bands of the computed one;
+/// covered whole by the raster with a margin far above the images'
+/// `reach` — the exact union's boundary lies within those bands of the
+/// computed one — scaled by the measure of the parameters of `[−x, 1 +
+/// x]` (`x = reach / |e|`, the band's run past the ends) that the
+/// triangles its search found do not hold at least `2 reach` inside
+/// ([`Deep`]; the raster's covered passages, where its margin is far above
+/// the reach, whole): there the band lies inside both the computed union
+/// and the exact one, so the two cannot differ in it (see the
+/// [certified bound](crate::kernel::receiver_view#the-certified-bound));
 /// for each piece kept on the boundary, the error of its ends where they
 /// are cuts by other edges (`|e| Δt`: the pieces' areas move by at most
 /// the distance their ends move, the disk's and the square's pieces being
@@ -136,7 +143,11 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
 /// grids: the same spans' union for every edge (the tree leaves out only
 /// triangles whose spans lie inside the cover already found; see
 /// [`tree`](super::tree)), so the same pieces, summed in the same order:
-/// the same area and bound, bit for bit. The side sweep, the table of
+/// the same area, bit for bit, and the same bound where the images' reach
+/// is unknown (infinite). With a known reach, the bands each search's
+/// spans hold deep inside drop out, and the spans found before an edge is
+/// covered whole differ between the searches: each bound holds, not
+/// always the same bits. The side sweep, the table of
 /// shared edges and the raster of a deep pile settle the same edges first
 /// ([`walk_edges`]).
 pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
