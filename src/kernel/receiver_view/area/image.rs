@@ -94,6 +94,7 @@ impl Image {
     /// (see [`Image::reach`]; a point farther inside than that keeps its
     /// winding number under the straight-line deformation of one boundary
     /// into the other).
+    #[inline(always)]
     pub(super) fn from_slice<const B: bool>(v: &[DVec2], err: &[f64]) -> Image {
         let mut image = Image::EMPTY;
         let n = v.len();

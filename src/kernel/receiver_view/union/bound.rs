@@ -5,6 +5,7 @@ use super::span::cut_by_edge;
 use super::tri::Tri;
 use crate::kernel::predicate::{orient2d_value_bounded, Bounded};
 use glam::DVec2;
+use std::f64::consts::SQRT_2;
 
 /// For an edge `a → b` with pieces on the boundary, the sum of `|b − a|
 /// Δt` over the pieces' ends that are cuts by other edges, `Δt` a bound on
@@ -75,7 +76,7 @@ pub(super) fn covered_span_bounded(
             span[3] = err;
         }
         (span[0], span[1]) = narrowed;
-        inside = deep.narrow(inside, va, vb, (f1 - f0).length());
+        inside = deep.narrow(inside, va, vb, (f1 - f0).abs().max_element());
     }
     (span[0] < span[1]).then_some((span, inside))
 }
@@ -105,19 +106,27 @@ impl Deep {
     }
 
     /// `inside` narrowed to where the edge's point lies at least `depth`
-    /// inside the line `f` (of length `len_f`), given the signed areas
-    /// `va`, `vb` of the edge's ends against it: `g(t) = va + t (vb − va)`
-    /// is `len_f` times the signed distance of the point `t` from the line,
-    /// within `(1 + x)(Δva + Δvb)` of its exact value on `[−x, 1 + x]`.
-    /// The quotient's end is moved inward by its rounding.
-    fn narrow(self, inside: (f64, f64), va: Bounded, vb: Bounded, len_f: f64) -> (f64, f64) {
+    /// inside the line `f` (`max_f` its larger coordinate difference), given
+    /// the signed areas `va`, `vb` of the edge's ends against it: `g(t) =
+    /// va + t (vb − va)` is `|f|` times the signed distance of the point `t`
+    /// from the line (`|f| ≤ √2 max_f`), within `(1 + x)(Δva + Δvb)` of its
+    /// exact value on `[−x, 1 + x]`. The quotient's end is moved inward by
+    /// its rounding; a line both ends lie that far inside of (with `x |vb
+    /// − va|` to spare) leaves `inside` as it is.
+    #[inline(always)]
+    fn narrow(self, inside: (f64, f64), va: Bounded, vb: Bounded, max_f: f64) -> (f64, f64) {
         const EMPTY: (f64, f64) = (1.0, 0.0);
         let eps = f64::EPSILON;
-        let need = self.depth * len_f * (1.0 + 4.0 * eps) + (1.0 + self.x) * (va.bound + vb.bound);
+        let need = self.depth * max_f * (SQRT_2 * (1.0 + 4.0 * eps))
+            + (1.0 + self.x) * (va.bound + vb.bound) * (1.0 + 4.0 * eps);
         if !(need < f64::INFINITY) {
             return EMPTY;
         }
         let k = vb.value - va.value;
+        let spare = (need + self.x * k.abs()) * (1.0 + 4.0 * eps);
+        if va.value >= spare && vb.value >= spare {
+            return inside;
+        }
         if k == 0.0 {
             return if va.value >= need { inside } else { EMPTY };
         }
