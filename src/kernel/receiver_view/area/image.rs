@@ -5,6 +5,7 @@ use glam::DVec2;
 
 /// A triangle's image before it is handed out: the fast path's corners (in
 /// either orientation) or the clipped polygon.
+#[allow(clippy::large_enum_variant)] // Returned once per triangle: boxing would allocate.
 pub(super) enum Polygon {
     /// The corners' images and their error bounds.
     Corners([DVec2; 3], [f64; 3]),

@@ -407,10 +407,8 @@ impl AreaView {
                 // may hold of the light, if it comes within their reach of
                 // the light (each band lies within the image's reach of its
                 // edge's line and runs at most that past its ends).
-                _ if B => {
-                    if measure.near(&[v[0], v[k], v[k + 1]], 2.0 * image.reach()) {
-                        *extra += wk.iter().sum::<f64>();
-                    }
+                _ if B && measure.near(&[v[0], v[k], v[k + 1]], 2.0 * image.reach()) => {
+                    *extra += wk.iter().sum::<f64>();
                 }
                 _ => {}
             }

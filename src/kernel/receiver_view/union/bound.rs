@@ -119,7 +119,7 @@ impl Deep {
         let eps = f64::EPSILON;
         let need = self.depth * max_f * (SQRT_2 * (1.0 + 4.0 * eps))
             + (1.0 + self.x) * (va.bound + vb.bound) * (1.0 + 4.0 * eps);
-        if !(need < f64::INFINITY) {
+        if !need.is_finite() {
             return EMPTY;
         }
         let k = vb.value - va.value;
@@ -154,7 +154,7 @@ pub(super) fn outside_deep(deep: &mut [(f64, f64)], x: f64) -> f64 {
     deep.sort_unstable_by(|p, q| p.0.total_cmp(&q.0));
     let (mut reach, mut total, mut gaps) = (-x, 0.0, 0.0);
     for &(s, e) in deep.iter() {
-        if !(s <= e) {
+        if s.is_nan() || e.is_nan() || s > e {
             continue;
         }
         if s > reach {

@@ -110,7 +110,8 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             // is on the boundary. Most edges are covered whole, and their
             // search ends at the span that completes the cover (see
             // [`Cover`]).
-            if let Some(span) = span_of::<B>(a, b, (i, j), tris, (lo, hi), (band, bounded, deep)) {
+            if let Some(span) = span_of::<B>(a, b, (i, j), tris, (lo, hi), (band, (bounded, deep)))
+            {
                 whole = cover.add(span, intervals);
             }
             !whole
@@ -190,7 +191,7 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
                 (i, j as usize),
                 tris,
                 (lo, hi),
-                (band, &mut *bounded, &mut *deep),
+                (band, (&mut *bounded, &mut *deep)),
             )
         });
         if !whole {
@@ -264,7 +265,7 @@ fn walk_edges<const DEEP: bool, const B: bool>(
                 // Covered whole, as the search would find (see
                 // [`Interior`]), with a margin: if the images' reach is
                 // far smaller, the band lies in marked cells.
-                if B && !(reach < 0.25 * interior.margin()) {
+                if B && (reach.is_nan() || reach >= 0.25 * interior.margin()) {
                     bound += weights[i][k];
                 }
                 continue;
@@ -355,7 +356,7 @@ pub(super) fn span_of<const B: bool>(
     (i, j): (usize, usize),
     tris: &[Tri],
     (lo, hi): (DVec2, DVec2),
-    (band, bounded, deep): (Deep, &mut Vec<[f64; 4]>, &mut Vec<(f64, f64)>),
+    (band, (bounded, deep)): (Deep, Found<'_>),
 ) -> Option<(f64, f64)> {
     let tj = &tris[j];
     if j == i || tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
@@ -370,6 +371,10 @@ pub(super) fn span_of<const B: bool>(
     }
     span
 }
+
+/// The spans with their ends' errors, and where their triangles hold an
+/// edge's band ([`span_of`]).
+type Found<'a> = (&'a mut Vec<[f64; 4]>, &'a mut Vec<(f64, f64)>);
 
 /// How an edge finds the triangles that may cover it: the two designs,
 /// kept side by side so that they can be compared (the same area, bit for
