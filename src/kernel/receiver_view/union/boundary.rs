@@ -123,21 +123,11 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
                 intervals.push((0.0, cover.reach));
             }
             add_uncovered(a, b, intervals, measure, sum);
-            if B {
-                *bound += cut_errors(a, b, bounded);
-            }
         }
-        outside_deep(deep, band.x)
+        edge_bound::<B>((a, b), whole, bound, (bounded, deep), band)
     };
-    walk_edges::<DEEP, B>(
-        tris,
-        (weights, reach),
-        measure,
-        half,
-        settle,
-        sweep_from,
-        search,
-    )
+    let bands = (weights, reach);
+    walk_edges::<DEEP, B>(tris, bands, measure, half, settle, sweep_from, search)
 }
 
 /// [`union_area_in`] with the edges' searches in a [`Tree`] instead of the
@@ -196,21 +186,32 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
         });
         if !whole {
             add_uncovered(a, b, &mut spans.list, measure, sum);
-            if B {
-                *bound += cut_errors(a, b, bounded);
-            }
         }
-        outside_deep(deep, band.x)
+        edge_bound::<B>((a, b), whole, bound, (bounded, deep), band)
     };
-    walk_edges::<DEEP, B>(
-        tris,
-        (weights, reach),
-        measure,
-        half,
-        settle,
-        sweep_from,
-        search,
-    )
+    let bands = (weights, reach);
+    walk_edges::<DEEP, B>(tris, bands, measure, half, settle, sweep_from, search)
+}
+
+/// With `B`, after an edge's search: the cut errors of its pieces on the
+/// boundary (none when it is covered `whole`) added to `bound`, and the
+/// measure of its band's parameters that the spans found do not hold deep
+/// inside ([`outside_deep`]); 0 without `B`.
+#[inline(always)]
+fn edge_bound<const B: bool>(
+    (a, b): (DVec2, DVec2),
+    whole: bool,
+    bound: &mut f64,
+    (bounded, deep): Found<'_>,
+    band: Deep,
+) -> f64 {
+    if !B {
+        return 0.0;
+    }
+    if !whole {
+        *bound += cut_errors(a, b, bounded);
+    }
+    outside_deep(deep, band.x)
 }
 
 /// What settles an edge before any search: the sweep of the square's
