@@ -159,7 +159,8 @@
 //!   allowances: all but shared edges' (an edge and its exact reverse move
 //!   together) and those of edges the raster of a deep pile covers with a
 //!   margin far above the reach. Images that miss the light or are
-//!   degenerate count if they come within `2R` of it (the disk itself,
+//!   degenerate count if they come within their bands' spread of it (the
+//!   band's half-width and run past the ends, combined; the disk itself,
 //!   not its box); a single image covering the light leaves at most its
 //!   bands uncovered.
 //! - **The union**: each piece kept on the boundary moves by at most the

@@ -289,14 +289,13 @@ impl Clip {
         // more than `δ` inside this line (the triangle lies where the line
         // is at least `−τ`, and its value grows at least as fast as the
         // distance), so inside the exact line too.
-        let mut reach = 0.0_f64;
+        let (mut reach, mut spread) = (0.0_f64, 0.0_f64);
         for k in 0..n {
             if !matches!(self.on[k], On::Side(_)) {
                 let j = if k + 1 == n { 0 } else { k + 1 };
-                reach = reach
-                    .max(delta[k] + rho[k].max(rho[j]))
-                    .max(ext[k])
-                    .max(ext[j]);
+                let width = delta[k] + rho[k].max(rho[j]);
+                reach = reach.max(width).max(ext[k]).max(ext[j]);
+                spread = spread.max(width.hypot(ext[k].max(ext[j])));
             }
         }
         for (slot, l) in self.lines.iter().enumerate() {
@@ -322,6 +321,11 @@ impl Clip {
         // A NaN (a line's value at a vertex not finite) reaches anywhere.
         image.reach = if reach.is_finite() {
             reach * (1.0 + 8.0 * f64::EPSILON)
+        } else {
+            f64::INFINITY
+        };
+        image.spread = if spread.is_finite() {
+            spread * (1.0 + 8.0 * f64::EPSILON)
         } else {
             f64::INFINITY
         };

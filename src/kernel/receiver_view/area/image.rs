@@ -31,6 +31,8 @@ pub struct Image {
     /// A bound on how far the exact image's difference from this one
     /// reaches ([`Image::reach`]).
     pub(super) reach: f64,
+    /// A bound on how far any band lies from its edge ([`Image::spread`]).
+    pub(super) spread: f64,
     pub(super) len: usize,
 }
 
@@ -42,6 +44,7 @@ impl Image {
         w: [0.0; Image::CAP],
         extra: 0.0,
         reach: 0.0,
+        spread: 0.0,
         len: 0,
     };
 
@@ -87,6 +90,13 @@ impl Image {
         self.reach
     }
 
+    /// A bound on the distance from an edge to any point of its band (with
+    /// `B`; else 0): `hypot` of the band's half-width and its run past the
+    /// nearer end, the largest over the edges. Infinite where unknown.
+    pub(in crate::kernel::receiver_view) fn spread(&self) -> f64 {
+        self.spread
+    }
+
     /// The triangle of the corners' images `v`, each within its `err` of
     /// the exact one. The exact triangle's boundary then lies within the
     /// largest error of this one's, point for point (each point of an edge
@@ -112,6 +122,7 @@ impl Image {
             } else {
                 f64::INFINITY
             };
+            image.spread = image.reach * std::f64::consts::SQRT_2;
         }
         image.len = n;
         image

@@ -404,10 +404,9 @@ impl AreaView {
                     }
                 }
                 // Missing the light, or degenerate: what its edges' bands
-                // may hold of the light, if it comes within their reach of
-                // the light (each band lies within the image's reach of its
-                // edge's line and runs at most that past its ends).
-                _ if B && measure.near(&[v[0], v[k], v[k + 1]], 2.0 * image.reach()) => {
+                // may hold of the light, if it comes within their spread of
+                // the light (no point of a band lies farther from its edge).
+                _ if B && measure.near(&[v[0], v[k], v[k + 1]], image.spread()) => {
                     *extra += wk.iter().sum::<f64>();
                 }
                 _ => {}
