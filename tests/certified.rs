@@ -102,6 +102,7 @@ pub const FAMILIES: &[&str] = &[
     "long edge seen end-on",
     "tiny light at 1e9, rim",
     "just above a curved surface",
+    "deep pile",
 ];
 
 /// A case of `family` with light `kind`, or `None` where the generator
@@ -402,6 +403,31 @@ pub fn case(family: &str, kind: usize, rng: &mut Rng) -> Option<Case> {
             let up = normal * elevation.sin() + across * elevation.cos();
             let light = light_of(kind, rng, q + up * dist, r, q)?;
             Case { p: q, light, tris }
+        }
+        "deep pile" => {
+            // Up to ten triangles across the light at different depths,
+            // half of them copies of another moved by 10⁻¹⁵ … 10⁻⁹ of its
+            // size: most edges are covered by other images, some with a
+            // margin as small as the images' errors, which is where the
+            // bound leaves out the bands that others hold deep inside.
+            let light = light_of(kind, rng, c, r, p)?;
+            let mut tris = Vec::new();
+            for _ in 0..rng.below(3) + 3 {
+                let at = aim(rng, &light, r);
+                let tri = crossing_triangle(rng, p, at);
+                let size = (tri[1] - tri[0]).length();
+                let scale = size * 10f64.powf(rng.uniform(-15.0, -9.0));
+                let nudge = v3(rng, scale);
+                let copy = if rng.chance(0.5) {
+                    tri.map(|v| v + nudge)
+                } else {
+                    // One corner moved: edges that cross at a tiny angle.
+                    [tri[0], tri[1] + nudge, tri[2]]
+                };
+                tris.push(tri);
+                tris.push(copy);
+            }
+            Case { p, light, tris }
         }
         _ => panic!("unknown family {family}"),
     };

@@ -1,7 +1,8 @@
 //! The references at the ends of their domains: a scene so large that the
 //! exact reference's determinants (products of three coordinate
 //! differences) would overflow is refused with `ReceiverError::OutOfRange`
-//! (an `Err`, never a wrong answer with a small bound), a scene beyond
+//! (an `Err`, never a wrong answer with a small bound), and so is a whole
+//! scene below `10⁻⁹⁰` (whose determinants underflow); a scene beyond
 //! `10⁹⁰` that does not overflow is answered with bound 1 (no certified
 //! information), and Monte Carlo refuses a light `10¹⁵⁰` away, whose rays
 //! its exact segment test cannot decide.
@@ -57,11 +58,15 @@ fn frame() -> Frame {
 }
 
 #[test]
-fn exact_refuses_scenes_whose_determinants_overflow() {
+fn exact_refuses_scenes_whose_determinants_overflow_or_underflow() {
     // 1e80: inside the domain, certified. 1e100: beyond 1e90 but no
     // determinant overflows (answered, bound 1). 1e110 and 1e153: the
-    // products of three differences overflow (refused).
+    // products of three differences overflow (refused). 1e-80: inside.
+    // 1e-110: every coordinate below 1e-90, the products underflow
+    // (refused).
     for (s, domain) in [
+        (1e-110, "underflow"),
+        (1e-80, "inside"),
         (1e80, "inside"),
         (1e100, "beyond"),
         (1e110, "overflow"),

@@ -72,7 +72,7 @@ impl Method for Exact {
             self,
             input,
             exact::Scratch::default,
-            |bvh, emitter, p| exact::domain(bvh, emitter, p) == exact::Domain::Overflow,
+            |bvh, emitter, p| exact::domain(bvh, emitter, p).refused(),
             |s, index, bvh, emitter, p| {
                 let b = exact::emitter_visibility_bounded(bvh, emitter, p, s);
                 if self.tolerance < 1.0 && (b.bound > self.tolerance || b.bound.is_nan()) {

@@ -50,7 +50,13 @@
 //! ([`ReceiverError::OutOfRange`]), and [`emitter_visibility_bounded`]
 //! answers it with `bound = 1` (no information). Between the two (a light
 //! `10²⁰⁰` away over ordinary occluders) the answer is computed, in
-//! `[0, 1]` and never NaN, but its bound is 1: not certified.
+//! `[0, 1]` and never NaN, but its bound is 1: not certified. At the other
+//! end, a scene whose every coordinate (receiver, occluders and light,
+//! `max(T, L)`) is below `10⁻⁹⁰` — a whole scene `10⁻¹¹⁰` across — lies
+//! wholly below the predicates' exact range (its determinants, products
+//! of three differences, underflow): refused likewise, and answered with
+//! `bound = 1` by [`emitter_visibility_bounded`]. (A tiny scene is the
+//! same scene scaled by a power of two: scale it up to answer it.)
 //!
 //! ## Cost
 //!
@@ -138,7 +144,7 @@ fn in_range<T>(
     answer: impl FnOnce(&Emitter) -> T,
 ) -> Result<T, ReceiverError> {
     let emitter = light.emitter(p)?;
-    if domain(bvh, &emitter, p) == Domain::Overflow {
+    if domain(bvh, &emitter, p).refused() {
         return Err(ReceiverError::OutOfRange);
     }
     Ok(answer(&emitter))
@@ -156,10 +162,23 @@ pub(crate) enum Domain {
     /// (each below `24 T²(T + L)` in magnitude, its running bounds a few
     /// times more) could overflow.
     Overflow,
+    /// `max(T, L) < 10⁻⁹⁰`: every coordinate below the predicates' exact
+    /// range, the determinants underflowing.
+    Underflow,
+}
+
+impl Domain {
+    /// Whether the receiver is refused ([`ReceiverError::OutOfRange`]).
+    pub(crate) fn refused(self) -> bool {
+        matches!(self, Domain::Overflow | Domain::Underflow)
+    }
 }
 
 /// The largest magnitude the predicates are exact for.
 const DOMAIN: f64 = 1e90;
+
+/// The smallest non-zero magnitude they are exact for.
+const DOMAIN_LOW: f64 = 1e-90;
 
 /// `(T, L)`: the largest coordinate magnitude of the receiver and the
 /// occluders, and of the emitter's points (centre plus extent, per
@@ -176,6 +195,8 @@ pub(crate) fn domain(bvh: &Bvh, emitter: &Emitter, p: DVec3) -> Domain {
     let weight = t * t * (t + l);
     if weight.is_nan() || weight > f64::MAX / 1024.0 {
         Domain::Overflow
+    } else if t.max(l) < DOMAIN_LOW {
+        Domain::Underflow
     } else if t.max(l) > DOMAIN {
         Domain::Uncertified
     } else {

@@ -94,7 +94,8 @@ pub enum ReceiverError {
     OnLight,
     /// The scene around the receiver is beyond a reference's range: the
     /// exact reference's determinants (products of three coordinate
-    /// differences) would overflow, or, for Monte Carlo, a coordinate
+    /// differences) would overflow or the whole scene lies below `10⁻⁹⁰`
+    /// (where they underflow), or, for Monte Carlo, a coordinate
     /// exceeds its segment test's domain (`10⁹⁰`). See the domains in the
     /// documentation of `reference::exact` and `reference::monte_carlo`.
     OutOfRange,

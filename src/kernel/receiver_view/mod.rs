@@ -129,13 +129,40 @@
 //!   how far the exact edge may run on past each end (`(δ_in + δ_out +
 //!   2ρ) / sin θ` at a corner of angle `θ`, capped at the square's
 //!   diagonal); a line that passes within its error of a vertex without
-//!   cutting adds a band along the diagonal. The union's area moves by at
-//!   most the bands of the edges that can be on its boundary: all but
-//!   shared edges (an edge and its exact reverse move together) and edges
-//!   the raster of a deep pile covers with a margin far above every band.
-//!   Images that miss the light or are degenerate count if they come
-//!   within their bands of it; a single image covering the light leaves at
-//!   most its bands uncovered.
+//!   cutting adds a band along the diagonal. Each image also has a
+//!   *reach* `R`: every band lies within `R` of its edge's line and runs
+//!   at most `R` past its ends, and a point of the light more than `R`
+//!   inside every edge line of one of the image's triangles lies in the
+//!   exact image too (for the fast path's corners, each within `e` of the
+//!   exact one, `R` is the largest `e`; for a clipped image, the largest
+//!   band width and run, and for each line cut by, its error `δ` plus how
+//!   far any vertex lies on its outer side `τ` — a point farther than `δ +
+//!   τ` inside the triangle is farther than `δ` inside that line, so
+//!   inside the exact one).
+//! - **Bands held by other images.** The two unions differ only where
+//!   some band is (every point of one image and not of its exact
+//!   counterpart lies in one of its bands), and not where the computed
+//!   and the exact union both hold the point: so a stretch of a band that
+//!   lies inside both counts for nothing. Where the point `t` of an edge
+//!   lies at least `2R` inside every edge line of another triangle `j`
+//!   (`R` the largest reach of the images), the band's cross-section
+//!   there lies more than `R` inside `j` — in the computed union, and in
+//!   `j`'s exact image. The spans the union's search finds give, from the
+//!   same signed areas with their bounds, the parameters where each
+//!   triangle holds the edge that deep (each edge line's signed distance
+//!   is linear along the edge); an edge's allowance is its band's times
+//!   the measure of the parameters in `[−R/|e|, 1 + R/|e|]` (the band's
+//!   length, past both ends) that none of them holds, at most 1. Most
+//!   edges of a pile of images are covered whole with room to spare, and
+//!   their bands drop out but for a few `R` where two covering triangles'
+//!   edges cross them. The union's area then moves by at most those
+//!   allowances: all but shared edges' (an edge and its exact reverse move
+//!   together) and those of edges the raster of a deep pile covers with a
+//!   margin far above the reach. Images that miss the light or are
+//!   degenerate count if they come within their bands' spread of it (the
+//!   band's half-width and run past the ends, combined; the disk itself,
+//!   not its box); a single image covering the light leaves at most its
+//!   bands uncovered.
 //! - **The union**: each piece kept on the boundary moves by at most the
 //!   error of its cut ends (the cut parameters' bounds, from the signed
 //!   areas' own, times the edge's length: the area kernels are 1-Lipschitz

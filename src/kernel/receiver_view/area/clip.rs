@@ -282,8 +282,29 @@ impl Clip {
             };
         }
         let most_rho = rho[..n].iter().fold(0.0_f64, |m, &r| m.max(r));
+        // The reach (see [`Image::reach`]): the bands' widths and runs
+        // past their ends, and for each line cut by, its error plus how
+        // far any vertex lies on its outer side (`τ`): a point more than
+        // `δ + τ` inside every edge line of a triangle of this image is
+        // more than `δ` inside this line (the triangle lies where the line
+        // is at least `−τ`, and its value grows at least as fast as the
+        // distance), so inside the exact line too.
+        let (mut reach, mut spread) = (0.0_f64, 0.0_f64);
+        for k in 0..n {
+            if !matches!(self.on[k], On::Side(_)) {
+                let j = if k + 1 == n { 0 } else { k + 1 };
+                let width = delta[k] + rho[k].max(rho[j]);
+                reach = reach.max(width).max(ext[k]).max(ext[j]);
+                spread = spread.max(width.hypot(ext[k].max(ext[j])));
+            }
+        }
         for (slot, l) in self.lines.iter().enumerate() {
             let Some(l) = l else { continue };
+            let near = image.v[..n]
+                .iter()
+                .map(|&q| (l.at(q) - l.rounding(q)) / l.norm())
+                .fold(f64::INFINITY, f64::min);
+            reach = reach.max(l.err + (-near).max(0.0));
             let id = if slot == 3 {
                 On::Plane
             } else {
@@ -292,15 +313,22 @@ impl Clip {
             if self.on[..n].contains(&id) {
                 continue;
             }
-            let near = image.v[..n]
-                .iter()
-                .map(|&q| (l.at(q) - l.rounding(q)) / l.norm())
-                .fold(f64::INFINITY, f64::min);
             if near < (l.err + most_rho) * 2.0 {
                 let band = self.band(&image.v[..n], l, -1.0, l.err, most_rho);
                 image.extra += band.min(self.wedge(slot, l, -1.0, most_rho));
             }
         }
+        // A NaN (a line's value at a vertex not finite) reaches anywhere.
+        image.reach = if reach.is_finite() {
+            reach * (1.0 + 8.0 * f64::EPSILON)
+        } else {
+            f64::INFINITY
+        };
+        image.spread = if spread.is_finite() {
+            spread * (1.0 + 8.0 * f64::EPSILON)
+        } else {
+            f64::INFINITY
+        };
         self.image = image;
         self.image
     }

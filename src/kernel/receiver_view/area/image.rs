@@ -5,6 +5,7 @@ use glam::DVec2;
 
 /// A triangle's image before it is handed out: the fast path's corners (in
 /// either orientation) or the clipped polygon.
+#[allow(clippy::large_enum_variant)] // Returned once per triangle: boxing would allocate.
 pub(super) enum Polygon {
     /// The corners' images and their error bounds.
     Corners([DVec2; 3], [f64; 3]),
@@ -27,6 +28,11 @@ pub struct Image {
     /// A bound on the area the exact image may hold beyond all edges'
     /// (lines passing within their error of a vertex without cutting).
     pub(super) extra: f64,
+    /// A bound on how far the exact image's difference from this one
+    /// reaches ([`Image::reach`]).
+    pub(super) reach: f64,
+    /// A bound on how far any band lies from its edge ([`Image::spread`]).
+    pub(super) spread: f64,
     pub(super) len: usize,
 }
 
@@ -37,6 +43,8 @@ impl Image {
         err: [0.0; Image::CAP],
         w: [0.0; Image::CAP],
         extra: 0.0,
+        reach: 0.0,
+        spread: 0.0,
         len: 0,
     };
 
@@ -72,6 +80,32 @@ impl Image {
         self.extra
     }
 
+    /// A bound `R` on how far the two images' difference reaches, in the
+    /// view's units (with `B`; else 0): each edge's band lies within `R`
+    /// of the edge's line and runs at most `R` past either end, and a
+    /// point of the light at least `R` inside every edge's line of one of
+    /// this image's triangles lies in the exact image too. Infinite where
+    /// no such bound is known.
+    pub(in crate::kernel::receiver_view) fn reach(&self) -> f64 {
+        self.reach
+    }
+
+    /// A bound on the distance from an edge to any point of its band (with
+    /// `B`; else 0): `hypot` of the band's half-width and its run past the
+    /// nearer end, the largest over the edges. Infinite where unknown.
+    pub(in crate::kernel::receiver_view) fn spread(&self) -> f64 {
+        self.spread
+    }
+
+    /// The triangle of the corners' images `v`, each within its `err` of
+    /// the exact one. The exact triangle's boundary then lies within the
+    /// largest error of this one's, point for point (each point of an edge
+    /// the same combination of its ends), so their difference lies within
+    /// that error of this one's edges: the reach is the largest error
+    /// (see [`Image::reach`]; a point farther inside than that keeps its
+    /// winding number under the straight-line deformation of one boundary
+    /// into the other).
+    #[inline(always)]
     pub(super) fn from_slice<const B: bool>(v: &[DVec2], err: &[f64]) -> Image {
         let mut image = Image::EMPTY;
         let n = v.len();
@@ -82,6 +116,13 @@ impl Image {
                 let j = (k + 1) % n;
                 image.w[k] = corner_edge_weight(v[k], v[j], err[k], err[j]);
             }
+            let most = err.iter().fold(0.0_f64, |m, &e| m.max(e));
+            image.reach = if most.is_finite() {
+                most * (1.0 + 4.0 * f64::EPSILON)
+            } else {
+                f64::INFINITY
+            };
+            image.spread = image.reach * std::f64::consts::SQRT_2;
         }
         image.len = n;
         image

@@ -10,7 +10,7 @@ mod project;
 use crate::kernel::receiver_view::bounded::{det3_exact, max_abs, Bounded, Cross, Row};
 use crate::kernel::receiver_view::union::{union_area, Measure, Tri};
 use crate::kernel::receiver_view::{Fraction, Scratch};
-use glam::{DVec2, DVec3};
+use glam::DVec3;
 pub use image::Image;
 use image::Polygon;
 use std::f64::consts::PI;
@@ -299,13 +299,13 @@ impl AreaView {
         // is compiled once, here, not in every caller.
         scratch.triangles.clear();
         scratch.weights.clear();
-        let mut extra = 0.0;
+        let (mut extra, mut reach) = (0.0, 0.0);
         for tri in triangles {
             if let Some(bound) = self.add_image::<B>(
                 tri,
                 &mut scratch.triangles,
                 &mut scratch.weights,
-                &mut extra,
+                (&mut extra, &mut reach),
             ) {
                 // One image covers the whole light.
                 let bound = bound / self.light_area() + 2.0 * f64::EPSILON;
@@ -315,6 +315,7 @@ impl AreaView {
         let (covered, bound) = union_area::<B>(
             &scratch.triangles,
             &scratch.weights,
+            reach,
             self.measure,
             self.half,
             &mut scratch.union,
@@ -339,7 +340,8 @@ impl AreaView {
 
     /// Appends the parts of the triangle's image that meet the light (and,
     /// if `B`, their edges' area allowances to `weights`, what is dropped
-    /// of them to `extra`); `Some(bound)` when the image covers the whole
+    /// of them to `extra`, and the image's [reach](Image::reach) to the
+    /// largest of those appended, `reach`); `Some(bound)` when the image covers the whole
     /// light (checked on the convex image before it is split, so that a
     /// covering image ends the work however many images came before it),
     /// with a bound on the area it may leave uncovered.
@@ -348,7 +350,7 @@ impl AreaView {
         tri: &[DVec3; 3],
         out: &mut Vec<Tri>,
         weights: &mut Vec<[f64; 3]>,
-        extra: &mut f64,
+        (extra, reach): (&mut f64, &mut f64),
     ) -> Option<f64> {
         let measure = self.measure;
         let image = match self.polygon::<B>(tri) {
@@ -392,6 +394,7 @@ impl AreaView {
                 Some(t) if !measure.misses(&t) => {
                     out.push(t);
                     if B {
+                        *reach = reach.max(image.reach());
                         // Oriented as given, or reversed (a, c, b).
                         weights.push(if t.first_edge_is(v[0], v[k]) {
                             wk
@@ -401,20 +404,10 @@ impl AreaView {
                     }
                 }
                 // Missing the light, or degenerate: what its edges' bands
-                // may hold of the light, if it comes within their width of
-                // the light's box (each allowance is at least twice the
-                // width times the edge's length).
-                _ if B => {
-                    let (p, q, r) = (v[0], v[k], v[k + 1]);
-                    let width = [(p, q, wk[0]), (q, r, wk[1]), (r, p, wk[2])]
-                        .iter()
-                        .map(|&(a, b, w)| w / (2.0 * (b - a).length()))
-                        .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) });
-                    let (lo, hi) = (p.min(q).min(r), p.max(q).max(r));
-                    let reach = measure.radius() + width;
-                    if lo.cmplt(DVec2::splat(reach)).all() && hi.cmpgt(DVec2::splat(-reach)).all() {
-                        *extra += wk.iter().sum::<f64>();
-                    }
+                // may hold of the light, if it comes within their spread of
+                // the light (no point of a band lies farther from its edge).
+                _ if B && measure.near(&[v[0], v[k], v[k + 1]], image.spread()) => {
+                    *extra += wk.iter().sum::<f64>();
                 }
                 _ => {}
             }

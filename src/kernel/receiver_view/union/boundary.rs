@@ -3,7 +3,7 @@
 //! (over the grid or the tree) of the triangles that may cover it, and the
 //! pieces it leaves uncovered.
 
-use super::bound::{covered_span_bounded, cut_errors};
+use super::bound::{covered_span_bounded, cut_errors, outside_deep, Deep};
 use super::cover::Cover;
 use super::grid::{Grid, Level};
 use super::interior::Interior;
@@ -24,8 +24,15 @@ use glam::DVec2;
 ///
 /// The bound (`B`) sums: each edge's allowance unless it is shared (an
 /// edge and its exact reverse move together, both sides covered) or
-/// covered whole by the raster with a margin far above its width — the
-/// exact union's boundary lies within those bands of the computed one;
+/// covered whole by the raster with a margin far above the images'
+/// `reach` — the exact union's boundary lies within those bands of the
+/// computed one — scaled by the measure of the parameters of `[−x, 1 +
+/// x]` (`x = reach / |e|`, the band's run past the ends) that the
+/// triangles its search found do not hold at least `2 reach` inside
+/// ([`Deep`]; the raster's covered passages, where its margin is far above
+/// the reach, whole): there the band lies inside both the computed union
+/// and the exact one, so the two cannot differ in it (see the
+/// [certified bound](crate::kernel::receiver_view#the-certified-bound));
 /// for each piece kept on the boundary, the error of its ends where they
 /// are cuts by other edges (`|e| Δt`: the pieces' areas move by at most
 /// the distance their ends move, the disk's and the square's pieces being
@@ -35,7 +42,7 @@ use glam::DVec2;
 /// the terms' magnitudes).
 pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
     tris: &[Tri],
-    weights: &[[f64; 3]],
+    (weights, reach): (&[[f64; 3]], f64),
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
@@ -54,6 +61,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
         interior,
         searched,
         bounded,
+        deep,
         ..
     } = scratch;
     let (grid, interior) = (&*grid, &*interior);
@@ -66,9 +74,14 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
     let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
         let (lo, hi) = (a.min(b), a.max(b));
         intervals.clear();
+        let band = Deep::of(reach, (b - a).length());
         if B {
             bounded.clear();
+            deep.clear();
         }
+        // A covered passage lies deep enough where the raster's margin
+        // holds the band (see [`walk_edges`]).
+        let passage_deep = B && reach < 0.25 * interior.margin();
         let mut cover = Cover::default();
         let mut whole = false;
         let (fx0, fy0, fx1, fy1) = grid.fine.range(lo, hi, half);
@@ -78,6 +91,9 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
                 if B {
                     // A covered passage: its ends are never a piece's.
                     bounded.push([u.0, u.1, 0.0, 0.0]);
+                    if passage_deep {
+                        deep.push(u);
+                    }
                 }
                 cover.add(u, intervals)
             });
@@ -94,7 +110,8 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             // is on the boundary. Most edges are covered whole, and their
             // search ends at the span that completes the cover (see
             // [`Cover`]).
-            if let Some(span) = span_of::<B>(a, b, i, j, tris, (lo, hi), bounded) {
+            if let Some(span) = span_of::<B>(a, b, (i, j), tris, (lo, hi), (band, (bounded, deep)))
+            {
                 whole = cover.add(span, intervals);
             }
             !whole
@@ -106,24 +123,27 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
                 intervals.push((0.0, cover.reach));
             }
             add_uncovered(a, b, intervals, measure, sum);
-            if B {
-                *bound += cut_errors(a, b, bounded);
-            }
         }
+        edge_bound::<B>((a, b), whole, bound, (bounded, deep), band)
     };
-    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
+    let bands = (weights, reach);
+    walk_edges::<DEEP, B>(tris, bands, measure, half, settle, sweep_from, search)
 }
 
 /// [`union_area_in`] with the edges' searches in a [`Tree`] instead of the
 /// grids: the same spans' union for every edge (the tree leaves out only
 /// triangles whose spans lie inside the cover already found; see
 /// [`tree`](super::tree)), so the same pieces, summed in the same order:
-/// the same area and bound, bit for bit. The side sweep, the table of
+/// the same area, bit for bit, and the same bound where the images' reach
+/// is unknown (infinite). With a known reach, the bands each search's
+/// spans hold deep inside drop out, and the spans found before an edge is
+/// covered whole differ between the searches: each bound holds, not
+/// always the same bits. The side sweep, the table of
 /// shared edges and the raster of a deep pile settle the same edges first
 /// ([`walk_edges`]).
 pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
     tris: &[Tri],
-    weights: &[[f64; 3]],
+    (weights, reach): (&[[f64; 3]], f64),
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
@@ -138,6 +158,7 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
         sides,
         interior,
         bounded,
+        deep,
         ..
     } = scratch;
     let settle = Settle {
@@ -146,22 +167,51 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
         interior,
     };
     let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
+        let band = Deep::of(reach, (b - a).length());
         if B {
             bounded.clear();
+            deep.clear();
         }
         let (lo, hi) = (a.min(b), a.max(b));
         spans.clear();
         let whole = tree.search(&Ray::new(a, b), spans, |j| {
-            span_of::<B>(a, b, i, j as usize, tris, (lo, hi), bounded)
+            span_of::<B>(
+                a,
+                b,
+                (i, j as usize),
+                tris,
+                (lo, hi),
+                (band, (&mut *bounded, &mut *deep)),
+            )
         });
         if !whole {
             add_uncovered(a, b, &mut spans.list, measure, sum);
-            if B {
-                *bound += cut_errors(a, b, bounded);
-            }
         }
+        edge_bound::<B>((a, b), whole, bound, (bounded, deep), band)
     };
-    walk_edges::<DEEP, B>(tris, weights, measure, half, settle, sweep_from, search)
+    let bands = (weights, reach);
+    walk_edges::<DEEP, B>(tris, bands, measure, half, settle, sweep_from, search)
+}
+
+/// With `B`, after an edge's search: the cut errors of its pieces on the
+/// boundary (none when it is covered `whole`) added to `bound`, and the
+/// measure of its band's parameters that the spans found do not hold deep
+/// inside ([`outside_deep`]); 0 without `B`.
+#[inline(always)]
+fn edge_bound<const B: bool>(
+    (a, b): (DVec2, DVec2),
+    whole: bool,
+    bound: &mut f64,
+    (bounded, deep): Found<'_>,
+    band: Deep,
+) -> f64 {
+    if !B {
+        return 0.0;
+    }
+    if !whole {
+        *bound += cut_errors(a, b, bounded);
+    }
+    outside_deep(deep, band.x)
 }
 
 /// What settles an edge before any search: the sweep of the square's
@@ -182,19 +232,19 @@ struct Settle<'s> {
 #[inline(always)]
 fn walk_edges<const DEEP: bool, const B: bool>(
     tris: &[Tri],
-    weights: &[[f64; 3]],
+    (weights, reach): (&[[f64; 3]], f64),
     measure: Measure,
     half: f64,
     settle: Settle<'_>,
     sweep_from: usize,
-    mut search: impl FnMut(usize, DVec2, DVec2, &mut Sum, &mut f64),
+    mut search: impl FnMut(usize, DVec2, DVec2, &mut Sum, &mut f64) -> f64,
 ) -> (f64, f64) {
     let Settle {
         sides,
         edges,
         interior,
     } = settle;
-    let widest = prepare_sides_and_bands::<DEEP, B>(tris, weights, half, sides, sweep_from);
+    prepare_sides(tris, half, sides, sweep_from);
     let mut sum = Sum::default();
     let mut bound = 0.0;
     for (i, ti) in tris.iter().enumerate() {
@@ -214,17 +264,17 @@ fn walk_edges<const DEEP: bool, const B: bool>(
             }
             if DEEP && interior.covers(a, b) {
                 // Covered whole, as the search would find (see
-                // [`Interior`]), with a margin: if the edge's band is far
-                // narrower, the exact edge is covered too.
-                if B && (widest >= 0.25 * interior.margin() || widest.is_nan()) {
+                // [`Interior`]), with a margin: if the images' reach is
+                // far smaller, the band lies in marked cells.
+                if B && (reach.is_nan() || reach >= 0.25 * interior.margin()) {
                     bound += weights[i][k];
                 }
                 continue;
             }
+            let outside = search(i, a, b, &mut sum, &mut bound);
             if B {
-                bound += weights[i][k];
+                bound += weights[i][k] * outside.min(1.0);
             }
-            search(i, a, b, &mut sum, &mut bound);
         }
     }
     if B {
@@ -234,18 +284,8 @@ fn walk_edges<const DEEP: bool, const B: bool>(
 }
 
 /// The common start of [`union_area_in`] and [`union_area_tree`]: each
-/// side of the square swept if it holds `sweep_from` edges or more, and
-/// (with `B` under a deep pile) the widest band of any edge — each
-/// allowance is at least twice its width times its length: the raster's
-/// margin covers an edge's exact position only if the covering
-/// triangle's and its own are within it.
-pub(super) fn prepare_sides_and_bands<const DEEP: bool, const B: bool>(
-    tris: &[Tri],
-    weights: &[[f64; 3]],
-    half: f64,
-    sides: &mut [SideSet; 4],
-    sweep_from: usize,
-) -> f64 {
+/// side of the square swept if it holds `sweep_from` edges or more.
+pub(super) fn prepare_sides(tris: &[Tri], half: f64, sides: &mut [SideSet; 4], sweep_from: usize) {
     let mut counts = [0usize; 4];
     for t in tris {
         for k in 0..3 {
@@ -258,19 +298,6 @@ pub(super) fn prepare_sides_and_bands<const DEEP: bool, const B: bool>(
     for (set, &count) in sides.iter_mut().zip(&counts) {
         set.clear();
         set.active = count >= sweep_from;
-    }
-    if B && DEEP {
-        tris.iter()
-            .zip(weights)
-            .flat_map(|(t, w)| {
-                (0..3).map(move |k| {
-                    let (a, b) = t.edge(k);
-                    w[k] / (2.0 * (b - a).length())
-                })
-            })
-            .fold(0.0_f64, |m, x| if x.is_nan() { m } else { m.max(x) })
-    } else {
-        0.0
     }
 }
 
@@ -321,16 +348,16 @@ pub(super) fn searched_cells(
 
 /// The span of the edge `a → b` (of triangle `i`, its bounds `lo..hi`)
 /// that triangle `j` covers, as the grid's search finds it; with `B`, the
-/// same span with its ends' errors pushed to `bounded`.
+/// same span with its ends' errors pushed to `bounded`, and where `j`
+/// holds the edge's band ([`Deep`]) to `deep`.
 #[inline(always)]
 pub(super) fn span_of<const B: bool>(
     a: DVec2,
     b: DVec2,
-    i: usize,
-    j: usize,
+    (i, j): (usize, usize),
     tris: &[Tri],
     (lo, hi): (DVec2, DVec2),
-    bounded: &mut Vec<[f64; 4]>,
+    (band, (bounded, deep)): (Deep, Found<'_>),
 ) -> Option<(f64, f64)> {
     let tj = &tris[j];
     if j == i || tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
@@ -338,10 +365,17 @@ pub(super) fn span_of<const B: bool>(
     }
     let span = covered_span(a, b, tj, j < i);
     if B && span.is_some() {
-        bounded.extend(covered_span_bounded(a, b, tj, j < i));
+        if let Some((bounds, inside)) = covered_span_bounded(a, b, tj, j < i, band) {
+            bounded.push(bounds);
+            deep.push(inside);
+        }
     }
     span
 }
+
+/// The spans with their ends' errors, and where their triangles hold an
+/// edge's band ([`span_of`]).
+type Found<'a> = (&'a mut Vec<[f64; 4]>, &'a mut Vec<(f64, f64)>);
 
 /// How an edge finds the triangles that may cover it: the two designs,
 /// kept side by side so that they can be compared (the same area, bit for
@@ -380,4 +414,6 @@ pub(in crate::kernel::receiver_view) struct UnionScratch {
     searched: Vec<bool>,
     /// The spans with their ends' errors ([`cut_errors`]).
     bounded: Vec<[f64; 4]>,
+    /// Where the spans' triangles hold the edge's band ([`outside_deep`]).
+    deep: Vec<(f64, f64)>,
 }

@@ -55,11 +55,12 @@ pub(super) use tri::{Measure, Tri};
 pub(super) fn union_area<const B: bool>(
     tris: &[Tri],
     weights: &[[f64; 3]],
+    reach: f64,
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
 ) -> (f64, f64) {
-    union_area_sweeping_from::<B>(tris, weights, measure, half, scratch, SWEEP_FROM)
+    union_area_sweeping_from::<B>(tris, weights, reach, measure, half, scratch, SWEEP_FROM)
 }
 
 /// Sides holding at least this many edges are swept ([`union_area`]; ours:
@@ -73,6 +74,7 @@ pub(super) const SWEEP_FROM: usize = 64;
 pub(super) fn union_area_sweeping_from<const B: bool>(
     tris: &[Tri],
     weights: &[[f64; 3]],
+    reach: f64,
     measure: Measure,
     half: f64,
     scratch: &mut UnionScratch,
@@ -85,16 +87,16 @@ pub(super) fn union_area_sweeping_from<const B: bool>(
     let deep = scratch.interior.build(tris, half);
     match (scratch.search, deep) {
         (Search::Grid, true) => {
-            union_area_in::<true, B>(tris, weights, measure, half, scratch, sweep_from)
+            union_area_in::<true, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
         }
         (Search::Grid, false) => {
-            union_area_in::<false, B>(tris, weights, measure, half, scratch, sweep_from)
+            union_area_in::<false, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
         }
         (Search::Tree, true) => {
-            union_area_tree::<true, B>(tris, weights, measure, half, scratch, sweep_from)
+            union_area_tree::<true, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
         }
         (Search::Tree, false) => {
-            union_area_tree::<false, B>(tris, weights, measure, half, scratch, sweep_from)
+            union_area_tree::<false, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
         }
     }
 }

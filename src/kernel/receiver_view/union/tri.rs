@@ -101,6 +101,36 @@ impl Measure {
             })
     }
 
+    /// Whether some point within `margin` of the triangle `v` (any
+    /// orientation, or degenerate) may lie in the measure: its bounds
+    /// within `margin` of the square's; for the disk, also the centre
+    /// inside or on it, or an edge within `r + margin` of the centre (the
+    /// distances' rounding added).
+    pub(in crate::kernel::receiver_view) fn near(self, v: &[DVec2; 3], margin: f64) -> bool {
+        let r = self.radius();
+        let reach = r + margin;
+        let (lo, hi) = (v[0].min(v[1]).min(v[2]), v[0].max(v[1]).max(v[2]));
+        if margin.is_nan() {
+            return true;
+        }
+        let in_box = lo.cmplt(DVec2::splat(reach)).all() && hi.cmpgt(DVec2::splat(-reach)).all();
+        if !in_box || !reach.is_finite() || matches!(self, Measure::Square) {
+            return in_box;
+        }
+        let signs = (0..3).map(|k| orient2d(v[k], v[(k + 1) % 3], DVec2::ZERO));
+        let centre_in = !signs.clone().any(|s| s == Sign::Negative)
+            || !signs.clone().any(|s| s == Sign::Positive);
+        centre_in
+            || (0..3).any(|k| {
+                let (a, b) = (v[k], v[(k + 1) % 3]);
+                let d = b - a;
+                let s = (-a.dot(d) / d.length_squared()).clamp(0.0, 1.0);
+                let s = if s.is_nan() { 0.0 } else { s };
+                let size = a.abs().max_element() + b.abs().max_element();
+                (a + d * s).length() <= reach + 16.0 * f64::EPSILON * (size + reach)
+            })
+    }
+
     /// Whether the triangle alone covers the whole measure.
     pub(in crate::kernel::receiver_view) fn covered_by(self, t: &Tri) -> bool {
         self.covered_by_convex(&t.v)

@@ -166,7 +166,7 @@ fn the_interior_drops_edges_and_keeps_the_area() {
         } else {
             Measure::Square
         };
-        let with = union_area::<false>(&tris, &[], measure, h, &mut scratch).0;
+        let with = union_area::<false>(&tris, &[], f64::INFINITY, measure, h, &mut scratch).0;
         assert!(scratch.interior.n > 0, "case {case}: not deep");
         edges += 3 * n;
         dropped += tris
@@ -186,8 +186,15 @@ fn the_interior_drops_edges_and_keeps_the_area() {
                 });
             }
         }
-        let without =
-            union_area_in::<false, false>(&tris, &[], measure, h, &mut scratch, SWEEP_FROM).0;
+        let without = union_area_in::<false, false>(
+            &tris,
+            (&[], f64::INFINITY),
+            measure,
+            h,
+            &mut scratch,
+            SWEEP_FROM,
+        )
+        .0;
         assert_eq!(
             with.to_bits(),
             without.to_bits(),

@@ -59,9 +59,26 @@ fn sweeping_the_sides_gives_the_searched_area() {
             (Measure::Square, 1.0)
         };
         let tris = clipped_like(&mut rng, n, h);
-        let searched =
-            union_area_sweeping_from::<false>(&tris, &[], measure, h, &mut scratch, usize::MAX).0;
-        let swept = union_area_sweeping_from::<false>(&tris, &[], measure, h, &mut scratch, 1).0;
+        let searched = union_area_sweeping_from::<false>(
+            &tris,
+            &[],
+            f64::INFINITY,
+            measure,
+            h,
+            &mut scratch,
+            usize::MAX,
+        )
+        .0;
+        let swept = union_area_sweeping_from::<false>(
+            &tris,
+            &[],
+            f64::INFINITY,
+            measure,
+            h,
+            &mut scratch,
+            1,
+        )
+        .0;
         assert!(
             (searched - swept).abs() <= 1e-13,
             "case {case}: {n} triangles, searched {searched}, swept {swept}"
@@ -312,7 +329,7 @@ fn a_triangulated_polygon_is_its_outline() {
             let d = corner[n][n] - corner[0][0];
             (Measure::Square, 1.5, d.x * d.y)
         };
-        let area = union_area::<false>(&tris, &[], measure, half, &mut scratch).0;
+        let area = union_area::<false>(&tris, &[], f64::INFINITY, measure, half, &mut scratch).0;
         assert!(
             (area - expected).abs() <= 1e-14,
             "case {case}: {n}² squares, {area} against {expected}"
@@ -343,7 +360,15 @@ fn translates_along_the_base_are_the_swept_trapezoid_less_the_notches() {
             .collect();
         let l = (n - 1) as f64 * delta;
         let expected = 0.5 + l - (n - 1) as f64 * delta * delta / 2.0;
-        let area = union_area::<false>(&tris, &[], Measure::Square, 1.0, &mut scratch).0;
+        let area = union_area::<false>(
+            &tris,
+            &[],
+            f64::INFINITY,
+            Measure::Square,
+            1.0,
+            &mut scratch,
+        )
+        .0;
         assert!(
             (area - expected).abs() <= 1e-12,
             "{n} translates {delta} apart: {area} against {expected}"
@@ -375,8 +400,24 @@ fn nested_images_across_a_side_are_the_largest_one() {
         .max_by(|a, b| (a.hi.x - a.lo.x).total_cmp(&(b.hi.x - b.lo.x)))
         .expect("some");
     let mut scratch = UnionScratch::default();
-    let all = union_area::<false>(&tris, &[], Measure::Disk(1.0), h, &mut scratch).0;
-    let one = union_area::<false>(&[largest], &[], Measure::Disk(1.0), h, &mut scratch).0;
+    let all = union_area::<false>(
+        &tris,
+        &[],
+        f64::INFINITY,
+        Measure::Disk(1.0),
+        h,
+        &mut scratch,
+    )
+    .0;
+    let one = union_area::<false>(
+        &[largest],
+        &[],
+        f64::INFINITY,
+        Measure::Disk(1.0),
+        h,
+        &mut scratch,
+    )
+    .0;
     assert!(one > 0.1);
     assert!((all - one).abs() <= 1e-14, "{all} against {one}");
 }
@@ -477,4 +518,74 @@ fn deep_case(case: usize, rng: &mut Rng, more: u64) -> (f64, Vec<Tri>) {
     let n = Interior::FEWEST + rng.below(more) as usize;
     let depth = rng.uniform(3.0, 6.0);
     (h, pile(case, rng, n, depth, h))
+}
+
+/// The bound leaves out only the parts of a band that another triangle
+/// holds at least twice the reach inside. Two strips across the square,
+/// each two triangles with every edge on a side of the square but one:
+/// the upper strip's lower edge `f` and the lower strip's upper edge `g`,
+/// a height `m` apart, overlapping (each covered whole by the other
+/// strip). The exact triangles are these with the ends of `f` moved up and
+/// those of `g` down by the reach `e` (every corner within `e`): where `m
+/// < 2e` a gap of height `2e − m` opens across the square, which only the
+/// two edges' bands hold, and the bound must count them; where `g` lies
+/// deep inside the upper strip (and `f` inside the lower: `3e` across,
+/// above the `2√2 e` the search may ask where it bounds a line's length
+/// by its larger coordinate difference), the bound
+/// counts of their bands only the stretches within `2e` of where they
+/// cross a strip's diagonal (the edges of the triangles holding them):
+/// `O(e²)`, not the bands' `4e` each. Ordinary (non-dyadic) heights and
+/// slopes.
+#[test]
+fn bands_held_deep_inside_other_triangles_are_left_out() {
+    let mut rng = Rng::new(40);
+    let mut scratch = UnionScratch::default();
+    for case in 0..400 {
+        let e = 10f64.powf(rng.uniform(-12.0, -6.0));
+        let (y0, y1) = (rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6));
+        // The vertical distance between the lines; across, `m cos θ`.
+        let m = e * rng.uniform(0.0, 6.0);
+        let cos = 2.0 / (2.0_f64).hypot(y1 - y0);
+        let (l, r) = (DVec2::new(-1.0, y0), DVec2::new(1.0, y1));
+        let (gl, gr) = (l + DVec2::Y * m, r + DVec2::Y * m);
+        let tris: Vec<Tri> = [
+            (l, r, DVec2::new(1.0, 1.0)),
+            (l, DVec2::new(1.0, 1.0), DVec2::new(-1.0, 1.0)),
+            (DVec2::new(-1.0, -1.0), DVec2::new(1.0, -1.0), gr),
+            (DVec2::new(-1.0, -1.0), gr, gl),
+        ]
+        .iter()
+        .map(|&(a, b, c)| Tri::new(a, b, c).expect("a triangle"))
+        .collect();
+        // Each edge's allowance: `2 e` along `f` and `g`, none on the
+        // sides or the shared diagonals.
+        let band = 2.0 * e * (r - l).length() * (1.0 + 4.0 * f64::EPSILON);
+        let weights: Vec<[f64; 3]> = tris
+            .iter()
+            .map(|t| {
+                [0, 1, 2].map(|k| {
+                    let (a, b) = t.edge(k);
+                    let on = |p: DVec2, q: DVec2| (a == p && b == q) || (a == q && b == p);
+                    if on(l, r) || on(gl, gr) {
+                        band
+                    } else {
+                        0.0
+                    }
+                })
+            })
+            .collect();
+        let (area, bound) =
+            union_area::<true>(&tris, &weights, e, Measure::Square, 1.0, &mut scratch);
+        let exact = 4.0 - 2.0 * (2.0 * e - m).max(0.0);
+        assert!(
+            (area - exact).abs() <= bound,
+            "case {case}: e {e:e}, m {m:e}: |{area} − {exact}| > {bound:e}"
+        );
+        if m * cos > 3.0 * e {
+            assert!(
+                bound < 0.01 * band,
+                "case {case}: e {e:e}, m {m:e}: bound {bound:e} with the bands held"
+            );
+        }
+    }
 }
