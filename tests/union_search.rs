@@ -4,7 +4,10 @@
 //! exact reference — every
 //! built-in scene's floor grid under its own light, a pile of random
 //! occluders, layers stacked `10⁻⁴` apart, and convex polygons given as
-//! fans of slivers — value and certified bound.
+//! fans of slivers. Their certified bounds are each search's own: an
+//! edge's band held deep inside another image is left out of the bound,
+//! and which covering image a search meets first depends on its order, so
+//! the bounds agree closely but not bit for bit.
 
 use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
@@ -14,8 +17,12 @@ use softshadow::reference::exact::{visibility_bounded_with, Scratch};
 use softshadow::scene::builtin::{builtin, floor_receivers, BUILTIN_NAMES};
 use softshadow::scene::Light;
 
-/// Every receiver's `(V, bound)` bits under each search, compared with the
-/// grid's; how many answers lie strictly between 0 and 1.
+/// The largest certified bound either search may give here (the largest
+/// on these cases is 1.4·10⁻¹², under the pile of 3000).
+const TIGHT: f64 = 1e-11;
+
+/// Every receiver's `V` bits under each search, compared with the grid's
+/// (and both bounds tight, at most [`TIGHT`]); how many answers lie strictly between 0 and 1.
 fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3]) -> usize {
     let searches = [UnionSearch::Grid, UnionSearch::Tree];
     let mut scratch: Vec<Scratch> = searches
@@ -36,12 +43,19 @@ fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3]) -> usize {
             })
             .collect();
         for (search, answer) in searches.iter().zip(&answers).skip(1) {
-            assert_eq!(
-                answers[0],
-                *answer,
-                "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
-                (f64::from_bits(answers[0].0), f64::from_bits(answers[0].1)),
-                (f64::from_bits(answer.0), f64::from_bits(answer.1))
+            let shown = || {
+                format!(
+                    "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
+                    (f64::from_bits(answers[0].0), f64::from_bits(answers[0].1)),
+                    (f64::from_bits(answer.0), f64::from_bits(answer.1))
+                )
+            };
+            assert_eq!(answers[0].0, answer.0, "{}", shown());
+            let (a, b) = (f64::from_bits(answers[0].1), f64::from_bits(answer.1));
+            assert!(
+                a <= TIGHT && b <= TIGHT,
+                "a bound above {TIGHT:e}: {}",
+                shown()
             );
         }
         let v = f64::from_bits(answers[0].0);
