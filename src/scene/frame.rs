@@ -7,7 +7,6 @@
 //! `(x/z, y/z)`.
 
 use glam::{DVec2, DVec3};
-use std::fmt;
 
 /// Why a light frame could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,16 +18,10 @@ pub enum FrameError {
     NoDirection,
 }
 
-impl fmt::Display for FrameError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FrameError::NonFinite => write!(f, "light frame origin or target is not finite"),
-            FrameError::NoDirection => write!(f, "light frame target coincides with its origin"),
-        }
-    }
-}
-
-impl std::error::Error for FrameError {}
+impl_error!(FrameError, |error, f| match error {
+    FrameError::NonFinite => write!(f, "light frame origin or target is not finite"),
+    FrameError::NoDirection => write!(f, "light frame target coincides with its origin"),
+});
 
 /// A right-handed orthonormal frame at the light's centre, `+z` toward the
 /// scene.
