@@ -178,17 +178,20 @@ mod tests {
         assert_eq!(LightFrame::along(o, DVec3::NAN), Err(FrameError::NonFinite));
     }
 
+    /// A point of the cube `[−1, 1)³`.
+    fn in_cube(rng: &mut Rng) -> DVec3 {
+        DVec3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        )
+    }
+
     #[test]
     fn frames_are_right_handed_and_orthonormal() {
         let mut rng = Rng::new(5);
         for _ in 0..10_000 {
-            let mut v = || {
-                DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                )
-            };
+            let mut v = || in_cube(&mut rng);
             let (o, t) = (v() * 10.0, v() * 10.0);
             let Ok(f) = LightFrame::toward(o, t) else {
                 continue;
@@ -231,13 +234,7 @@ mod tests {
     #[test]
     fn a_chosen_x_axis_gives_a_right_handed_orthonormal_frame_with_that_x() {
         let mut rng = Rng::new(17);
-        let mut v = || {
-            DVec3::new(
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-            )
-        };
+        let mut v = || in_cube(&mut rng);
         for _ in 0..10_000 {
             let (o, d, h) = (v(), v(), v());
             let Ok(f) = LightFrame::with_x_axis(o, d, h) else {
