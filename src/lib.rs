@@ -133,6 +133,30 @@
 // in Cargo.toml.
 pub extern crate glam_dep as glam;
 
+/// `Display` and `std::error::Error` for an error type: the message is
+/// the closure's body (`|error, f| match error { … }`, each arm writing
+/// to the formatter `f`), the error's `source` the optional
+/// `source = |error| …` (none without it). Defined before the modules so
+/// that every one of them can use it.
+macro_rules! impl_error {
+    ($Error:ty, |$error:ident, $f:ident| $message:expr
+        $(, source = |$inner:ident| $source:expr)? $(,)?) => {
+        impl ::std::fmt::Display for $Error {
+            fn fmt(&self, $f: &mut ::std::fmt::Formatter<'_>) -> ::std::fmt::Result {
+                let $error = self;
+                $message
+            }
+        }
+
+        impl ::std::error::Error for $Error {
+            $(fn source(&self) -> Option<&(dyn ::std::error::Error + 'static)> {
+                let $inner = self;
+                $source
+            })?
+        }
+    };
+}
+
 #[doc = include_str!("../docs/definitions.md")]
 pub mod definitions {
     /// How far the exact `V` must be from 0 and from 1 for a receiver to

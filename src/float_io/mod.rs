@@ -35,7 +35,6 @@ pub use exr_file::{exr_bytes, read_exr, ExrChannel, ExrImage};
 pub use npy::{npy_bytes_f32, npy_bytes_f64, npy_bytes_i32, read_npy_f64, read_npy_i64};
 pub use pfm::{pfm_bytes, read_pfm};
 
-use std::fmt;
 use std::path::Path;
 
 /// The largest file any reader here opens: 16 GiB.
@@ -77,18 +76,12 @@ pub enum FormatError {
     Unwritable(String),
 }
 
-impl fmt::Display for FormatError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FormatError::NotThisKind(what)
-            | FormatError::Malformed(what)
-            | FormatError::Unsupported(what)
-            | FormatError::Unwritable(what) => f.write_str(what),
-        }
-    }
-}
-
-impl std::error::Error for FormatError {}
+impl_error!(FormatError, |error, f| match error {
+    FormatError::NotThisKind(what)
+    | FormatError::Malformed(what)
+    | FormatError::Unsupported(what)
+    | FormatError::Unwritable(what) => f.write_str(what),
+});
 
 /// A file that could not be read or written: the file and the problem, one
 /// line.
@@ -100,13 +93,9 @@ pub struct FloatIoError {
     pub message: String,
 }
 
-impl fmt::Display for FloatIoError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        write!(f, "{}: {}", self.file, self.message)
-    }
-}
-
-impl std::error::Error for FloatIoError {}
+impl_error!(FloatIoError, |error, f| {
+    write!(f, "{}: {}", error.file, error.message)
+});
 
 impl FloatIoError {
     /// An error about `path`.

@@ -79,8 +79,6 @@
 //! performance: signed occlusion sums the edges with their orientation and
 //! multiplicity).
 
-use core::fmt;
-
 use glam::{DVec2, DVec3};
 
 use super::predicate::{orient2d, orient3d, Sign};
@@ -122,36 +120,30 @@ pub enum TopologyError {
     },
 }
 
-impl fmt::Display for TopologyError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match *self {
-            TopologyError::TooManyVertices { vertex_count } => {
-                write!(
-                    f,
-                    "{vertex_count} vertices: at most {MAX_VERTICES} are supported"
-                )
-            }
-            TopologyError::TooManyTriangles { triangle_count } => {
-                write!(
-                    f,
-                    "{triangle_count} triangles: at most {MAX_TRIANGLES} are supported"
-                )
-            }
-            TopologyError::IndexOutOfRange {
-                triangle,
-                corner,
-                index,
-                vertex_count,
-            } => write!(
-                f,
-                "triangle {triangle}, corner {corner}: vertex index {index} out of range \
-                 (vertex count {vertex_count})"
-            ),
-        }
+impl_error!(TopologyError, |error, f| match *error {
+    TopologyError::TooManyVertices { vertex_count } => {
+        write!(
+            f,
+            "{vertex_count} vertices: at most {MAX_VERTICES} are supported"
+        )
     }
-}
-
-impl std::error::Error for TopologyError {}
+    TopologyError::TooManyTriangles { triangle_count } => {
+        write!(
+            f,
+            "{triangle_count} triangles: at most {MAX_TRIANGLES} are supported"
+        )
+    }
+    TopologyError::IndexOutOfRange {
+        triangle,
+        corner,
+        index,
+        vertex_count,
+    } => write!(
+        f,
+        "triangle {triangle}, corner {corner}: vertex index {index} out of range \
+         (vertex count {vertex_count})"
+    ),
+});
 
 /// Why a silhouette query could not be answered.
 #[derive(Clone, Copy, Debug, PartialEq, Eq)]
@@ -178,27 +170,21 @@ pub enum SilhouetteError {
     },
 }
 
-impl fmt::Display for SilhouetteError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match *self {
-            SilhouetteError::PositionCount { expected, found } => {
-                write!(f, "{found} positions given for {expected} vertices")
-            }
-            SilhouetteError::NonFinitePoint => write!(f, "the viewpoint is not finite"),
-            SilhouetteError::InvalidSphere => {
-                write!(
-                    f,
-                    "the sphere needs a finite centre and a finite radius ≥ 0"
-                )
-            }
-            SilhouetteError::EdgeIndex { edge, edges } => {
-                write!(f, "edge {edge} given for a topology of {edges} edges")
-            }
-        }
+impl_error!(SilhouetteError, |error, f| match *error {
+    SilhouetteError::PositionCount { expected, found } => {
+        write!(f, "{found} positions given for {expected} vertices")
     }
-}
-
-impl std::error::Error for SilhouetteError {}
+    SilhouetteError::NonFinitePoint => write!(f, "the viewpoint is not finite"),
+    SilhouetteError::InvalidSphere => {
+        write!(
+            f,
+            "the sphere needs a finite centre and a finite radius ≥ 0"
+        )
+    }
+    SilhouetteError::EdgeIndex { edge, edges } => {
+        write!(f, "edge {edge} given for a topology of {edges} edges")
+    }
+});
 
 /// How many faces an edge has.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

@@ -72,8 +72,6 @@
 //! whose distance to the centre exceeds `r` by less than `2e-11 r`, all from
 //! its tangent-within-a-few-ulps cases).
 
-use core::fmt;
-
 /// Why a wedge or a quad could not be built.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]
 #[non_exhaustive]
@@ -95,21 +93,17 @@ pub enum WedgeError {
     NonPositiveDepthBound,
 }
 
-impl fmt::Display for WedgeError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        let what = match self {
-            WedgeError::NonFinite => "a coordinate, radius or depth is not finite",
-            WedgeError::NonPositiveRadius => "the light radius must be positive",
-            WedgeError::ZeroLengthEdge => "the edge has zero length",
-            WedgeError::EdgeTouchesLight => "the edge touches or enters the light",
-            WedgeError::OutOfRange => "the magnitudes are out of the supported range",
-            WedgeError::NonPositiveDepthBound => "the receiver depth bound must be positive",
-        };
-        f.write_str(what)
-    }
-}
-
-impl std::error::Error for WedgeError {}
+impl_error!(WedgeError, |error, f| {
+    let what = match error {
+        WedgeError::NonFinite => "a coordinate, radius or depth is not finite",
+        WedgeError::NonPositiveRadius => "the light radius must be positive",
+        WedgeError::ZeroLengthEdge => "the edge has zero length",
+        WedgeError::EdgeTouchesLight => "the edge touches or enters the light",
+        WedgeError::OutOfRange => "the magnitudes are out of the supported range",
+        WedgeError::NonPositiveDepthBound => "the receiver depth bound must be positive",
+    };
+    f.write_str(what)
+});
 
 /// Which plane of a wedge.
 #[derive(Clone, Copy, Debug, PartialEq, Eq, Hash)]

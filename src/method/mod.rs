@@ -408,50 +408,45 @@ pub enum MethodError {
     Cancelled,
 }
 
-impl fmt::Display for MethodError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            MethodError::UnsupportedLight { method, light } => {
-                write!(f, "method {method} does not handle a {light} light")
-            }
-            MethodError::Receiver { index, error } => write!(f, "receiver {index}: {error}"),
-            MethodError::NeedsNormal {
-                method,
-                index,
-                hint,
-            } => {
-                write!(
-                    f,
-                    "method {method} needs receiver normals; receiver {index} has none"
-                )?;
-                if !hint.is_empty() {
-                    write!(f, " ({hint})")?;
-                }
-                Ok(())
-            }
-            MethodError::NeedsObject { method, index } => write!(
-                f,
-                "method {method} needs receiver object ids; receiver {index} has none"
-            ),
-            MethodError::LightView(e) => write!(f, "light view: {e}"),
-            MethodError::Tolerance {
-                index,
-                bound,
-                tolerance,
-            } => write!(
-                f,
-                "receiver {index}: the exact answer's certified bound {bound:.3e} exceeds the tolerance {tolerance:e}"
-            ),
-            MethodError::InvalidOption { method, message } => write!(f, "{method}: {message}"),
-            MethodError::Contract { method, message } => {
-                write!(f, "{method} broke the method contract: {message}")
-            }
-            MethodError::Cancelled => write!(f, "cancelled"),
-        }
+impl_error!(MethodError, |error, f| match error {
+    MethodError::UnsupportedLight { method, light } => {
+        write!(f, "method {method} does not handle a {light} light")
     }
-}
-
-impl std::error::Error for MethodError {}
+    MethodError::Receiver { index, error } => write!(f, "receiver {index}: {error}"),
+    MethodError::NeedsNormal {
+        method,
+        index,
+        hint,
+    } => {
+        write!(
+            f,
+            "method {method} needs receiver normals; receiver {index} has none"
+        )?;
+        if !hint.is_empty() {
+            write!(f, " ({hint})")?;
+        }
+        Ok(())
+    }
+    MethodError::NeedsObject { method, index } => write!(
+        f,
+        "method {method} needs receiver object ids; receiver {index} has none"
+    ),
+    MethodError::LightView(e) => write!(f, "light view: {e}"),
+    MethodError::Tolerance {
+        index,
+        bound,
+        tolerance,
+    } => write!(
+        f,
+        "receiver {index}: the exact answer's certified bound {bound:.3e} exceeds \
+         the tolerance {tolerance:e}"
+    ),
+    MethodError::InvalidOption { method, message } => write!(f, "{method}: {message}"),
+    MethodError::Contract { method, message } => {
+        write!(f, "{method} broke the method contract: {message}")
+    }
+    MethodError::Cancelled => write!(f, "cancelled"),
+});
 
 /// A timed run of one method on one frame.
 #[derive(Clone, Debug)]

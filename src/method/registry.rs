@@ -188,19 +188,13 @@ pub enum SeedError {
     Repeated,
 }
 
-impl std::fmt::Display for SeedError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self {
-            SeedError::Parse(e) => write!(f, "{e}"),
-            SeedError::NoSeed { base, seeded } => {
-                write!(f, "method {base} has no seed (methods with one: {seeded})")
-            }
-            SeedError::Repeated => write!(f, "the name sets seed= already; give the seed once"),
-        }
+impl_error!(SeedError, |error, f| match error {
+    SeedError::Parse(e) => write!(f, "{e}"),
+    SeedError::NoSeed { base, seeded } => {
+        write!(f, "method {base} has no seed (methods with one: {seeded})")
     }
-}
-
-impl std::error::Error for SeedError {}
+    SeedError::Repeated => write!(f, "the name sets seed= already; give the seed once"),
+});
 
 /// [`parse`] with the option `seed=S` added when `seed` is given: the
 /// command line's `--seed S` and the Python package's `seed=S`. Refused,

@@ -275,16 +275,10 @@ pub struct GBufferError {
     pub message: String,
 }
 
-impl std::fmt::Display for GBufferError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match self.pixel {
-            Some((r, c)) => write!(f, "pixel (row {r}, column {c}): {}", self.message),
-            None => write!(f, "{}", self.message),
-        }
-    }
-}
-
-impl std::error::Error for GBufferError {}
+impl_error!(GBufferError, |error, f| match error.pixel {
+    Some((r, c)) => write!(f, "pixel (row {r}, column {c}): {}", error.message),
+    None => write!(f, "{}", error.message),
+});
 
 /// The camera frame of G-buffer arrays (the layout of [`GBuffer`]; one's
 /// own rasteriser's, or ours read back): a pixel is a surface where its

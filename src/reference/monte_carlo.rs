@@ -77,7 +77,6 @@ use crate::bvh::Bvh;
 use crate::scene::{Emitter, Light, ReceiverError};
 use glam::{DVec2, DVec3};
 use rayon::prelude::*;
-use std::fmt;
 
 /// Independent replicates of the scrambled point set (see the module docs).
 pub const REPLICATES: u32 = 16;
@@ -139,26 +138,20 @@ pub enum Error {
     },
 }
 
-impl fmt::Display for Error {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            Error::Receiver(e) => e.fmt(f),
-            Error::TooFewSamples { samples } => write!(
-                f,
-                "Monte Carlo needs at least {MIN_SAMPLES} samples, got {samples}"
-            ),
-        }
+impl_error!(
+    Error,
+    |error, f| match error {
+        Error::Receiver(e) => e.fmt(f),
+        Error::TooFewSamples { samples } => write!(
+            f,
+            "Monte Carlo needs at least {MIN_SAMPLES} samples, got {samples}"
+        ),
+    },
+    source = |error| match error {
+        Error::Receiver(e) => Some(e),
+        Error::TooFewSamples { .. } => None,
     }
-}
-
-impl std::error::Error for Error {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            Error::Receiver(e) => Some(e),
-            Error::TooFewSamples { .. } => None,
-        }
-    }
-}
+);
 
 impl From<ReceiverError> for Error {
     fn from(e: ReceiverError) -> Error {

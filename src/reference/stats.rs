@@ -78,24 +78,18 @@ pub enum AgreeError {
     NonFiniteExact(usize),
 }
 
-impl std::fmt::Display for AgreeError {
-    fn fmt(&self, f: &mut std::fmt::Formatter<'_>) -> std::fmt::Result {
-        match *self {
-            AgreeError::LengthMismatch { estimates, exact } => {
-                write!(f, "{estimates} estimates but {exact} exact values")
-            }
-            AgreeError::Rate(a) => {
-                write!(
-                    f,
-                    "the family-wise false-failure rate must lie in (0, 1), got {a}"
-                )
-            }
-            AgreeError::NonFiniteExact(i) => write!(f, "exact value {i} is not finite"),
-        }
+impl_error!(AgreeError, |error, f| match *error {
+    AgreeError::LengthMismatch { estimates, exact } => {
+        write!(f, "{estimates} estimates but {exact} exact values")
     }
-}
-
-impl std::error::Error for AgreeError {}
+    AgreeError::Rate(a) => {
+        write!(
+            f,
+            "the family-wise false-failure rate must lie in (0, 1), got {a}"
+        )
+    }
+    AgreeError::NonFiniteExact(i) => write!(f, "exact value {i} is not finite"),
+});
 
 /// Whether Monte Carlo estimates made with `samples` samples each agree with
 /// exact values, at the family-wise false-failure rate `rate` over all of

@@ -142,7 +142,6 @@ pub use view::LightView;
 use crate::bvh::Occluders;
 use crate::kernel::predicate::{orient2d, Sign};
 use glam::{DVec2, DVec3};
-use std::fmt;
 
 /// The largest width or height of a [`LightView`], in pixels.
 pub const MAX_RESOLUTION: u32 = 16384;
@@ -197,36 +196,30 @@ pub enum RasterError {
     TooManyTriangles,
 }
 
-impl fmt::Display for RasterError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            RasterError::NonFiniteWindow => {
-                write!(
-                    f,
-                    "light view window is not finite (or beyond {MAX_COORD:e})"
-                )
-            }
-            RasterError::EmptyWindow => write!(f, "light view window is empty (lo ≥ hi)"),
-            RasterError::Resolution { width, height } => write!(
-                f,
-                "light view resolution {width}×{height} is outside 1..={MAX_RESOLUTION}"
-            ),
-            RasterError::Near => write!(f, "light view near depth is not finite and positive"),
-            RasterError::NothingInFront => {
-                write!(f, "no point lies in front of the light view's near plane")
-            }
-            RasterError::LengthMismatch { triangles, objects } => write!(
-                f,
-                "{triangles} triangles but {objects} object ids: need one id per triangle"
-            ),
-            RasterError::TooManyTriangles => {
-                write!(f, "more than {} triangles to rasterise", u32::MAX - 1)
-            }
-        }
+impl_error!(RasterError, |error, f| match error {
+    RasterError::NonFiniteWindow => {
+        write!(
+            f,
+            "light view window is not finite (or beyond {MAX_COORD:e})"
+        )
     }
-}
-
-impl std::error::Error for RasterError {}
+    RasterError::EmptyWindow => write!(f, "light view window is empty (lo ≥ hi)"),
+    RasterError::Resolution { width, height } => write!(
+        f,
+        "light view resolution {width}×{height} is outside 1..={MAX_RESOLUTION}"
+    ),
+    RasterError::Near => write!(f, "light view near depth is not finite and positive"),
+    RasterError::NothingInFront => {
+        write!(f, "no point lies in front of the light view's near plane")
+    }
+    RasterError::LengthMismatch { triangles, objects } => write!(
+        f,
+        "{triangles} triangles but {objects} object ids: need one id per triangle"
+    ),
+    RasterError::TooManyTriangles => {
+        write!(f, "more than {} triangles to rasterise", u32::MAX - 1)
+    }
+});
 
 fn flush(x: f64) -> f64 {
     if x.abs() < MIN_COORD {

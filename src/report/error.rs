@@ -64,27 +64,21 @@ impl ReportError {
     }
 }
 
-impl fmt::Display for ReportError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ReportError::Method(e) => write!(f, "{e}"),
-            ReportError::File { path, what } => write!(f, "{}: {what}", path.display()),
-            ReportError::NotWhole {
-                part: Some(part),
-                what,
-            } => write!(f, "{part}: {what}"),
-            ReportError::NotWhole { part: None, what } | ReportError::Parts { what } => {
-                f.write_str(what)
-            }
+impl_error!(
+    ReportError,
+    |error, f| match error {
+        ReportError::Method(e) => write!(f, "{e}"),
+        ReportError::File { path, what } => write!(f, "{}: {what}", path.display()),
+        ReportError::NotWhole {
+            part: Some(part),
+            what,
+        } => write!(f, "{part}: {what}"),
+        ReportError::NotWhole { part: None, what } | ReportError::Parts { what } => {
+            f.write_str(what)
         }
+    },
+    source = |error| match error {
+        ReportError::Method(e) => Some(e),
+        _ => None,
     }
-}
-
-impl std::error::Error for ReportError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            ReportError::Method(e) => Some(e),
-            _ => None,
-        }
-    }
-}
+);

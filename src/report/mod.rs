@@ -93,7 +93,6 @@ use crate::render::{Frame, Stages};
 use crate::scene::{Light, LightKind, Scene};
 use serde::{Deserialize, Serialize};
 use std::collections::{BTreeMap, HashMap, HashSet};
-use std::fmt;
 use std::sync::Arc;
 use std::time::Instant;
 
@@ -137,17 +136,13 @@ pub enum ShardError {
     },
 }
 
-impl fmt::Display for ShardError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ShardError::Syntax { text } => write!(f, "'{text}'"),
-            ShardError::OutOfRange { index, count } => write!(f, "'{index}/{count}'"),
-        }?;
-        write!(f, ": a shard is i/n with 1 ≤ i ≤ n")
-    }
-}
-
-impl std::error::Error for ShardError {}
+impl_error!(ShardError, |error, f| {
+    match error {
+        ShardError::Syntax { text } => write!(f, "'{text}'"),
+        ShardError::OutOfRange { index, count } => write!(f, "'{index}/{count}'"),
+    }?;
+    write!(f, ": a shard is i/n with 1 ≤ i ≤ n")
+});
 
 impl std::str::FromStr for Shard {
     type Err = ShardError;

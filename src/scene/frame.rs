@@ -7,7 +7,6 @@
 //! `(x/z, y/z)`.
 
 use glam::{DVec2, DVec3};
-use std::fmt;
 
 /// Why a light frame could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -19,16 +18,10 @@ pub enum FrameError {
     NoDirection,
 }
 
-impl fmt::Display for FrameError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            FrameError::NonFinite => write!(f, "light frame origin or target is not finite"),
-            FrameError::NoDirection => write!(f, "light frame target coincides with its origin"),
-        }
-    }
-}
-
-impl std::error::Error for FrameError {}
+impl_error!(FrameError, |error, f| match error {
+    FrameError::NonFinite => write!(f, "light frame origin or target is not finite"),
+    FrameError::NoDirection => write!(f, "light frame target coincides with its origin"),
+});
 
 /// A right-handed orthonormal frame at the light's centre, `+z` toward the
 /// scene.
@@ -185,17 +178,20 @@ mod tests {
         assert_eq!(LightFrame::along(o, DVec3::NAN), Err(FrameError::NonFinite));
     }
 
+    /// A point of the cube `[−1, 1)³`.
+    fn in_cube(rng: &mut Rng) -> DVec3 {
+        DVec3::new(
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+            rng.uniform(-1.0, 1.0),
+        )
+    }
+
     #[test]
     fn frames_are_right_handed_and_orthonormal() {
         let mut rng = Rng::new(5);
         for _ in 0..10_000 {
-            let mut v = || {
-                DVec3::new(
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                    rng.uniform(-1.0, 1.0),
-                )
-            };
+            let mut v = || in_cube(&mut rng);
             let (o, t) = (v() * 10.0, v() * 10.0);
             let Ok(f) = LightFrame::toward(o, t) else {
                 continue;
@@ -238,13 +234,7 @@ mod tests {
     #[test]
     fn a_chosen_x_axis_gives_a_right_handed_orthonormal_frame_with_that_x() {
         let mut rng = Rng::new(17);
-        let mut v = || {
-            DVec3::new(
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-                rng.uniform(-1.0, 1.0),
-            )
-        };
+        let mut v = || in_cube(&mut rng);
         for _ in 0..10_000 {
             let (o, d, h) = (v(), v(), v());
             let Ok(f) = LightFrame::with_x_axis(o, d, h) else {

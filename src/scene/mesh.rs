@@ -1,7 +1,6 @@
 //! Occluder meshes: positions and triangles, validated at construction.
 
 use glam::DVec3;
-use std::fmt;
 
 /// Why a mesh could not be built.
 #[derive(Clone, Debug, PartialEq)]
@@ -28,28 +27,22 @@ pub enum MeshError {
     },
 }
 
-impl fmt::Display for MeshError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            MeshError::NonFinitePosition { vertex } => {
-                write!(f, "vertex {vertex} has a non-finite coordinate")
-            }
-            MeshError::IndexOutOfRange {
-                triangle,
-                index,
-                vertex_count,
-            } => write!(
-                f,
-                "triangle {triangle} refers to vertex {index}, but there are {vertex_count} vertices"
-            ),
-            MeshError::TooManyVertices { count } => {
-                write!(f, "{count} vertices are more than u32 indices can address")
-            }
-        }
+impl_error!(MeshError, |error, f| match error {
+    MeshError::NonFinitePosition { vertex } => {
+        write!(f, "vertex {vertex} has a non-finite coordinate")
     }
-}
-
-impl std::error::Error for MeshError {}
+    MeshError::IndexOutOfRange {
+        triangle,
+        index,
+        vertex_count,
+    } => write!(
+        f,
+        "triangle {triangle} refers to vertex {index}, but there are {vertex_count} vertices"
+    ),
+    MeshError::TooManyVertices { count } => {
+        write!(f, "{count} vertices are more than u32 indices can address")
+    }
+});
 
 /// An indexed triangle mesh of opaque, two-sided occluders. Every position
 /// is finite and every index in range (checked by [`Mesh::new`]).

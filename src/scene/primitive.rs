@@ -10,7 +10,6 @@
 
 use super::{Mesh, MeshError};
 use glam::{DVec2, DVec3};
-use std::fmt;
 
 /// The fewest longitudes [`sphere`] accepts: three give a triangular
 /// bipyramid.
@@ -64,41 +63,35 @@ pub enum PrimitiveError {
     Mesh(MeshError),
 }
 
-impl fmt::Display for PrimitiveError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            PrimitiveError::NonFinite { field } => write!(f, "`{field}` is not finite"),
-            PrimitiveError::NonPositiveRadius { radius } => {
-                write!(f, "sphere radius must be positive, got {radius}")
-            }
-            PrimitiveError::Segments { segments } => write!(
-                f,
-                "sphere segments must be in {MIN_SEGMENTS}..={MAX_SEGMENTS}, got {segments}"
-            ),
-            PrimitiveError::EmptyBox { axis, min, max } => write!(
-                f,
-                "box max must exceed min in every coordinate, got {} {max} <= {min}",
-                axis_name(*axis)
-            ),
-            PrimitiveError::DegenerateQuad => {
-                write!(f, "quad half-axes u and v are zero or parallel")
-            }
-            PrimitiveError::NonPositiveScale { scale } => {
-                write!(f, "scale must be positive, got {scale}")
-            }
-            PrimitiveError::Mesh(e) => write!(f, "generated mesh: {e}"),
+impl_error!(
+    PrimitiveError,
+    |error, f| match error {
+        PrimitiveError::NonFinite { field } => write!(f, "`{field}` is not finite"),
+        PrimitiveError::NonPositiveRadius { radius } => {
+            write!(f, "sphere radius must be positive, got {radius}")
         }
-    }
-}
-
-impl std::error::Error for PrimitiveError {
-    fn source(&self) -> Option<&(dyn std::error::Error + 'static)> {
-        match self {
-            PrimitiveError::Mesh(e) => Some(e),
-            _ => None,
+        PrimitiveError::Segments { segments } => write!(
+            f,
+            "sphere segments must be in {MIN_SEGMENTS}..={MAX_SEGMENTS}, got {segments}"
+        ),
+        PrimitiveError::EmptyBox { axis, min, max } => write!(
+            f,
+            "box max must exceed min in every coordinate, got {} {max} <= {min}",
+            axis_name(*axis)
+        ),
+        PrimitiveError::DegenerateQuad => {
+            write!(f, "quad half-axes u and v are zero or parallel")
         }
+        PrimitiveError::NonPositiveScale { scale } => {
+            write!(f, "scale must be positive, got {scale}")
+        }
+        PrimitiveError::Mesh(e) => write!(f, "generated mesh: {e}"),
+    },
+    source = |error| match error {
+        PrimitiveError::Mesh(e) => Some(e),
+        _ => None,
     }
-}
+);
 
 impl From<MeshError> for PrimitiveError {
     fn from(e: MeshError) -> PrimitiveError {

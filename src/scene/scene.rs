@@ -3,7 +3,6 @@
 
 use super::{Light, Mesh};
 use glam::DVec3;
-use std::fmt;
 
 /// Why a camera could not be built.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -26,23 +25,17 @@ pub enum CameraError {
     EmptyImage,
 }
 
-impl fmt::Display for CameraError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            CameraError::NonFinite { field } => write!(f, "camera {field} is not finite"),
-            CameraError::Degenerate => write!(
-                f,
-                "camera eye equals target, or up is parallel to the view direction"
-            ),
-            CameraError::FieldOfView { degrees } => {
-                write!(f, "camera fov_y_deg {degrees} is not in (0, 180)")
-            }
-            CameraError::EmptyImage => write!(f, "camera width and height must be positive"),
-        }
+impl_error!(CameraError, |error, f| match error {
+    CameraError::NonFinite { field } => write!(f, "camera {field} is not finite"),
+    CameraError::Degenerate => write!(
+        f,
+        "camera eye equals target, or up is parallel to the view direction"
+    ),
+    CameraError::FieldOfView { degrees } => {
+        write!(f, "camera fov_y_deg {degrees} is not in (0, 180)")
     }
-}
-
-impl std::error::Error for CameraError {}
+    CameraError::EmptyImage => write!(f, "camera width and height must be positive"),
+});
 
 /// A pinhole camera, validated.
 #[derive(Clone, Copy, Debug, PartialEq)]

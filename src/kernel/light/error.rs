@@ -1,8 +1,6 @@
 //! Why a light could not be built ([`LightError`]) and why a receiver
 //! cannot see its emitting measure ([`ReceiverError`]).
 
-use std::fmt;
-
 /// Why a light could not be built. A constructor checks every argument
 /// and reports each one that is invalid: one fault as its own variant,
 /// several as [`LightError::Several`].
@@ -53,30 +51,24 @@ impl LightError {
     }
 }
 
-impl fmt::Display for LightError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            LightError::NonFinite { field } => write!(f, "light field `{field}` is not finite"),
-            LightError::NonPositiveRadius { radius } => {
-                write!(f, "light radius must be positive, got {radius}")
-            }
-            LightError::ZeroNormal => write!(f, "disk light normal is zero"),
-            LightError::DegenerateRect => write!(f, "rect light half-axes span no area"),
-            LightError::ZeroLengthSegment => write!(f, "segment light endpoints coincide"),
-            LightError::Several(all) => {
-                for (k, e) in all.iter().enumerate() {
-                    if k > 0 {
-                        f.write_str("; ")?;
-                    }
-                    write!(f, "{e}")?;
-                }
-                Ok(())
-            }
-        }
+impl_error!(LightError, |error, f| match error {
+    LightError::NonFinite { field } => write!(f, "light field `{field}` is not finite"),
+    LightError::NonPositiveRadius { radius } => {
+        write!(f, "light radius must be positive, got {radius}")
     }
-}
-
-impl std::error::Error for LightError {}
+    LightError::ZeroNormal => write!(f, "disk light normal is zero"),
+    LightError::DegenerateRect => write!(f, "rect light half-axes span no area"),
+    LightError::ZeroLengthSegment => write!(f, "segment light endpoints coincide"),
+    LightError::Several(all) => {
+        for (k, e) in all.iter().enumerate() {
+            if k > 0 {
+                f.write_str("; ")?;
+            }
+            write!(f, "{e}")?;
+        }
+        Ok(())
+    }
+});
 
 /// Why a receiver cannot see a light's measure.
 #[derive(Clone, Copy, Debug, PartialEq)]
@@ -101,19 +93,13 @@ pub enum ReceiverError {
     OutOfRange,
 }
 
-impl fmt::Display for ReceiverError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ReceiverError::NonFinite => write!(f, "receiver position is not finite"),
-            ReceiverError::InsideSphere => write!(f, "receiver is inside the sphere light"),
-            ReceiverError::InLightPlane => write!(f, "receiver lies in the light's plane"),
-            ReceiverError::OnLight => write!(f, "receiver lies on the light"),
-            ReceiverError::OutOfRange => write!(
-                f,
-                "the scene's coordinates around the receiver are beyond the reference's range"
-            ),
-        }
-    }
-}
-
-impl std::error::Error for ReceiverError {}
+impl_error!(ReceiverError, |error, f| match error {
+    ReceiverError::NonFinite => write!(f, "receiver position is not finite"),
+    ReceiverError::InsideSphere => write!(f, "receiver is inside the sphere light"),
+    ReceiverError::InLightPlane => write!(f, "receiver lies in the light's plane"),
+    ReceiverError::OnLight => write!(f, "receiver lies on the light"),
+    ReceiverError::OutOfRange => write!(
+        f,
+        "the scene's coordinates around the receiver are beyond the reference's range"
+    ),
+});

@@ -101,29 +101,23 @@ pub enum OptionError {
     },
 }
 
-impl fmt::Display for OptionError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            OptionError::Unknown { item } => write!(f, "unknown option '{item}'"),
-            OptionError::NeedsValue { key, expected } => {
-                write!(f, "'{key}' needs a value, {expected}")
-            }
-            OptionError::FlagWithValue { key } => {
-                write!(f, "'{key}' is a flag, written alone: {key}")
-            }
-            OptionError::Invalid {
-                key,
-                value,
-                expected,
-            } => write!(f, "{key} must be {expected}, got '{value}'"),
-            OptionError::Repeated { key } => {
-                write!(f, "{key} is given twice (give each option once)")
-            }
-        }
+impl_error!(OptionError, |error, f| match error {
+    OptionError::Unknown { item } => write!(f, "unknown option '{item}'"),
+    OptionError::NeedsValue { key, expected } => {
+        write!(f, "'{key}' needs a value, {expected}")
     }
-}
-
-impl std::error::Error for OptionError {}
+    OptionError::FlagWithValue { key } => {
+        write!(f, "'{key}' is a flag, written alone: {key}")
+    }
+    OptionError::Invalid {
+        key,
+        value,
+        expected,
+    } => write!(f, "{key} must be {expected}, got '{value}'"),
+    OptionError::Repeated { key } => {
+        write!(f, "{key} is given twice (give each option once)")
+    }
+});
 
 /// Why a method name (`base[:item,…]`) could not be read: by
 /// [`registry::parse`](crate::method::registry::parse) and
@@ -162,22 +156,16 @@ impl ParseError {
     }
 }
 
-impl fmt::Display for ParseError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            ParseError::UnknownMethod { name, available } => {
-                write!(f, "unknown method '{name}'; available: {available}")
-            }
-            ParseError::Option {
-                name,
-                error,
-                accepts,
-            } => write!(f, "'{name}': {error}; {accepts}"),
-        }
+impl_error!(ParseError, |error, f| match error {
+    ParseError::UnknownMethod { name, available } => {
+        write!(f, "unknown method '{name}'; available: {available}")
     }
-}
-
-impl std::error::Error for ParseError {}
+    ParseError::Option {
+        name,
+        error,
+        accepts,
+    } => write!(f, "'{name}': {error}; {accepts}"),
+});
 
 /// Why a method's options table breaks a promise of this module
 /// ([`round_trip`](super::round_trip)).
@@ -220,24 +208,18 @@ pub enum TableError {
     },
 }
 
-impl fmt::Display for TableError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            TableError::FlagOnByDefault { key } => write!(f, "flag {key} is on by default"),
-            TableError::DefaultNotBare { printed } => {
-                write!(f, "the default prints as '{printed}'")
-            }
-            TableError::Unparsable { name, error } => {
-                write!(f, "'{name}' does not parse back: {error}")
-            }
-            TableError::ParsesDifferently {
-                name,
-                parsed,
-                printed,
-            } => write!(f, "'{name}' parses to {parsed}, not {printed}"),
-            TableError::Check { name, error } => write!(f, "'{name}': {error}"),
-        }
+impl_error!(TableError, |error, f| match error {
+    TableError::FlagOnByDefault { key } => write!(f, "flag {key} is on by default"),
+    TableError::DefaultNotBare { printed } => {
+        write!(f, "the default prints as '{printed}'")
     }
-}
-
-impl std::error::Error for TableError {}
+    TableError::Unparsable { name, error } => {
+        write!(f, "'{name}' does not parse back: {error}")
+    }
+    TableError::ParsesDifferently {
+        name,
+        parsed,
+        printed,
+    } => write!(f, "'{name}' parses to {parsed}, not {printed}"),
+    TableError::Check { name, error } => write!(f, "'{name}': {error}"),
+});

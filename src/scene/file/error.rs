@@ -1,7 +1,6 @@
 //! The error of a scene or points file, naming the file and the place in it.
 
 use std::borrow::Cow;
-use std::fmt;
 use std::path::Path;
 
 /// Where in a file a [`FileError`] is.
@@ -109,22 +108,18 @@ pub(super) fn one_line(s: &str) -> Cow<'_, str> {
     }
 }
 
-impl fmt::Display for FileError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        // One line of bounded length, whatever the input quoted.
-        let file = one_line(&self.file);
-        let file = clip_start(&file, 160);
-        let message = one_line(&self.message);
-        let message = clip_end(&message, 400);
-        match &self.place {
-            Place::Whole => write!(f, "{file}: {message}"),
-            Place::Position { line, column } => write!(f, "{file}:{line}:{column}: {message}"),
-            Place::Path(path) => write!(f, "{file}: {}: {message}", clip_end(&one_line(path), 200)),
-        }
+impl_error!(FileError, |error, f| {
+    // One line of bounded length, whatever the input quoted.
+    let file = one_line(&error.file);
+    let file = clip_start(&file, 160);
+    let message = one_line(&error.message);
+    let message = clip_end(&message, 400);
+    match &error.place {
+        Place::Whole => write!(f, "{file}: {message}"),
+        Place::Position { line, column } => write!(f, "{file}:{line}:{column}: {message}"),
+        Place::Path(path) => write!(f, "{file}: {}: {message}", clip_end(&one_line(path), 200)),
     }
-}
-
-impl std::error::Error for FileError {}
+});
 
 /// An error about the whole file `name`.
 pub(super) fn whole(name: &str, message: String) -> FileError {

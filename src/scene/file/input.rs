@@ -1,6 +1,5 @@
 //! Reading an input file whole, within a size limit.
 
-use std::fmt;
 use std::path::Path;
 
 /// The largest scene, points or report JSON file read (256 MiB).
@@ -29,22 +28,16 @@ pub enum InputError {
     Io(std::io::Error),
 }
 
-impl fmt::Display for InputError {
-    fn fmt(&self, f: &mut fmt::Formatter<'_>) -> fmt::Result {
-        match self {
-            InputError::Directory => write!(f, "not a regular file (a directory)"),
-            InputError::NotRegular => {
-                write!(f, "not a regular file (a device, FIFO or socket)")
-            }
-            InputError::TooLarge { bytes, limit } => {
-                write!(f, "{bytes} bytes or more, over the limit of {limit} bytes")
-            }
-            InputError::Io(e) => write!(f, "cannot read: {e}"),
-        }
+impl_error!(InputError, |error, f| match error {
+    InputError::Directory => write!(f, "not a regular file (a directory)"),
+    InputError::NotRegular => {
+        write!(f, "not a regular file (a device, FIFO or socket)")
     }
-}
-
-impl std::error::Error for InputError {}
+    InputError::TooLarge { bytes, limit } => {
+        write!(f, "{bytes} bytes or more, over the limit of {limit} bytes")
+    }
+    InputError::Io(e) => write!(f, "cannot read: {e}"),
+});
 
 /// The bytes of the regular file at `path`, at most `limit` of them.
 ///

@@ -44,11 +44,9 @@ fn strictly_inside(t: &Tri, p: DVec2) -> bool {
 /// over the cells from the first row to the last.
 #[test]
 fn marked_cells_lie_inside_a_triangle() {
-    let mut rng = Rng::new(41);
     let mut interior = Interior::default();
     let (mut marked, mut covered, mut by_blocks, mut partly) = (0, 0, 0, 0);
-    for case in 0..24 {
-        let (h, tris) = deep_case(case, &mut rng, 400);
+    for (case, h, tris) in deep_cases(41, 24, 400) {
         assert!(interior.build(&tris, h), "case {case}: not deep");
         let at = |k: usize| -h + k as f64 * interior.w;
         for r in 0..interior.n {
@@ -119,11 +117,9 @@ fn marked_cells_lie_inside_a_triangle() {
 /// are all marked, counted cell by cell.
 #[test]
 fn full_blocks_are_those_all_marked() {
-    let mut rng = Rng::new(47);
     let mut interior = Interior::default();
     let (mut full, mut blocks) = (0, 0);
-    for case in 0..12 {
-        let (h, tris) = deep_case(case, &mut rng, 1200);
+    for (case, h, tris) in deep_cases(47, 12, 1200) {
         assert!(interior.build(&tris, h), "case {case}: not deep");
         const B: usize = Interior::BLOCK;
         for br in 0..interior.n / B {
@@ -153,12 +149,10 @@ fn full_blocks_are_those_all_marked() {
 /// cell each on average.
 #[test]
 fn the_interior_drops_edges_and_keeps_the_area() {
-    let mut rng = Rng::new(43);
     let mut scratch = UnionScratch::default();
     let (mut dropped, mut edges) = (0, 0);
     let (mut searched, mut left_out) = (0, 0);
-    for case in 0..60 {
-        let (h, tris) = deep_case(case, &mut rng, 1200);
+    for (case, h, tris) in deep_cases(43, 60, 1200) {
         let n = tris.len();
         // The disk's measure on the wider square.
         let measure = if h > 1.0 {
@@ -166,7 +160,7 @@ fn the_interior_drops_edges_and_keeps_the_area() {
         } else {
             Measure::Square
         };
-        let with = union_area::<false>(&tris, &[], f64::INFINITY, measure, h, &mut scratch).0;
+        let with = area_of(&tris, measure, h, &mut scratch);
         assert!(scratch.interior.n > 0, "case {case}: not deep");
         edges += 3 * n;
         dropped += tris

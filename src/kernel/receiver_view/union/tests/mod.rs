@@ -44,13 +44,37 @@ fn clipped_like(rng: &mut Rng, n: usize, h: f64) -> Vec<Tri> {
     tris
 }
 
+/// A generator seeded `seed` and an empty scratch: what a randomised
+/// test of the union starts from.
+fn seeded(seed: u64) -> (Rng, UnionScratch) {
+    (Rng::new(seed), UnionScratch::default())
+}
+
+/// The area of the union of `tris` on `measure` where no image has an
+/// allowance (no weights, an unknown reach), the sides holding
+/// `sweep_from` edges or more swept.
+fn area_of_sweeping_from(
+    tris: &[Tri],
+    measure: Measure,
+    h: f64,
+    scratch: &mut UnionScratch,
+    sweep_from: usize,
+) -> f64 {
+    union_area_sweeping_from::<false>(tris, &[], f64::INFINITY, measure, h, scratch, sweep_from).0
+}
+
+/// [`union_area`] where no image has an allowance, as
+/// [`area_of_sweeping_from`].
+fn area_of(tris: &[Tri], measure: Measure, h: f64, scratch: &mut UnionScratch) -> f64 {
+    union_area::<false>(tris, &[], f64::INFINITY, measure, h, scratch).0
+}
+
 /// The sweep of the square's sides and the search over the grid give
 /// the same area (the same set; their pieces' ends may differ in the
 /// last bits), on both measures.
 #[test]
 fn sweeping_the_sides_gives_the_searched_area() {
-    let mut rng = Rng::new(17);
-    let mut scratch = UnionScratch::default();
+    let (mut rng, mut scratch) = seeded(17);
     for case in 0..300 {
         let n = 1 + rng.below(120) as usize;
         let (measure, h) = if case % 2 == 0 {
@@ -59,26 +83,8 @@ fn sweeping_the_sides_gives_the_searched_area() {
             (Measure::Square, 1.0)
         };
         let tris = clipped_like(&mut rng, n, h);
-        let searched = union_area_sweeping_from::<false>(
-            &tris,
-            &[],
-            f64::INFINITY,
-            measure,
-            h,
-            &mut scratch,
-            usize::MAX,
-        )
-        .0;
-        let swept = union_area_sweeping_from::<false>(
-            &tris,
-            &[],
-            f64::INFINITY,
-            measure,
-            h,
-            &mut scratch,
-            1,
-        )
-        .0;
+        let searched = area_of_sweeping_from(&tris, measure, h, &mut scratch, usize::MAX);
+        let swept = area_of_sweeping_from(&tris, measure, h, &mut scratch, 1);
         assert!(
             (searched - swept).abs() <= 1e-13,
             "case {case}: {n} triangles, searched {searched}, swept {swept}"
@@ -282,8 +288,7 @@ fn reversed_edges_are_those_of_a_search() {
 #[test]
 fn a_triangulated_polygon_is_its_outline() {
     use crate::kernel::disk::f64::polygon_disk_area;
-    let mut rng = Rng::new(9);
-    let mut scratch = UnionScratch::default();
+    let (mut rng, mut scratch) = seeded(9);
     for case in 0..60 {
         let n = 1 + rng.below(12) as usize;
         let (x0, y0) = (rng.uniform(-1.4, 0.0), rng.uniform(-1.4, 0.0));
@@ -329,7 +334,7 @@ fn a_triangulated_polygon_is_its_outline() {
             let d = corner[n][n] - corner[0][0];
             (Measure::Square, 1.5, d.x * d.y)
         };
-        let area = union_area::<false>(&tris, &[], f64::INFINITY, measure, half, &mut scratch).0;
+        let area = area_of(&tris, measure, half, &mut scratch);
         assert!(
             (area - expected).abs() <= 1e-14,
             "case {case}: {n}² squares, {area} against {expected}"
@@ -360,15 +365,7 @@ fn translates_along_the_base_are_the_swept_trapezoid_less_the_notches() {
             .collect();
         let l = (n - 1) as f64 * delta;
         let expected = 0.5 + l - (n - 1) as f64 * delta * delta / 2.0;
-        let area = union_area::<false>(
-            &tris,
-            &[],
-            f64::INFINITY,
-            Measure::Square,
-            1.0,
-            &mut scratch,
-        )
-        .0;
+        let area = area_of(&tris, Measure::Square, 1.0, &mut scratch);
         assert!(
             (area - expected).abs() <= 1e-12,
             "{n} translates {delta} apart: {area} against {expected}"
@@ -400,24 +397,8 @@ fn nested_images_across_a_side_are_the_largest_one() {
         .max_by(|a, b| (a.hi.x - a.lo.x).total_cmp(&(b.hi.x - b.lo.x)))
         .expect("some");
     let mut scratch = UnionScratch::default();
-    let all = union_area::<false>(
-        &tris,
-        &[],
-        f64::INFINITY,
-        Measure::Disk(1.0),
-        h,
-        &mut scratch,
-    )
-    .0;
-    let one = union_area::<false>(
-        &[largest],
-        &[],
-        f64::INFINITY,
-        Measure::Disk(1.0),
-        h,
-        &mut scratch,
-    )
-    .0;
+    let all = area_of(&tris, Measure::Disk(1.0), h, &mut scratch);
+    let one = area_of(&[largest], Measure::Disk(1.0), h, &mut scratch);
     assert!(one > 0.1);
     assert!((all - one).abs() <= 1e-14, "{all} against {one}");
 }
@@ -520,6 +501,16 @@ fn deep_case(case: usize, rng: &mut Rng, more: u64) -> (f64, Vec<Tri>) {
     (h, pile(case, rng, n, depth, h))
 }
 
+/// The first `count` of [`deep_case`]'s cases, drawn from the seed
+/// `seed`: `(case, h, tris)`.
+fn deep_cases(seed: u64, count: usize, more: u64) -> impl Iterator<Item = (usize, f64, Vec<Tri>)> {
+    let mut rng = Rng::new(seed);
+    (0..count).map(move |case| {
+        let (h, tris) = deep_case(case, &mut rng, more);
+        (case, h, tris)
+    })
+}
+
 /// The bound leaves out only the parts of a band that another triangle
 /// holds at least twice the reach inside. Two strips across the square,
 /// each two triangles with every edge on a side of the square but one:
@@ -538,8 +529,7 @@ fn deep_case(case: usize, rng: &mut Rng, more: u64) -> (f64, Vec<Tri>) {
 /// slopes.
 #[test]
 fn bands_held_deep_inside_other_triangles_are_left_out() {
-    let mut rng = Rng::new(40);
-    let mut scratch = UnionScratch::default();
+    let (mut rng, mut scratch) = seeded(40);
     for case in 0..400 {
         let e = 10f64.powf(rng.uniform(-12.0, -6.0));
         let (y0, y1) = (rng.uniform(-0.6, 0.6), rng.uniform(-0.6, 0.6));

@@ -141,8 +141,7 @@ fn family(case: usize, rng: &mut Rng) -> (f64, Vec<Tri>) {
 /// most the one without.
 #[test]
 fn the_tree_search_gives_the_grid_area_bit_for_bit() {
-    let mut rng = Rng::new(61);
-    let mut scratch = UnionScratch::default();
+    let (mut rng, mut scratch) = seeded(61);
     let mut nonzero = 0;
     for case in 0..270 {
         let (h, tris) = family(case, &mut rng);
@@ -292,8 +291,7 @@ fn inclusion_exclusion_disk_area(tris: &[Tri]) -> f64 {
 /// inclusion–exclusion (up to 7).
 #[test]
 fn the_union_is_the_brute_force_area_on_small_piles() {
-    let mut rng = Rng::new(67);
-    let mut scratch = UnionScratch::default();
+    let (mut rng, mut scratch) = seeded(67);
     for case in 0..600 {
         let disk = case % 3 == 0;
         let (h, most) = if disk { (1.5, 7) } else { (1.0, 60) };
@@ -347,7 +345,7 @@ fn the_union_is_the_brute_force_area_on_small_piles() {
         };
         for search in [Search::Grid, Search::Tree] {
             scratch.search = search;
-            let area = union_area::<false>(&tris, &[], f64::INFINITY, measure, h, &mut scratch).0;
+            let area = area_of(&tris, measure, h, &mut scratch);
             assert!(
                 (area - expected).abs() <= 1e-11,
                 "case {case} ({search:?}): {} triangles, {area} against {expected}",
