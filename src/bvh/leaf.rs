@@ -26,9 +26,8 @@
 //! one cross product a lane from the corner `A` shared by the edges, three
 //! dot products for the edges and one for the planes, all of them products
 //! of a difference from `P` and of edges, whose errors scale with the
-//! triangle's size rather than with its distance. A pack stores, lane by
-//! lane, `A` and the two edges `E_ab`, `E_ca`, each rounded to nearest
-//! `f32` (the edges from their `f64` differences).
+//! triangle's size rather than with its distance. A pack stores `A`,
+//! `E_ab` and `E_ca` lane by lane in `f32` (see [`Packs`]).
 //!
 //! # The bound
 //!
@@ -170,15 +169,17 @@ const HEADER: usize = 8;
 /// [`PACK`] lanes each read [`PACK`] floats on, and the occluder indices
 /// after them.
 const SPAN: usize = HEADER + 9 * PACK + PACK;
-/// The rows' vectors: the corner `A`, the edges `E_ab`, `E_ca`.
-const CORNER: usize = 0;
-const AB: usize = 1;
-const CA: usize = 2;
+/// The rows' vectors: `E_ab`, `E_ca`, then `A`, whose last row's lanes
+/// beyond the count read the occluder indices (subnormal floats): it is
+/// only subtracted from (a product with a subnormal is slow on x86).
+const AB: usize = 0;
+const CA: usize = 1;
+const CORNER: usize = 2;
 
 /// The leaves' packs, one after another in one array of `f32`, each on a
 /// multiple of eight floats (32 bytes): a header of [`HEADER`] floats,
-/// then its triangles' corners `A` and edges `E_ab`, `E_ca` rounded to
-/// nearest `f32`, row by row (vector `k` of [`CORNER`], [`AB`], [`CA`],
+/// then its triangles' edges `E_ab`, `E_ca` and corners `A` rounded to
+/// nearest `f32`, row by row (vector `k` of [`AB`], [`CA`], [`CORNER`],
 /// axis `a`: row `3k + a`), each row `count` floats long (a lane a
 /// triangle), then the triangles' occluder indices (their bits). A row is
 /// read as [`PACK`] floats, the lanes beyond `count` being whatever
@@ -200,11 +201,9 @@ pub(super) struct Pack<'a> {
 /// `v − u` rounded to `f32` (from `f64`), and how far it lies from the
 /// true difference at most (see the module docs: `ε_E`).
 fn stored_edge(u: DVec3, v: DVec3) -> (DVec3, f64) {
-    let difference = v - u;
-    let stored = difference.as_vec3().as_dvec3();
-    let error =
-        ((difference - stored).abs() + difference.abs() / (1u64 << 52) as f64).max_element();
-    (stored, error)
+    let (difference, stored) = (v - u, (v - u).as_vec3().as_dvec3());
+    let slack = difference.abs() / (1u64 << 52) as f64;
+    (stored, ((difference - stored).abs() + slack).max_element())
 }
 
 impl Packs {
@@ -223,7 +222,7 @@ impl Packs {
             let corner = a.as_vec3().as_dvec3();
             let (ab, ab_error) = stored_edge(a, b);
             let (ca, ca_error) = stored_edge(c, a);
-            for (k, v) in [corner, ab, ca].into_iter().enumerate() {
+            for (k, v) in [(CORNER, corner), (AB, ab), (CA, ca)] {
                 for axis in 0..3 {
                     rows[3 * k + axis][lane] = v[axis] as f32;
                 }
@@ -272,11 +271,9 @@ impl Packs {
     }
 }
 
-/// The pack's terms of the bounds, as defined in the module docs, from
-/// `M` (the largest corner magnitude), `ε_c` (the largest rounding of a
-/// corner `A`), `L` (the largest stored edge) and `ε_E` (the largest error
-/// of a stored edge), in `f64`: `Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`,
-/// `ε_E`, then `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`.
+/// The pack's terms of the bounds in `f64` from `M`, `ε_c`, `L`, `ε_E`
+/// (see the module docs): `Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`, `ε_E`,
+/// then `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`.
 fn defined_terms(magnitude: f64, corner_error: f64, edge: f64, edge_error: f64) -> [f64; 7] {
     let (c, e_error) = (corner_error, edge_error);
     let m = magnitude * (1.0 + U) + c;
@@ -353,7 +350,7 @@ impl<'a> Pack<'a> {
 
 #[cfg(test)]
 impl Pack<'_> {
-    /// Vector `k` ([`CORNER`], [`AB`], [`CA`]) of lane `lane` as stored.
+    /// Vector `k` ([`AB`], [`CA`], [`CORNER`]) of lane `lane` as stored.
     pub(super) fn stored(&self, k: usize, lane: usize) -> DVec3 {
         DVec3::from_array([0, 1, 2].map(|a| f64::from(self.row(k, a)[lane])))
     }
@@ -373,7 +370,7 @@ impl Pack<'_> {
         let (mut edge, mut edge_error) = (0.0f64, 0.0f64);
         for lane in 0..self.count {
             let [a, b, c] = triangles[self.id(lane) as usize];
-            let stored = [CORNER, AB, CA].map(|k| self.stored(k, lane));
+            let stored: [DVec3; 3] = core::array::from_fn(|k| self.stored(k, lane));
             assert_eq!(stored[CORNER], a.as_vec3().as_dvec3());
             assert_eq!(stored[AB], (b - a).as_vec3().as_dvec3());
             assert_eq!(stored[CA], (a - c).as_vec3().as_dvec3());
@@ -507,22 +504,25 @@ pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) ->
     let edge_bound = ray.edge_bound(pack);
     let (e, dn) = edge_volumes(s, pack, ray);
     let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
-    let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
-    let neg = [s.lt(e[0], down), s.lt(e[1], down), s.lt(e[2], down)];
-    let edge_miss = (pos[0] | pos[1] | pos[2]) & (neg[0] | neg[1] | neg[2]);
+    // Some volume certainly positive and some certainly negative (no
+    // volume is NaN where the bound is finite).
+    let (hi, lo) = (
+        s.max(s.max(e[0], e[1]), e[2]),
+        s.min(s.min(e[0], e[1]), e[2]),
+    );
+    let edge_miss = s.gt(hi, up) & s.lt(lo, down);
     // Most lanes a segment reaches it passes beside: the planes only
     // where some lane is left.
     if edge_miss & used == used {
         return (0, 0);
     }
-    let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
+    let inside = s.gt(lo, up) | s.lt(hi, down);
     let (sp, sx) = plane_volumes(s, pack, ray, dn);
     let plane_bound = ray.plane_bound(pack);
     let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
-    let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
-    let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
-    let plane_miss = (p_pos & x_pos) | (p_neg & x_neg);
-    let crosses = (p_pos & x_neg) | (p_neg & x_pos);
+    let (hi, lo) = (s.max(sp, sx), s.min(sp, sx));
+    let plane_miss = s.gt(lo, up) | s.lt(hi, down);
+    let crosses = s.gt(hi, up) & s.lt(lo, down);
     let hit = inside & crosses;
     (hit & used, !hit & !edge_miss & !plane_miss & used)
 }
