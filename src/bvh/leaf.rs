@@ -13,86 +13,108 @@
 //! opposite pair and are not all zero, and the plane volumes `s_P =
 //! det[A − P; B − P; C − P]` and `s_X = det[A − X; B − X; C − X]` are
 //! nonzero and of opposite signs ([`segment_blocked`]'s definition). With
-//! `a = A − P`, `b = B − P`, `c = C − P` and the edges `E_ab = B − A`,
-//! `E_bc = C − B`, `E_ca = A − C`, the same determinants are
+//! `d = X − P`, `a = A − P`, the edges `E_ab = B − A`, `E_ca = A − C` and
+//! the normal `N = E_ca × E_ab`, the same determinants are
 //!
-//! - `e₀ = d · (a × E_ab)`, `e₁ = d · (b × E_bc)`, `e₂ = d · (c × E_ca)`
-//!   (`d = X − P`; `a × b = a × (b − a)`),
-//! - `s_P = a · N`, `s_X = (A − X) · N`, `N = E_ca × E_ab`,
+//! - `e₀ = E_ab · w`, `e₂ = E_ca · w` with `w = d × a` (`e₀ = d · (a ×
+//!   b) = d · (a × E_ab)`, and `c × E_ca = a × E_ca` as `c = a − E_ca`),
+//! - `e₁ = d · N − e₀ − e₂` (the three sum to `d · (a × b + b × c + c ×
+//!   a) = d · N`),
+//! - `s_P = a · N` and `s_X = s_P − d · N` (`det[A − Q; B − Q; C − Q] =
+//!   det[A; B; C] − Q · N` for any point `Q`):
 //!
-//! products of a difference from an endpoint and of edges, whose errors
-//! scale with the triangle's size rather than with its distance (the
-//! forms of [`segment_blocked`] multiply two distances).
+//! one cross product a lane from the corner `A` shared by the edges, three
+//! dot products for the edges and one for the planes, all of them products
+//! of a difference from `P` and of edges, whose errors scale with the
+//! triangle's size rather than with its distance. A pack stores `A`,
+//! `E_ab` and `E_ca` lane by lane in `f32` (see [`Packs`]).
 //!
 //! # The bound
 //!
-//! Let `u = 2⁻²⁴`. The stored corners are the triangle's rounded to
-//! nearest `f32`, `A′ = A + O(ε_c)` (`ε_c` the pack's largest rounding,
-//! `0` for corners that are `f32` values); the ray's are `P′ = fl₃₂(P)`,
-//! `X′ = fl₃₂(X)`, `d′ = fl₃₂(fl₆₄(X − P))`, with `ε_r` bounding `|P −
-//! P′|∞` and `|X − X′|∞` and `ε_d` bounding `|d′ − (X − P)|∞` (all
-//! computed exactly in `f64` and rounded up). The test computes, in `f32`,
-//! `a = fl(A′ − P′)` (and `b`, `c`, `A′ − X′` alike), `E = fl(B′ − A′)`
-//! (and the other edges), then each determinant as a cross product and a
-//! dot product. With `M` the pack's largest corner magnitude, `R =
-//! max(|P′|∞, |X′|∞)`, `S = M + R` and `L` the pack's largest edge
-//! `|B′ − A′|∞`:
+//! Let `u = 2⁻²⁴`, `γₙ = n u / (1 − n u)` and `K = 1 + γ₂`. The stored
+//! values are `A′ = fl₃₂(A)` (`ε_c` bounding `|A − A′|∞` over the pack)
+//! and `E′ = fl₃₂(fl₆₄(B − A))` (and `E_ca`'s alike; `ε_E` bounding
+//! `|E′ − E|∞` over the pack: the exact `|E′ − fl₆₄(B − A)|∞` plus
+//! `2⁻⁵²|fl₆₄(B − A)|∞` for the `f64` difference); the segment's are `P′ =
+//! fl₃₂(P)` and `d′ = fl₃₂(fl₆₄(X − P))`, with `ε_r` bounding `|P − P′|∞`
+//! and `ε_d` bounding `|d′ − d|∞` (all computed exactly in `f64` and
+//! rounded up). The test computes, in `f32`, `a = fl(A′ − P′)`, `w =
+//! fl(d′ × a)`, `N = fl(E′_ca × E′_ab)` (each cross product's components
+//! with two products and a difference), the dot products with three
+//! products and two sums left to right, then `e₁` and `s_X` by the
+//! differences above. With `M` the pack's largest corner magnitude (all
+//! three corners, rounded to `f32`), `R = |P′|∞`, `S = M + R` and `L` the
+//! pack's largest stored edge `|E′|∞`:
 //!
 //! - `Â = S (1 + u) + ε_c + ε_r` bounds both the computed `|a|∞` and the
-//!   true `|A − P|∞` (and `A − X`'s), and `ε_a = u S + ε_c + ε_r` their
-//!   difference (one rounding of a difference of stored values, plus the
-//!   roundings of the corner and the endpoint);
-//! - `Ê = L (1 + u) + 2 ε_c` bounds the computed and the true edge, `ε_E =
-//!   u L + 2 ε_c` their difference;
+//!   true `|A − P|∞`, and `ε_a = u S + ε_c + ε_r` their difference (one
+//!   rounding of a difference of stored values, plus the roundings of the
+//!   corner and the endpoint);
+//! - `Ê = L + ε_E` bounds the stored and the true edges;
 //! - `D̂ = |d′|∞ + ε_d` bounds the computed and the true `d`.
 //!
-//! A determinant `det[r₁; r₂; r₃] = r₁ · (r₂ × r₃)` is a sum of six terms
-//! each at most `|r₁|∞ |r₂|∞ |r₃|∞`. Evaluated as written (the cross
-//! product's components with two products and a difference, then three
-//! products and two sums) each term carries at most five roundings, so
-//! the computed value is within `6 γ₅ |r₁| |r₂| |r₃|` of the determinant
-//! of the computed rows (`γ₅ = 5u/(1 − 5u)`, Higham §3.1). The computed
-//! rows differ from the true ones by `δ₁, δ₂, δ₃`, and by
-//! multilinearity `det[r₁ + δ₁; …] − det[r₁; …]` telescopes into three
-//! determinants each with one row a `δ`: at most `6 (δ₁ r̂₂ r̂₃ + r̂₁ δ₂ r̂₃ +
-//! r̂₁ r̂₂ δ₃)` with each `r̂` bounding both the computed and the true row.
-//! So the computed edge volumes are within
+//! A component of a computed cross product of rows bounded by `x̂` and `ŷ`
+//! is within `2 γ₂ x̂ ŷ` of the cross product of the computed rows, a
+//! computed dot product within `3 γ₃ x̂ ŷ` of theirs (Higham §3.1); and a
+//! product of two rows off by `δ_x`, `δ_y` is off by at most `δ_x ŷ + x̂
+//! δ_y` a term. So `w` is within `δ_w = 2 γ₂ D̂ Â + 2 (ε_d Â + D̂ ε_a)` of
+//! `d × a`, both bounded by `W = 2 K D̂ Â`; `N` within `δ_N = 2 γ₂ Ê² + 4 Ê
+//! ε_E` of the true normal, both bounded by `N̂ = 2 K Ê²`; and (with
+//! `γ₃ K + γ₂ ≤ γ₅`)
 //!
-//! `B_e = 6 (γ₅ D̂ Â Ê + ε_d Â Ê + D̂ ε_a Ê + D̂ Â ε_E) + F`
+//! - the computed `e₀` and `e₂` are within `3 γ₃ Ê W + 3 (ε_E W + Ê δ_w) ≤
+//!   B_e = 6 (γ₅ D̂ Â Ê + K D̂ Â ε_E + ε_d Â Ê + D̂ ε_a Ê)` of the exact
+//!   ones, and at most `6 (1 + γ₅) D̂ Â Ê` in magnitude;
+//! - the computed `d · N` within `B_n = 6 (γ₅ D̂ Ê² + K ε_d Ê² + 2 D̂ Ê
+//!   ε_E)`, at most `6 (1 + γ₅) D̂ Ê²`; the computed `s_P` within `B_p =
+//!   6 (γ₅ Â Ê² + K ε_a Ê² + 2 Â Ê ε_E)`, at most `6 (1 + γ₅) Â Ê²`;
+//! - the computed `e₁` within `B_E = 2 B_e + B_n + 2 ρ D̂ Ê (Ê + 2 Â)`, the
+//!   last term the two subtractions' roundings (`u (2 + u)` times the sum
+//!   of the three magnitudes), with `ρ = 6 u (1 + u) (1 + γ₅)`; the
+//!   computed `s_X` within `B_X = B_p + B_n + ρ Ê² (Â + D̂)`.
 //!
-//! of the exact ones, and both plane volumes within
+//! The test compares all three edge volumes against `B_E` and both plane
+//! volumes against `B_X`, the larger of each kind; gathered by factors
+//! (`K ≤ 2`, so `Ê²`'s factor in `B_E` is below `ÂÊ`'s, `σ = (12 γ₅ + 4
+//! ρ) D̂ + 12 ε_d`),
 //!
-//! `B_s = 6 (γ₅ Â Ê² + ε_a Ê² + 2 Â Ê ε_E) + F`.
+//! `B_E ≤ σ Ê (Â + Ê) + 12 K D̂ (ε_E (Â + Ê) + ε_a Ê)`,
 //!
-//! `F = 2⁻¹⁰⁰` covers underflow: the test runs only where `M` and `R` are
-//! at most `2⁴⁰` (elsewhere every lane goes to the exact test), so every
-//! row is below `2⁴²` in magnitude, no value overflows, and the absolute
-//! error of the products that underflow (at most `2⁻¹⁵⁰` each, carried
-//! through by factors below `2⁴²`) stays below `2⁻¹⁰⁴`.
+//! `B_X = (Â + D̂) Q₁ + (ε_a + ε_d) Q₂`, `Q₁ = (6 γ₅ + ρ) Ê² + 12 Ê ε_E`, `Q₂
+//! = 6 K Ê²`;
+//!
+//! both taken plus `F = 2⁻¹⁰⁰`, which covers underflow: the test runs only
+//! where `M` and the endpoints' magnitudes are at most `2⁴⁰` (elsewhere
+//! every lane goes to the exact test), so `Â`, `Ê` and `D̂` are below
+//! `2⁴¹ (1 + 2⁻²⁰)`, every computed value below `2¹²⁸` (the largest, `e₁`,
+//! below `18 · 2¹²³ (1 + 2⁻¹⁸)`: no overflow), and the absolute error of
+//! the products that underflow (at most `2⁻¹⁵⁰` each, carried through by
+//! factors below `2⁴²`) stays below `2⁻¹⁰⁴`.
 //!
 //! # Evaluating the bounds
 //!
 //! `Â` and `ε_a` are sums of a pack's part and a segment's: `Â = m + r`,
 //! `ε_a = m′ + r′` with `m = M (1 + u) + ε_c`, `m′ = u M + ε_c`, `r = R (1 +
-//! u) + ε_r`, `r′ = u R + ε_r`. Multiplied out, with `k_e = 6 (γ₅ D̂ +
-//! ε_d)` and `k_l = 6 D̂`,
+//! u) + ε_r`, `r′ = u R + ε_r`. Multiplied out,
 //!
-//! `B_e − F = k_e (Ê m) + k_l (Ê m′ + ε_E m) + (k_e r + k_l r′) Ê + (k_l r) ε_E`,
+//! `B_E − F ≤ σ (Ê (m + Ê)) + 12 K D̂ (ε_E (m + Ê) + Ê m′) + (σ r + 12 K D̂
+//! r′) Ê + (12 K D̂ r) ε_E`,
 //!
-//! `B_s − F = (m Q₁ + m′ Q₂) + r Q₁ + r′ Q₂`, `Q₁ = 6 γ₅ Ê² + 12 Ê ε_E`, `Q₂ = 6 Ê²`:
+//! `B_X − F = (m Q₁ + m′ Q₂) + (r + D̂) Q₁ + (r′ + ε_d) Q₂`:
 //!
 //! each a short sum of products of a pack's terms (computed once, at the
-//! build: `Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E`, and `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`)
-//! and a segment's (computed once a segment). Every term is nonnegative;
-//! each is computed in `f64` from exact inputs (a few roundings of
-//! `2⁻⁵³`), widened by `2⁻²²` and rounded up to `f32` (a pack's) or kept
-//! in `f64` (a segment's), and the sums, computed in `f64` (three
-//! roundings), are widened by `2⁻²²` again before they are rounded to
-//! `f32`: the bounds used are at least `B_e` and `B_s`. A pack whose `M`
+//! build: `Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`, `ε_E`, and `m Q₁ + m′
+//! Q₂`, `Q₁`, `Q₂`) and a segment's (computed once a segment). Every term
+//! is nonnegative; each is computed in `f64` from exact inputs (a few
+//! roundings of `2⁻⁵³`), widened by `2⁻²²` and rounded up to `f32` (a
+//! pack's) or kept in `f64` (a segment's), and the sums, computed in `f64`
+//! (three roundings), are widened by `2⁻²²` again before they are rounded
+//! to `f32`: the bounds used are at least `B_E` and `B_X`. A pack whose `M`
 //! exceeds `2⁴⁰` stores `+∞` for the terms with `m` in them, a segment
-//! whose `R` does for `r` and `r′`: its bounds are then `+∞` or NaN (a
-//! product `0 · ∞`), and no computed volume compares certain against
-//! either (the comparisons are ordered), so every lane is uncertain.
+//! with an endpoint beyond it does for `r` and `r′`: its bounds are then
+//! `+∞` or NaN (a product `0 · ∞`), and no computed volume compares
+//! certain against either (the comparisons are ordered), so every lane is
+//! uncertain.
 //!
 //! # Certain lanes
 //!
@@ -112,8 +134,8 @@
 //!
 //! Every lane's answer is thus the exact test's. Each lane runs the same
 //! `f32` operations in the same order, so the verdicts do not depend on
-//! how many lanes are evaluated at once or on the instructions used
-//! (`tests::lanes_decide_as_one_triangle_at_a_time`).
+//! how many lanes are evaluated at once or on the instructions used (the
+//! tests compare AVX2's lanes with the portable ones bit for bit).
 //!
 //! [`segment_blocked`]: crate::kernel::segment::segment_blocked
 
@@ -128,6 +150,10 @@ pub(super) const PACK: usize = 8;
 const U: f64 = 1.0 / (1u32 << 24) as f64;
 /// `γ₅ = 5u / (1 − 5u)`.
 const GAMMA5: f64 = 5.0 * U / (1.0 - 5.0 * U);
+/// `K = 1 + γ₂`.
+const K: f64 = 1.0 + 2.0 * U / (1.0 - 2.0 * U);
+/// `ρ = 6 u (1 + u) (1 + γ₅)`: the subtractions' roundings.
+const RHO: f64 = 6.0 * U * (1.0 + U) * (1.0 + GAMMA5);
 /// `F`: the bound's floor, covering underflow.
 const FLOOR: f64 = 1.0 / (1u128 << 100) as f64;
 /// The largest corner and endpoint magnitude the `f32` test takes, `2⁴⁰`.
@@ -135,24 +161,31 @@ const REACH: f64 = (1u64 << 40) as f64;
 /// The widening of a bound computed in `f64` before rounding it to `f32`.
 const WIDEN: f64 = 1.0 + 1.0 / (1u32 << 22) as f64;
 
-/// Floats of a pack's header: the lane count less one (bits), the
-/// edge bound's terms `Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E` and the plane
-/// bound's `m Q₁ + m′ Q₂`, `Q₁`, `Q₂` (see the module docs).
+/// Floats of a pack's header: the lane count less one (bits), the edge
+/// bound's terms `Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`, `ε_E` and the
+/// plane bound's `m Q₁ + m′ Q₂`, `Q₁`, `Q₂` (see the module docs).
 const HEADER: usize = 8;
 /// The floats read from a pack's start, at most: the header, nine rows of
 /// [`PACK`] lanes each read [`PACK`] floats on, and the occluder indices
 /// after them.
 const SPAN: usize = HEADER + 9 * PACK + PACK;
+/// The rows' vectors: `E_ab`, `E_ca`, then `A`, whose last row's lanes
+/// beyond the count read the occluder indices (subnormal floats): it is
+/// only subtracted from (a product with a subnormal is slow on x86).
+const AB: usize = 0;
+const CA: usize = 1;
+const CORNER: usize = 2;
 
 /// The leaves' packs, one after another in one array of `f32`, each on a
 /// multiple of eight floats (32 bytes): a header of [`HEADER`] floats,
-/// then its triangles' corners rounded to nearest `f32`, row by row
-/// (corner `k`, axis `a`: row `3k + a`), each row `count` floats long (a
-/// lane a triangle), then the triangles' occluder indices (their bits).
-/// A row is read as [`PACK`] floats, the lanes beyond `count` being
-/// whatever follows (masked off: their verdicts are not used); the array
-/// ends with [`SPAN`] floats of padding, so every read stays within it. A
-/// pack of `n` triangles takes `32 + 40 n` bytes, rounded up to 32.
+/// then its triangles' edges `E_ab`, `E_ca` and corners `A` rounded to
+/// nearest `f32`, row by row (vector `k` of [`AB`], [`CA`], [`CORNER`],
+/// axis `a`: row `3k + a`), each row `count` floats long (a lane a
+/// triangle), then the triangles' occluder indices (their bits). A row is
+/// read as [`PACK`] floats, the lanes beyond `count` being whatever
+/// follows (masked off: their verdicts are not used); the array ends with
+/// [`SPAN`] floats of padding, so every read stays within it. A pack of
+/// `n` triangles takes `32 + 40 n` bytes, rounded up to 32.
 #[derive(Debug, Default)]
 pub(super) struct Packs {
     data: Vec<f32>,
@@ -165,6 +198,14 @@ pub(super) struct Pack<'a> {
     count: usize,
 }
 
+/// `v − u` rounded to `f32` (from `f64`), and how far it lies from the
+/// true difference at most (see the module docs: `ε_E`).
+fn stored_edge(u: DVec3, v: DVec3) -> (DVec3, f64) {
+    let (difference, stored) = (v - u, (v - u).as_vec3().as_dvec3());
+    let slack = difference.abs() / (1u64 << 52) as f64;
+    (stored, ((difference - stored).abs() + slack).max_element())
+}
+
 impl Packs {
     /// Appends the pack of `triangles` (1 to [`PACK`] of them, finite,
     /// each with its occluder index); returns its index (its start in
@@ -174,23 +215,29 @@ impl Packs {
         assert!((1..=PACK).contains(&count));
         let start = self.data.len();
         assert_eq!(start % 8, 0);
-        let (mut m, mut c, mut l) = (0.0f64, 0.0f64, 0.0f64);
+        let (mut magnitude, mut corner_error) = (0.0f64, 0.0f64);
+        let (mut edge, mut edge_error) = (0.0f64, 0.0f64);
         let mut rows = [[0.0f32; PACK]; 9];
-        for (lane, &(t, _)) in triangles.iter().enumerate() {
-            let stored = t.map(|v| v.as_vec3().as_dvec3());
-            for k in 0..3 {
+        for (lane, &([a, b, c], _)) in triangles.iter().enumerate() {
+            let corner = a.as_vec3().as_dvec3();
+            let (ab, ab_error) = stored_edge(a, b);
+            let (ca, ca_error) = stored_edge(c, a);
+            for (k, v) in [(CORNER, corner), (AB, ab), (CA, ca)] {
                 for axis in 0..3 {
-                    rows[3 * k + axis][lane] = stored[k][axis] as f32;
+                    rows[3 * k + axis][lane] = v[axis] as f32;
                 }
-                // Exact in `f64`: a value less its nearest `f32`, and a
-                // difference of two `f32` values.
-                m = m.max(stored[k].abs().max_element());
-                c = c.max((t[k] - stored[k]).abs().max_element());
-                l = l.max((stored[(k + 1) % 3] - stored[k]).abs().max_element());
             }
+            for v in [a, b, c] {
+                magnitude = magnitude.max(v.as_vec3().as_dvec3().abs().max_element());
+            }
+            // Exact in `f64`: a value less its nearest `f32`.
+            corner_error = corner_error.max((a - corner).abs().max_element());
+            edge = edge.max(ab.abs().max(ca.abs()).max_element());
+            edge_error = edge_error.max(ab_error.max(ca_error));
         }
         self.data.push(f32::from_bits(count as u32 - 1));
-        self.data.extend(pack_terms(m, c, l));
+        self.data
+            .extend(pack_terms(magnitude, corner_error, edge, edge_error));
         for row in &rows {
             self.data.extend_from_slice(&row[..count]);
         }
@@ -224,32 +271,43 @@ impl Packs {
     }
 }
 
-/// A pack's terms of the bounds as stored (see the module docs): `Ê m`,
-/// `Ê m′ + ε_E m`, `Ê`, `ε_E`, then `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`, each
-/// computed in `f64` from `M` (the largest stored corner magnitude), `ε_c`
-/// (the largest rounding of a corner) and `L` (the largest stored edge),
-/// all three exact, then widened and rounded up to `f32`; the first of
-/// each list `+∞` when `M` is beyond [`REACH`].
-fn pack_terms(magnitude: f64, corner_error: f64, edge: f64) -> [f32; 7] {
-    let (c, l) = (corner_error, edge);
+/// The pack's terms of the bounds in `f64` from `M`, `ε_c`, `L`, `ε_E`
+/// (see the module docs): `Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`, `ε_E`,
+/// then `m Q₁ + m′ Q₂`, `Q₁`, `Q₂`.
+fn defined_terms(magnitude: f64, corner_error: f64, edge: f64, edge_error: f64) -> [f64; 7] {
+    let (c, e_error) = (corner_error, edge_error);
     let m = magnitude * (1.0 + U) + c;
     let m_error = magnitude * U + c;
-    let e = l * (1.0 + U) + 2.0 * c;
-    let e_error = l * U + 2.0 * c;
-    let q1 = 6.0 * GAMMA5 * e * e + 12.0 * e * e_error;
-    let q2 = 6.0 * e * e;
+    let e = edge + e_error;
+    let q1 = (6.0 * GAMMA5 + RHO) * e * e + 12.0 * e * e_error;
+    let q2 = 6.0 * K * e * e;
+    [
+        e * (m + e),
+        e_error * (m + e) + e * m_error,
+        e,
+        e_error,
+        m * q1 + m_error * q2,
+        q1,
+        q2,
+    ]
+}
+
+/// [`defined_terms`] as stored: widened and rounded up to `f32`; the
+/// first of each list `+∞` when `M` is beyond [`REACH`].
+fn pack_terms(magnitude: f64, corner_error: f64, edge: f64, edge_error: f64) -> [f32; 7] {
     // All of them far below `f32::MAX` within reach (`M, L ≤ 2⁴¹`), where
     // `f32_up` rounds up.
     let up = |t: f64| f32_up(t * WIDEN);
+    let terms = defined_terms(magnitude, corner_error, edge, edge_error).map(up);
     let reach = |t: f32| if magnitude <= REACH { t } else { f32::INFINITY };
     [
-        reach(up(e * m)),
-        up(e * m_error + e_error * m),
-        up(e),
-        up(e_error),
-        reach(up(m * q1 + m_error * q2)),
-        up(q1),
-        up(q2),
+        reach(terms[0]),
+        terms[1],
+        terms[2],
+        terms[3],
+        reach(terms[4]),
+        terms[5],
+        terms[6],
     ]
 }
 
@@ -266,8 +324,8 @@ impl<'a> Pack<'a> {
         self.data[HEADER + 9 * self.count + lane].to_bits()
     }
 
-    /// Corner `k`'s axis `axis`, lane by lane (lanes from `count` on are
-    /// whatever follows).
+    /// Vector `k`'s ([`CORNER`], [`AB`], [`CA`]) axis `axis`, lane by lane
+    /// (lanes from `count` on are whatever follows).
     #[inline(always)]
     fn row(&self, k: usize, axis: usize) -> &'a [f32; PACK] {
         let at = HEADER + (3 * k + axis) * self.count;
@@ -276,7 +334,8 @@ impl<'a> Pack<'a> {
             .expect("within the span")
     }
 
-    /// The edge bound's terms (`Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E`).
+    /// The edge bound's terms (`Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`,
+    /// `ε_E`).
     #[inline(always)]
     fn edge_terms(&self) -> [f32; 4] {
         [self.data[1], self.data[2], self.data[3], self.data[4]]
@@ -291,8 +350,8 @@ impl<'a> Pack<'a> {
 
 #[cfg(test)]
 impl Pack<'_> {
-    /// Corner `k` of lane `lane`'s triangle as stored.
-    pub(super) fn corner(&self, k: usize, lane: usize) -> DVec3 {
+    /// Vector `k` ([`AB`], [`CA`], [`CORNER`]) of lane `lane` as stored.
+    pub(super) fn stored(&self, k: usize, lane: usize) -> DVec3 {
         DVec3::from_array([0, 1, 2].map(|a| f64::from(self.row(k, a)[lane])))
     }
 
@@ -301,34 +360,31 @@ impl Pack<'_> {
         (0..self.count).map(|lane| self.id(lane)).collect()
     }
 
-    /// Checks the bounds' terms against the pack's triangles (its indices
-    /// into `triangles`): with `M`, `ε_c` and `L` found here from the
-    /// triangles and their stored corners, each stored term is at least
-    /// the module docs' definition and at most `2⁻²⁰` above it (`+∞`, the
-    /// terms with `m`, where `M` is beyond reach).
+    /// Checks the rows and the bounds' terms against the pack's triangles
+    /// (its indices into `triangles`): `A`, `B − A`, `A − C` rounded to
+    /// nearest `f32`; with `M`, `ε_c`, `L`, `ε_E` found here, each term at
+    /// least the module docs' definition and at most `2⁻²⁰` above it (`+∞`,
+    /// the terms with `m`, where `M` is beyond reach).
     pub(super) fn check_terms(&self, triangles: &[[DVec3; 3]]) {
-        let (mut magnitude, mut c, mut l) = (0.0f64, 0.0f64, 0.0f64);
+        let (mut magnitude, mut corner_error) = (0.0f64, 0.0f64);
+        let (mut edge, mut edge_error) = (0.0f64, 0.0f64);
         for lane in 0..self.count {
-            let t = triangles[self.id(lane) as usize];
-            let stored: [DVec3; 3] = core::array::from_fn(|k| self.corner(k, lane));
-            for k in 0..3 {
-                magnitude = magnitude.max(stored[k].abs().max_element());
-                c = c.max((t[k] - stored[k]).abs().max_element());
-                l = l.max((stored[(k + 1) % 3] - stored[k]).abs().max_element());
+            let [a, b, c] = triangles[self.id(lane) as usize];
+            let stored: [DVec3; 3] = core::array::from_fn(|k| self.stored(k, lane));
+            assert_eq!(stored[CORNER], a.as_vec3().as_dvec3());
+            assert_eq!(stored[AB], (b - a).as_vec3().as_dvec3());
+            assert_eq!(stored[CA], (a - c).as_vec3().as_dvec3());
+            for v in [a, b, c] {
+                magnitude = magnitude.max(f64::from(v.as_vec3().abs().max_element()));
+            }
+            corner_error = corner_error.max((a - stored[CORNER]).abs().max_element());
+            for (stored, exact) in [(stored[AB], b - a), (stored[CA], a - c)] {
+                edge = edge.max(stored.abs().max_element());
+                let error = (stored - exact).abs().max_element();
+                edge_error = edge_error.max(error + exact.abs().max_element() * 2f64.powi(-52));
             }
         }
-        let (m, m_error) = (magnitude * (1.0 + U) + c, magnitude * U + c);
-        let (e, e_error) = (l * (1.0 + U) + 2.0 * c, l * U + 2.0 * c);
-        let (q1, q2) = (6.0 * GAMMA5 * e * e + 12.0 * e * e_error, 6.0 * e * e);
-        let defined = [
-            e * m,
-            e * m_error + e_error * m,
-            e,
-            e_error,
-            m * q1 + m_error * q2,
-            q1,
-            q2,
-        ];
+        let defined = defined_terms(magnitude, corner_error, edge, edge_error);
         let stored = [self.edge_terms().as_slice(), self.plane_terms().as_slice()].concat();
         for (k, (&stored, defined)) in stored.iter().zip(defined).enumerate() {
             let stored = f64::from(stored);
@@ -347,11 +403,10 @@ impl Pack<'_> {
 }
 
 /// What the leaf test needs of a segment `(p, x)`, computed once a ray
-/// (on its first leaf): the endpoints and direction in `f32`, each axis in
+/// (on its first leaf): the origin and direction in `f32`, each axis in
 /// every lane, and the segment's terms of the bounds.
 pub(super) struct LeafRay<F> {
     p: [F; 3],
-    x: [F; 3],
     d: [F; 3],
     /// The segment's terms of the bounds (see [`Terms`]).
     edge: [f64; 4],
@@ -361,13 +416,13 @@ pub(super) struct LeafRay<F> {
 /// The scalars of a [`LeafRay`].
 struct Terms {
     p: [f32; 3],
-    x: [f32; 3],
     d: [f32; 3],
-    /// `k_e`, `k_l`, `k_e r + k_l r′`, `k_l r`: the edge bound's factors of
-    /// a pack's `Ê m`, `Ê m′ + ε_E m`, `Ê`, `ε_E` (see the module docs).
+    /// `σ`, `12 K D̂`, `σ r + 12 K D̂ r′`, `12 K D̂ r`: the edge bound's
+    /// factors of a pack's `Ê (m + Ê)`, `ε_E (m + Ê) + Ê m′`, `Ê`, `ε_E`
+    /// (see the module docs).
     edge: [f64; 4],
-    /// `r`, `r′`: the plane bound's factors of a pack's `Q₁`, `Q₂`; `+∞`
-    /// where `R` is beyond [`REACH`].
+    /// `r + D̂`, `r′ + ε_d`: the plane bound's factors of a pack's `Q₁`,
+    /// `Q₂`; `+∞` where an endpoint is beyond [`REACH`].
     plane: [f64; 2],
 }
 
@@ -377,34 +432,31 @@ struct Terms {
 #[inline(never)]
 fn terms(p: DVec3, x: DVec3) -> Terms {
     let d = x - p;
-    let (p32, x32, d32) = (p.as_vec3(), x.as_vec3(), d.as_vec3());
-    // Each difference exact in `f64`.
-    let end_error = (p - p32.as_dvec3())
-        .abs()
-        .max((x - x32.as_dvec3()).abs())
-        .max_element();
+    let (p32, d32) = (p.as_vec3(), d.as_vec3());
+    // Exact in `f64`: a value less its nearest `f32`.
+    let end_error = (p - p32.as_dvec3()).abs().max_element() * WIDEN;
     let length_error =
         ((d - d32.as_dvec3()).abs() + d.abs() * (2.0 * f64::EPSILON)).max_element() * WIDEN;
     let length = f64::from(d32.abs().max_element()) + length_error;
-    let reach = f64::from(p32.abs().max(x32.abs()).max_element());
-    let end_error = end_error * WIDEN;
+    let near = f64::from(p32.abs().max_element());
+    let reach = near.max(x.abs().max_element());
     let (r, r_error) = if reach <= REACH {
-        (reach * (1.0 + U) + end_error, reach * U + end_error)
+        (near * (1.0 + U) + end_error, near * U + end_error)
     } else {
         (f64::INFINITY, f64::INFINITY)
     };
-    let (k_edge, k_length) = (6.0 * (GAMMA5 * length + length_error), 6.0 * length);
+    let sigma = (12.0 * GAMMA5 + 4.0 * RHO) * length + 12.0 * length_error;
+    let k_length = 12.0 * K * length;
     Terms {
         p: p32.to_array(),
-        x: x32.to_array(),
         d: d32.to_array(),
         edge: [
-            k_edge,
+            sigma,
             k_length,
-            k_edge * r + k_length * r_error,
+            sigma * r + k_length * r_error,
             k_length * r,
         ],
-        plane: [r, r_error],
+        plane: [r + length, r_error + length_error],
     }
 }
 
@@ -416,14 +468,13 @@ impl<F: Copy> LeafRay<F> {
         let t = terms(p, x);
         LeafRay {
             p: splat(s, t.p),
-            x: splat(s, t.x),
             d: splat(s, t.d),
             edge: t.edge,
             plane: t.plane,
         }
     }
 
-    /// The bound `B_e` of `pack`'s edge volumes (see the module docs; `+∞`
+    /// The bound `B_E` of `pack`'s edge volumes (see the module docs; `+∞`
     /// or NaN where the `f32` test does not apply).
     #[inline(always)]
     fn edge_bound(&self, pack: Pack<'_>) -> f32 {
@@ -433,7 +484,7 @@ impl<F: Copy> LeafRay<F> {
         (sum * WIDEN + FLOOR) as f32
     }
 
-    /// The bound `B_s` of `pack`'s plane volumes (see the module docs;
+    /// The bound `B_X` of `pack`'s plane volumes (see the module docs;
     /// `+∞` or NaN where the `f32` test does not apply).
     #[inline(always)]
     fn plane_bound(&self, pack: Pack<'_>) -> f32 {
@@ -451,61 +502,60 @@ impl<F: Copy> LeafRay<F> {
 pub(super) fn test<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> (u32, u32) {
     let used = (1u32 << pack.count) - 1;
     let edge_bound = ray.edge_bound(pack);
-    let e = edge_volumes(s, pack, ray);
+    let (e, dn) = edge_volumes(s, pack, ray);
     let (up, down) = (s.splat(edge_bound), s.splat(-edge_bound));
-    let pos = [s.gt(e[0], up), s.gt(e[1], up), s.gt(e[2], up)];
-    let neg = [s.lt(e[0], down), s.lt(e[1], down), s.lt(e[2], down)];
-    let edge_miss = (pos[0] | pos[1] | pos[2]) & (neg[0] | neg[1] | neg[2]);
+    // Some volume certainly positive and some certainly negative (no
+    // volume is NaN where the bound is finite).
+    let (hi, lo) = (
+        s.max(s.max(e[0], e[1]), e[2]),
+        s.min(s.min(e[0], e[1]), e[2]),
+    );
+    let edge_miss = s.gt(hi, up) & s.lt(lo, down);
     // Most lanes a segment reaches it passes beside: the planes only
     // where some lane is left.
     if edge_miss & used == used {
         return (0, 0);
     }
-    let inside = (pos[0] & pos[1] & pos[2]) | (neg[0] & neg[1] & neg[2]);
-    let (sp, sx) = plane_volumes(s, pack, ray);
+    let inside = s.gt(lo, up) | s.lt(hi, down);
+    let (sp, sx) = plane_volumes(s, pack, ray, dn);
     let plane_bound = ray.plane_bound(pack);
     let (up, down) = (s.splat(plane_bound), s.splat(-plane_bound));
-    let (p_pos, p_neg) = (s.gt(sp, up), s.lt(sp, down));
-    let (x_pos, x_neg) = (s.gt(sx, up), s.lt(sx, down));
-    let plane_miss = (p_pos & x_pos) | (p_neg & x_neg);
-    let crosses = (p_pos & x_neg) | (p_neg & x_pos);
+    let (hi, lo) = (s.max(sp, sx), s.min(sp, sx));
+    let plane_miss = s.gt(lo, up) | s.lt(hi, down);
+    let crosses = s.gt(hi, up) & s.lt(lo, down);
     let hit = inside & crosses;
     (hit & used, !hit & !edge_miss & !plane_miss & used)
 }
 
-/// The computed edge volumes `e₀, e₁, e₂` of every lane (see the module
-/// docs). Edge by edge, each reading its corners from the pack again (a
-/// load from the first-level cache is cheaper than the registers the
-/// three corners at once would spill).
+/// The computed edge volumes `e₀, e₁, e₂` of every lane, and `d · N` (see
+/// the module docs).
 #[inline(always)]
-fn edge_volumes<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> [S::F; 3] {
-    [
-        edge_volume(s, pack, ray, 0, 1),
-        edge_volume(s, pack, ray, 1, 2),
-        edge_volume(s, pack, ray, 2, 0),
-    ]
+fn edge_volumes<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> ([S::F; 3], S::F) {
+    let w = cross(s, ray.d, sub(s, load(s, pack, CORNER), ray.p));
+    let e_ab = dot(s, load(s, pack, AB), w);
+    let e_ca = dot(s, load(s, pack, CA), w);
+    let dn = dot(s, ray.d, normal(s, pack));
+    ([e_ab, s.sub(s.sub(dn, e_ab), e_ca), e_ca], dn)
 }
 
-/// `d · ((U′ − P′) × (V′ − U′))` for the corners `U = k`, `V = l`.
+/// The computed plane volumes `(s_P, s_X)` of every lane, given the
+/// computed `d · N` (see the module docs); `a` and `N` computed again, the
+/// same bits as for the edges.
 #[inline(always)]
-fn edge_volume<S: Lanes<PACK>>(
+fn plane_volumes<S: Lanes<PACK>>(
     s: S,
     pack: Pack<'_>,
     ray: &LeafRay<S::F>,
-    k: usize,
-    l: usize,
-) -> S::F {
-    let (u, v) = (load(s, pack, k), load(s, pack, l));
-    dot(s, ray.d, cross(s, sub(s, u, ray.p), sub(s, v, u)))
+    dn: S::F,
+) -> (S::F, S::F) {
+    let sp = dot(s, sub(s, load(s, pack, CORNER), ray.p), normal(s, pack));
+    (sp, s.sub(sp, dn))
 }
 
-/// The computed plane volumes `(s_P, s_X)` of every lane (see the module
-/// docs).
+/// The computed normal `N = E′_ca × E′_ab` of every lane.
 #[inline(always)]
-fn plane_volumes<S: Lanes<PACK>>(s: S, pack: Pack<'_>, ray: &LeafRay<S::F>) -> (S::F, S::F) {
-    let (a, b, c) = (load(s, pack, 0), load(s, pack, 1), load(s, pack, 2));
-    let n = cross(s, sub(s, a, c), sub(s, b, a));
-    (dot(s, sub(s, a, ray.p), n), dot(s, sub(s, a, ray.x), n))
+fn normal<S: Lanes<PACK>>(s: S, pack: Pack<'_>) -> V3s<S> {
+    cross(s, load(s, pack, CA), load(s, pack, AB))
 }
 
 /// Three vectors of lanes: the axes of one point per lane.
@@ -514,7 +564,7 @@ type V3s<S> = [<S as Lanes<PACK>>::F; 3];
 // Functions rather than closures throughout: a closure is compiled apart,
 // without the caller's target features.
 
-/// Corner `k` of every lane.
+/// Vector `k` ([`CORNER`], [`AB`], [`CA`]) of every lane.
 #[inline(always)]
 fn load<S: Lanes<PACK>>(s: S, pack: Pack<'_>, k: usize) -> V3s<S> {
     [
@@ -777,8 +827,8 @@ mod tests {
             if !(edge_bound.is_finite() && plane_bound.is_finite()) {
                 continue;
             }
-            let e = edge_volumes(Portable, pack, &ray);
-            let (sp, sx) = plane_volumes(Portable, pack, &ray);
+            let (e, dn) = edge_volumes(Portable, pack, &ray);
+            let (sp, sx) = plane_volumes(Portable, pack, &ray, dn);
             for (lane, t) in triangles.iter().enumerate() {
                 let [ta, tb, tc] = *t;
                 let exact = [
