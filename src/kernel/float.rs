@@ -43,6 +43,9 @@ pub(crate) trait Float:
     fn from_u64(i: u64) -> Self;
     /// The value in `f64` (exact for both precisions).
     fn to_f64(self) -> f64;
+    /// `self as i32`: toward zero, saturating, `NaN` to 0 (for
+    /// integer-valued input, without a detour through `f64`).
+    fn to_i32(self) -> i32;
     /// The bits, widened to 64.
     #[cfg(test)]
     fn bits(self) -> u64;
@@ -153,6 +156,10 @@ macro_rules! float {
             #[inline(always)]
             fn to_f64(self) -> f64 {
                 f64::from(self)
+            }
+            #[inline(always)]
+            fn to_i32(self) -> i32 {
+                self as i32
             }
             #[cfg(test)]
             fn bits(self) -> u64 {

@@ -103,8 +103,7 @@ pub(super) fn pow2<T: Float>(e: i32) -> T {
 #[inline]
 pub(super) fn rescale_exponent<T: Float>(x: T) -> i32 {
     let limit = T::MAX_EXP - 2;
-    // An integer-valued float: the same `i32` from either width.
-    (x.log2().floor().to_f64() as i32).clamp(-limit, limit)
+    x.log2().floor().to_i32().clamp(-limit, limit)
 }
 
 /// `out` replaced by one value per input: `branch_free(fma, inputs, out)`
