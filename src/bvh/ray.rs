@@ -362,11 +362,12 @@ impl WalkLanes for pulp::x86::V3 {
     }
 }
 
-/// The slab test's per-ray vectors (see [`Ray32`]).
+/// The slab test's per-ray vectors (see [`Ray32`]), `1/d` negated (see
+/// [`WideSlab::hits`]).
 pub(super) struct WideSlab<F> {
     near: [F; 3],
     far: [F; 3],
-    inv: [F; 3],
+    neg_inv: [F; 3],
     entry: [usize; 3],
     one: F,
     slack: F,
@@ -386,10 +387,10 @@ impl<F: Copy> WideSlab<F> {
                 s.splat(ray.far[1]),
                 s.splat(ray.far[2]),
             ],
-            inv: [
-                s.splat(ray.inv[0]),
-                s.splat(ray.inv[1]),
-                s.splat(ray.inv[2]),
+            neg_inv: [
+                s.splat(-ray.inv[0]),
+                s.splat(-ray.inv[1]),
+                s.splat(-ray.inv[2]),
             ],
             entry: ray.entry,
             one: s.splat(1.0),
@@ -399,7 +400,11 @@ impl<F: Copy> WideSlab<F> {
 
     /// The lanes of the occlusion tree's node `n` whose box the segment
     /// may meet, as a bit mask (the argument of
-    /// [`Bvh::segment_unoccluded`]).
+    /// [`Bvh::segment_unoccluded`]). Each parameter is computed as
+    /// `(origin − plane) · (−1/d)`: the same bits as `(plane − origin) ·
+    /// (1/d)` (negation is exact and rounding to nearest symmetric; only
+    /// a zero's sign may differ, which no comparison sees), in the order
+    /// that lets the plane be read straight from memory by the subtraction.
     #[inline(always)]
     pub(super) fn hits<S: Lanes<WIDE, F = F>>(&self, s: S, n: &WideNode) -> u32 {
         let mut t_near = s.splat(0.0);
@@ -408,8 +413,8 @@ impl<F: Copy> WideSlab<F> {
             let side = self.entry[axis];
             let entry = s.load(&n.planes[side][axis]);
             let exit = s.load(&n.planes[1 - side][axis]);
-            let a = s.mul(s.sub(entry, self.near[axis]), self.inv[axis]);
-            let b = s.mul(s.sub(exit, self.far[axis]), self.inv[axis]);
+            let a = s.mul(s.sub(self.near[axis], entry), self.neg_inv[axis]);
+            let b = s.mul(s.sub(self.far[axis], exit), self.neg_inv[axis]);
             t_near = s.max(a, t_near);
             t_far = s.min(b, t_far);
         }
