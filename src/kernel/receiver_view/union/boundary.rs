@@ -89,20 +89,23 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
         }
         let mut cover = Cover::default();
         let mut whole = false;
-        if unbuilt_left > 0 {
+        if !DEEP && unbuilt_left > 0 {
             unbuilt_left -= 1;
-            unbuilt.find(tris, half, (lo, hi), i);
-            for &(_, _, j) in &unbuilt.order {
-                let found = (band, (&mut *bounded, &mut *deep));
-                if let Some(span) = span_of::<B>(a, b, (i, j as usize), tris, (lo, hi), found) {
-                    whole = cover.add(span, intervals);
-                    if whole {
-                        break;
+            if unbuilt.find(tris, half, (lo, hi), i) {
+                for &(_, _, j) in &unbuilt.order {
+                    let found = (band, (&mut *bounded, &mut *deep));
+                    if let Some(span) = span_of::<B>(a, b, (i, j as usize), tris, (lo, hi), found) {
+                        whole = cover.add(span, intervals);
+                        if whole {
+                            break;
+                        }
                     }
                 }
+                add_pieces((a, b), (whole, cover.reach), intervals, measure, sum);
+                return edge_bound::<B>((a, b), whole, bound, (bounded, deep), band);
             }
-            add_pieces((a, b), (whole, cover.reach), intervals, measure, sum);
-            return edge_bound::<B>((a, b), whole, bound, (bounded, deep), band);
+            // Too many to sort: the grid, from here on.
+            unbuilt_left = 0;
         }
         if !built {
             grid.build::<DEEP>(tris, half);

@@ -219,9 +219,22 @@ impl Unbuilt {
     /// passes over every triangle, about a tenth of the build's cost.
     pub(super) const SEARCHES: usize = 4;
 
+    /// The largest share of the triangles a search goes on without the
+    /// grid with ([`Unbuilt::find`]).
+    const SHARE: f64 = 0.125;
+
     /// The triangles of `tris` but `i` whose bounds overlap `lo..hi`, in
-    /// [`Unbuilt::order`] by their first meeting.
-    pub(super) fn find(&mut self, tris: &[Tri], half: f64, (lo, hi): (DVec2, DVec2), i: usize) {
+    /// [`Unbuilt::order`] by their first meeting; `false` (and unsorted)
+    /// where they are more than [`Unbuilt::SHARE`] of all: sorting them
+    /// would cost about as much as the build (layers stacked over the
+    /// light, each image's bounds the whole square).
+    pub(super) fn find(
+        &mut self,
+        tris: &[Tri],
+        half: f64,
+        (lo, hi): (DVec2, DVec2),
+        i: usize,
+    ) -> bool {
         let side = Grid::side(tris.len());
         let levels = Grid::levels(side);
         self.order.clear();
@@ -239,7 +252,11 @@ impl Unbuilt {
             let place = (rank * Grid::MAX_SIDE + y) * Grid::MAX_SIDE + x;
             self.order.push((place as u32, key, j));
         }
+        if self.order.len() as f64 > Unbuilt::SHARE * tris.len() as f64 {
+            return false;
+        }
         self.order.sort_unstable();
+        true
     }
 }
 

@@ -225,7 +225,7 @@ fn the_unbuilt_order_is_the_grids() {
         grid.build::<false>(&tris, h);
         for _ in 0..20 {
             let a = DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
-            let b = a + DVec2::new(rng.uniform(-0.5, 0.5), rng.uniform(-0.5, 0.5)) * h;
+            let b = a + DVec2::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)) * h;
             let (lo, hi) = (a.min(b), a.max(b));
             let own = rng.below(tris.len() as u64) as usize;
             let mut seen = vec![false; tris.len()];
@@ -245,9 +245,13 @@ fn the_unbuilt_order_is_the_grids() {
                     true
                 },
             );
-            unbuilt.find(&tris, h, (lo, hi), own);
-            let order: Vec<usize> = unbuilt.order.iter().map(|e| e.2 as usize).collect();
-            assert_eq!(order, met, "case {case}: n {n}");
+            if unbuilt.find(&tris, h, (lo, hi), own) {
+                let order: Vec<usize> = unbuilt.order.iter().map(|e| e.2 as usize).collect();
+                assert_eq!(order, met, "case {case}: n {n}");
+            } else {
+                // Refused only where more than an eighth of them overlap.
+                assert!(8 * met.len() > tris.len(), "case {case}: n {n}");
+            }
         }
     }
 }
