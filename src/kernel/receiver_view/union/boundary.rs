@@ -5,7 +5,7 @@
 
 use super::bound::{covered_span_bounded, cut_errors, outside_deep, Deep};
 use super::cover::Cover;
-use super::grid::{Grid, Level};
+use super::grid::{Grid, Level, Unbuilt};
 use super::interior::Interior;
 use super::shared_edges::Edges;
 use super::sides::{Side, SideSet};
@@ -48,12 +48,10 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
     scratch: &mut UnionScratch,
     sweep_from: usize,
 ) -> (f64, f64) {
-    scratch.grid.build::<DEEP>(tris, half);
     scratch.edges.build(tris, half);
-    scratch.stamp.clear();
-    scratch.stamp.resize(tris.len(), u32::MAX);
     let UnionScratch {
         grid,
+        unbuilt,
         edges,
         stamp,
         intervals,
@@ -64,13 +62,23 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
         deep,
         ..
     } = scratch;
-    let (grid, interior) = (&*grid, &*interior);
+    let interior = &*interior;
     let settle = Settle {
         sides,
         edges,
         interior,
     };
     let mut edge_id = 0_u32;
+    // The grid is built for the first edge searched but the first few
+    // among many triangles ([`Unbuilt`]): where the side sweep and the
+    // table of shared edges settle all but a few edges (a convex polygon
+    // given as a fan of slivers), it is never built.
+    let mut built = false;
+    let mut unbuilt_left = if DEEP || tris.len() < Unbuilt::FROM {
+        0
+    } else {
+        Unbuilt::SEARCHES
+    };
     let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
         let (lo, hi) = (a.min(b), a.max(b));
         intervals.clear();
@@ -79,11 +87,36 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             bounded.clear();
             deep.clear();
         }
+        let mut cover = Cover::default();
+        let mut whole = false;
+        if !DEEP && unbuilt_left > 0 {
+            unbuilt_left -= 1;
+            if unbuilt.find(tris, half, (lo, hi), i) {
+                for &(_, _, j) in &unbuilt.order {
+                    let found = (band, (&mut *bounded, &mut *deep));
+                    if let Some(span) = span_of::<B>(a, b, (i, j as usize), tris, (lo, hi), found) {
+                        whole = cover.add(span, intervals);
+                        if whole {
+                            break;
+                        }
+                    }
+                }
+                add_pieces((a, b), (whole, cover.reach), intervals, measure, sum);
+                return edge_bound::<B>((a, b), whole, bound, (bounded, deep), band);
+            }
+            // Too many to sort: the grid, from here on.
+            unbuilt_left = 0;
+        }
+        if !built {
+            grid.build::<DEEP>(tris, half);
+            stamp.clear();
+            stamp.resize(tris.len(), u32::MAX);
+            built = true;
+        }
+        let grid = &*grid;
         // A covered passage lies deep enough where the raster's margin
         // holds the band (see [`walk_edges`]).
         let passage_deep = B && reach < 0.25 * interior.margin();
-        let mut cover = Cover::default();
-        let mut whole = false;
         let (fx0, fy0, fx1, fy1) = grid.fine.range(lo, hi, half);
         if DEEP {
             let cells = (fx0, fy0, fx1, fy1);
@@ -117,13 +150,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             !whole
         });
         edge_id = edge_id.wrapping_add(1);
-        if !whole {
-            // The covered start as one interval: the same pieces.
-            if cover.reach > 0.0 {
-                intervals.push((0.0, cover.reach));
-            }
-            add_uncovered(a, b, intervals, measure, sum);
-        }
+        add_pieces((a, b), (whole, cover.reach), intervals, measure, sum);
         edge_bound::<B>((a, b), whole, bound, (bounded, deep), band)
     };
     let bands = (weights, reach);
@@ -149,7 +176,6 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
     scratch: &mut UnionScratch,
     sweep_from: usize,
 ) -> (f64, f64) {
-    scratch.tree.build(tris, half);
     scratch.edges.build(tris, half);
     let UnionScratch {
         tree,
@@ -166,7 +192,13 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
         edges,
         interior,
     };
+    // Built for the first edge searched (see [`union_area_in`]).
+    let mut built = false;
     let search = |i: usize, a: DVec2, b: DVec2, sum: &mut Sum, bound: &mut f64| {
+        if !built {
+            tree.build(tris, half);
+            built = true;
+        }
         let band = Deep::of(reach, (b - a).length());
         if B {
             bounded.clear();
@@ -191,6 +223,26 @@ pub(super) fn union_area_tree<const DEEP: bool, const B: bool>(
     };
     let bands = (weights, reach);
     walk_edges::<DEEP, B>(tris, bands, measure, half, settle, sweep_from, search)
+}
+
+/// After an edge's search in [`union_area_in`], unless it is covered
+/// `whole`: its pieces outside the pending spans `intervals` and the
+/// covered start `[0, reach]` ([`Cover`]; as one interval: the same
+/// pieces), added to `sum`.
+#[inline(always)]
+fn add_pieces(
+    (a, b): (DVec2, DVec2),
+    (whole, reach): (bool, f64),
+    intervals: &mut Vec<(f64, f64)>,
+    measure: Measure,
+    sum: &mut Sum,
+) {
+    if !whole {
+        if reach > 0.0 {
+            intervals.push((0.0, reach));
+        }
+        add_uncovered(a, b, intervals, measure, sum);
+    }
 }
 
 /// With `B`, after an edge's search: the cut errors of its pieces on the
@@ -401,6 +453,8 @@ pub(in crate::kernel::receiver_view) struct UnionScratch {
     tree: Tree,
     spans: Spans,
     pub(super) grid: Grid,
+    /// The grid's order for a few searches before it is built.
+    unbuilt: Unbuilt,
     edges: Edges,
     /// The last edge each triangle was tested against.
     stamp: Vec<u32>,

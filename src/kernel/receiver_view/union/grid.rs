@@ -63,31 +63,45 @@ impl Grid {
         ((n as f64).sqrt().ceil() as usize).clamp(1, Grid::MAX_SIDE)
     }
 
+    /// The number of coarse levels over a fine grid `side` cells a side:
+    /// their sides are the powers of two below the fine grid's.
+    fn levels(side: usize) -> usize {
+        side.next_power_of_two().trailing_zeros() as usize
+    }
+
+    /// The coarse level of the triangle `t` in a grid `side` cells a side
+    /// with `levels` coarse levels over `[−half, half]²`, or `None` for the
+    /// fine level.
+    #[inline(always)]
+    fn level_of(t: &Tri, side: usize, levels: usize, half: f64) -> Option<u8> {
+        let width = (t.hi - t.lo).max_element() / (2.0 * half);
+        (levels > 0 && width * side as f64 > Grid::LARGE).then(|| {
+            // The finest coarse level with cells at least `width` wide.
+            let mut k = levels - 1;
+            while k > 0 && width * (1_u64 << k) as f64 > 1.0 {
+                k -= 1;
+            }
+            k as u8
+        })
+    }
+
+    /// The key that orders a coarse level's triangles (decreasing area of
+    /// the bounds).
+    fn area_key(t: &Tri) -> u64 {
+        let d = t.hi - t.lo;
+        !(d.x * d.y).to_bits()
+    }
+
     pub(super) fn build<const BY_AREA: bool>(&mut self, tris: &[Tri], half: f64) {
         let side = Grid::side(tris.len());
         self.half = half;
-        // The coarse levels' sides are the powers of two below the fine
-        // grid's.
-        let levels = side.next_power_of_two().trailing_zeros() as usize;
-        let large = |t: &Tri| {
-            let width = (t.hi - t.lo).max_element() / (2.0 * half);
-            (levels > 0 && width * side as f64 > Grid::LARGE).then(|| {
-                // The finest coarse level with cells at least `width` wide.
-                let mut k = levels - 1;
-                while k > 0 && width * (1_u64 << k) as f64 > 1.0 {
-                    k -= 1;
-                }
-                k as u8
-            })
-        };
+        let levels = Grid::levels(side);
+        let large = |t: &Tri| Grid::level_of(t, side, levels, half);
         self.fine.reset(side, half);
         self.large.clear();
         for (t, i) in tris.iter().zip(0_u32..) {
             match large(t) {
-                Some(k) => {
-                    let d = t.hi - t.lo;
-                    self.large.push((k, !(d.x * d.y).to_bits(), i));
-                }
+                Some(k) => self.large.push((k, Grid::area_key(t), i)),
                 None => self.fine.count(t, half),
             }
         }
@@ -169,6 +183,80 @@ impl Grid {
                 }
             }
         }
+    }
+}
+
+/// The order in which [`Grid::for_each_near`] over the grid
+/// [`Grid::build`] would build without `BY_AREA` meets the triangles whose
+/// bounds overlap a box, found without building it: for a few searches,
+/// a pass over the triangles costs less than the build (a convex polygon
+/// given as a fan of slivers, where all but a few edges are settled
+/// before any search).
+///
+/// Each triangle is listed in one level, in every cell of its range; the
+/// levels are visited coarsest first, then the fine one, each over the
+/// box's range row by row, a cell's triangles in the level's order (a
+/// coarse level's by decreasing area of the bounds, then index; the fine
+/// level's by index). So a triangle is first met in its level, in the first
+/// cell, row by row, of its range and the box's (their meet, not empty
+/// where the bounds overlap: the cells are monotone in the coordinates),
+/// and sorting by level, that cell's row and column, the level's key and
+/// index gives the order of first meetings. Triangles whose bounds miss
+/// the box give no span ([`span_of`](super::boundary::span_of)), so
+/// leaving them out changes nothing.
+#[derive(Debug, Default)]
+pub(super) struct Unbuilt {
+    /// The triangles met, each with its place: level and cell, key, index.
+    pub(super) order: Vec<(u32, u64, u32)>,
+}
+
+impl Unbuilt {
+    /// The fewest triangles for which the first searches go without the
+    /// grid: below, building it costs little.
+    pub(super) const FROM: usize = 1024;
+
+    /// How many searches go without the grid before it is built: each
+    /// passes over every triangle, about a tenth of the build's cost.
+    pub(super) const SEARCHES: usize = 4;
+
+    /// The largest share of the triangles a search goes on without the
+    /// grid with ([`Unbuilt::find`]).
+    const SHARE: f64 = 0.125;
+
+    /// The triangles of `tris` but `i` whose bounds overlap `lo..hi`, in
+    /// [`Unbuilt::order`] by their first meeting; `false` (and unsorted)
+    /// where they are more than [`Unbuilt::SHARE`] of all: sorting them
+    /// would cost about as much as the build (layers stacked over the
+    /// light, each image's bounds the whole square).
+    pub(super) fn find(
+        &mut self,
+        tris: &[Tri],
+        half: f64,
+        (lo, hi): (DVec2, DVec2),
+        i: usize,
+    ) -> bool {
+        let side = Grid::side(tris.len());
+        let levels = Grid::levels(side);
+        self.order.clear();
+        for (t, j) in tris.iter().zip(0_u32..) {
+            if t.hi.x < lo.x || t.lo.x > hi.x || t.hi.y < lo.y || t.lo.y > hi.y || j as usize == i {
+                continue;
+            }
+            let (rank, n, key) = match Grid::level_of(t, side, levels, half) {
+                Some(k) => (usize::from(k), 1_usize << k, Grid::area_key(t)),
+                None => (levels, side, 0),
+            };
+            let inv_cell = n as f64 / (2.0 * half);
+            let cell = |v: f64| cell_of(v, half, inv_cell, n);
+            let (x, y) = (cell(lo.x).max(cell(t.lo.x)), cell(lo.y).max(cell(t.lo.y)));
+            let place = (rank * Grid::MAX_SIDE + y) * Grid::MAX_SIDE + x;
+            self.order.push((place as u32, key, j));
+        }
+        if self.order.len() as f64 > Unbuilt::SHARE * tris.len() as f64 {
+            return false;
+        }
+        self.order.sort_unstable();
+        true
     }
 }
 

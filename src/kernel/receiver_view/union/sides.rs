@@ -54,15 +54,23 @@ impl Side {
 }
 
 /// The union of the edges swept so far on one side: disjoint closed
-/// intervals along it, keyed by their start's order-preserving bits.
+/// intervals along it, none touching another, the one the last edge made
+/// or grew held apart ([`SideSet::last`]) and the others keyed by their
+/// start's order-preserving bits. Edges that follow one another along the
+/// side (a fan of slivers, a mesh's border) each grow the last interval,
+/// and the map is left as it is.
 #[derive(Debug, Default)]
 pub(super) struct SideSet {
     pub(super) active: bool,
     intervals: std::collections::BTreeMap<u64, (f64, f64)>,
+    /// The interval the last edge made or grew, if any.
+    last: Option<(f64, f64)>,
     /// Scratch for the uncovered pieces of one edge.
     pieces: Vec<(f64, f64)>,
     /// Scratch for the keys of the intervals one edge meets.
     met: Vec<u64>,
+    /// Scratch for the intervals one edge meets, in order.
+    meeting: Vec<(f64, f64)>,
 }
 
 /// An order-preserving key of a finite `f64`.
@@ -78,6 +86,7 @@ pub(super) fn key(u: f64) -> u64 {
 impl SideSet {
     pub(super) fn clear(&mut self) {
         self.intervals.clear();
+        self.last = None;
     }
 
     /// Adds the pieces of the side edge `a → b` that no earlier edge on the
@@ -93,22 +102,14 @@ impl SideSet {
     ) {
         let (ua, ub) = (side.along(a), side.along(b));
         let (lo, hi) = (ua.min(ub), ua.max(ub));
-        // The intervals meeting [lo, hi]: from the last one starting at or
-        // before `lo` on; merged into one afterwards.
-        let first = self
-            .intervals
-            .range(..=key(lo))
-            .next_back()
-            .filter(|(_, &(_, e))| e >= lo)
-            .map(|(&k, _)| k);
-        let from = first.unwrap_or_else(|| key(lo));
-        self.met.clear();
-        self.met
-            .extend(self.intervals.range(from..=key(hi)).map(|(&k, _)| k));
+        if self.last.is_some_and(|(s, e)| s <= lo && hi <= e) {
+            // Covered whole by the last interval.
+            return;
+        }
+        self.take_meeting(lo, hi);
         self.pieces.clear();
         let (mut t, mut new_lo, mut new_hi) = (lo, lo, hi);
-        for k in &self.met {
-            let (s, e) = self.intervals.remove(k).expect("listed");
+        for &(s, e) in &self.meeting {
             if s > t {
                 self.pieces.push((t, s));
             }
@@ -118,7 +119,7 @@ impl SideSet {
         if t < hi {
             self.pieces.push((t, hi));
         }
-        self.intervals.insert(key(new_lo), (new_lo, new_hi));
+        self.last = Some((new_lo, new_hi));
         // In the edge's direction, from its exact ends and the earlier
         // edges' exact corners.
         let point = |u: f64| {
@@ -138,6 +139,46 @@ impl SideSet {
             for &(s, e) in self.pieces.iter().rev() {
                 sum.add(measure.piece(point(e), point(s)));
             }
+        }
+    }
+
+    /// Takes the intervals meeting `[lo, hi]` (touching included) out of
+    /// the set into [`SideSet::meeting`], in order: those of the map, from
+    /// the last one starting at or before `lo` on, and the last interval;
+    /// where that one does not meet `[lo, hi]`, it goes to the map.
+    fn take_meeting(&mut self, lo: f64, hi: f64) {
+        self.meeting.clear();
+        if !self.intervals.is_empty() {
+            self.take_from_map(lo, hi);
+        }
+        if let Some((s, e)) = self.last.take() {
+            // Met as the map's would be: by its key (`−0.0` before `0.0`).
+            if key(s) <= key(hi) && (e >= lo || key(s) >= key(lo)) {
+                // Disjoint from the map's: its place among them by its start.
+                let at = self.meeting.partition_point(|&(x, _)| x < s);
+                self.meeting.insert(at, (s, e));
+            } else {
+                self.intervals.insert(key(s), (s, e));
+            }
+        }
+    }
+
+    /// Takes the map's intervals meeting `[lo, hi]` into
+    /// [`SideSet::meeting`], in order: from the last one starting at or
+    /// before `lo` on.
+    fn take_from_map(&mut self, lo: f64, hi: f64) {
+        let first = self
+            .intervals
+            .range(..=key(lo))
+            .next_back()
+            .filter(|(_, &(_, e))| e >= lo)
+            .map(|(&k, _)| k);
+        let from = first.unwrap_or_else(|| key(lo));
+        self.met.clear();
+        self.met
+            .extend(self.intervals.range(from..=key(hi)).map(|(&k, _)| k));
+        for k in &self.met {
+            self.meeting.push(self.intervals.remove(k).expect("listed"));
         }
     }
 }

@@ -8,6 +8,8 @@ use super::cover::*;
 use super::grid::*;
 use super::interior::*;
 use super::shared_edges::*;
+use super::sides::*;
+use super::sum::*;
 use super::tri::*;
 use super::*;
 use crate::arbitrary::Rng;
@@ -92,6 +94,174 @@ fn sweeping_the_sides_gives_the_searched_area() {
     }
 }
 
+/// A side's sweep keeps of each edge what no earlier edge on the side
+/// covers, against a brute force over the earlier edges: ends from a few
+/// shared values (edges touching, nested, repeated), runs of edges
+/// following one another either way (a fan's), the pieces summed in the
+/// same order to the same bits.
+#[test]
+fn a_side_keeps_what_no_earlier_edge_covers() {
+    let mut rng = Rng::new(29);
+    let h = 1.37;
+    let mut set = SideSet::default();
+    for case in 0..400 {
+        let (side, at) = if case % 2 == 0 {
+            (
+                Side::Bottom,
+                (|u: f64, h: f64| DVec2::new(u, -h)) as fn(f64, f64) -> DVec2,
+            )
+        } else {
+            (
+                Side::Left,
+                (|u: f64, h: f64| DVec2::new(-h, u)) as fn(f64, f64) -> DVec2,
+            )
+        };
+        let values: Vec<f64> = (0..2 + rng.below(30)).map(|_| rng.uniform(-h, h)).collect();
+        let pick = |rng: &mut Rng| values[rng.below(values.len() as u64) as usize];
+        let mut edges: Vec<(f64, f64)> = Vec::new();
+        while edges.len() < 1 + rng.below(150) as usize {
+            let run = if rng.chance(0.3) {
+                1 + rng.below(20)
+            } else {
+                1
+            };
+            let step = rng.uniform(-0.1, 0.1);
+            let mut u = pick(&mut rng);
+            for _ in 0..run {
+                let v = if run > 1 {
+                    (u + step).clamp(-h, h)
+                } else {
+                    pick(&mut rng)
+                };
+                if v != u {
+                    edges.push((u, v));
+                }
+                u = v;
+            }
+        }
+        set.clear();
+        let (mut swept, mut brute) = (Sum::default(), Sum::default());
+        for (k, &(ua, ub)) in edges.iter().enumerate() {
+            let (a, b) = (at(ua, h), at(ub, h));
+            set.add_uncovered(side, a, b, h, Measure::Disk(1.0), &mut swept);
+            // The earlier edges merged, then the gaps of `[lo, hi]`.
+            let mut earlier: Vec<(f64, f64)> = edges[..k]
+                .iter()
+                .map(|&(s, e)| (s.min(e), s.max(e)))
+                .collect();
+            earlier.sort_by(|x, y| x.0.total_cmp(&y.0));
+            let (lo, hi) = (ua.min(ub), ua.max(ub));
+            let mut pieces = Vec::new();
+            let mut t = lo;
+            for &(s, e) in &earlier {
+                if s > hi {
+                    break;
+                }
+                if s > t {
+                    pieces.push((t, s));
+                }
+                t = t.max(e);
+            }
+            if t < hi {
+                pieces.push((t, hi));
+            }
+            let point = |u: f64| {
+                if u == ua {
+                    a
+                } else if u == ub {
+                    b
+                } else {
+                    at(u, h)
+                }
+            };
+            if ua > ub {
+                pieces.reverse();
+            }
+            for (s, e) in pieces {
+                let (p, q) = if ua <= ub { (s, e) } else { (e, s) };
+                brute.add(Measure::Disk(1.0).piece(point(p), point(q)));
+            }
+        }
+        assert_eq!(
+            swept.value().to_bits(),
+            brute.value().to_bits(),
+            "case {case}"
+        );
+        assert_eq!(
+            swept.bound().to_bits(),
+            brute.bound().to_bits(),
+            "case {case}"
+        );
+    }
+}
+
+/// About `n` random triangles in the square `[−h, h]²`, small ones and a
+/// random share of large ones (for the grid's coarse levels).
+fn small_and_large(rng: &mut Rng, n: usize, h: f64) -> Vec<Tri> {
+    let large_share = rng.unit();
+    (0..n)
+        .filter_map(|_| {
+            let size = if rng.chance(large_share) {
+                rng.uniform(0.2, 2.0) * h
+            } else {
+                rng.uniform(0.001, 0.1) * h
+            };
+            let c = DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
+            let mut corner = || {
+                (c + DVec2::new(rng.uniform(-size, size), rng.uniform(-size, size)))
+                    .clamp(DVec2::splat(-h), DVec2::splat(h))
+            };
+            Tri::new(corner(), corner(), corner())
+        })
+        .collect()
+}
+
+/// [`Unbuilt`] finds the triangles whose bounds overlap a box in the
+/// order the built grid's search first meets them (index order on the
+/// fine level), leaving out the searched edge's own: the same triangles
+/// tested in the same order, so the same spans, cover and bound.
+#[test]
+fn the_unbuilt_order_is_the_grids() {
+    let mut rng = Rng::new(43);
+    let (mut grid, mut unbuilt) = (Grid::default(), Unbuilt::default());
+    for case in 0..60 {
+        let h = [1.37, 0.83, 1.0][case % 3];
+        let n = 1 + rng.below(if case % 2 == 0 { 300 } else { 5000 }) as usize;
+        let tris = small_and_large(&mut rng, n, h);
+        grid.build::<false>(&tris, h);
+        for _ in 0..20 {
+            let a = DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
+            let b = a + DVec2::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3)) * h;
+            let (lo, hi) = (a.min(b), a.max(b));
+            let own = rng.below(tris.len() as u64) as usize;
+            let mut seen = vec![false; tris.len()];
+            let mut met = Vec::new();
+            grid.for_each_near(
+                lo,
+                hi,
+                |_, _| true,
+                |j| {
+                    let (j, t) = (j as usize, &tris[j as usize]);
+                    let overlaps =
+                        t.hi.x >= lo.x && t.lo.x <= hi.x && t.hi.y >= lo.y && t.lo.y <= hi.y;
+                    if !seen[j] && overlaps && j != own {
+                        met.push(j);
+                    }
+                    seen[j] = true;
+                    true
+                },
+            );
+            if unbuilt.find(&tris, h, (lo, hi), own) {
+                let order: Vec<usize> = unbuilt.order.iter().map(|e| e.2 as usize).collect();
+                assert_eq!(order, met, "case {case}: n {n}");
+            } else {
+                // Refused only where more than an eighth of them overlap.
+                assert!(8 * met.len() > tris.len(), "case {case}: n {n}");
+            }
+        }
+    }
+}
+
 /// The grid's search lists every triangle whose bounds overlap the
 /// query box (brute force), with small and large triangles mixed so
 /// that the coarse levels are used, the fine level in either order.
@@ -102,22 +272,7 @@ fn the_grid_finds_every_overlapping_triangle() {
     for case in 0..200 {
         let h = if case % 2 == 0 { 1.5 } else { 1.0 };
         let n = 1 + rng.below(600) as usize;
-        let large_share = rng.unit();
-        let tris: Vec<Tri> = (0..n)
-            .filter_map(|_| {
-                let size = if rng.chance(large_share) {
-                    rng.uniform(0.2, 2.0) * h
-                } else {
-                    rng.uniform(0.001, 0.1) * h
-                };
-                let c = DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
-                let mut corner = || {
-                    (c + DVec2::new(rng.uniform(-size, size), rng.uniform(-size, size)))
-                        .clamp(DVec2::splat(-h), DVec2::splat(h))
-                };
-                Tri::new(corner(), corner(), corner())
-            })
-            .collect();
+        let tris = small_and_large(&mut rng, n, h);
         // In index order, and by area (as under a deep pile).
         if case % 4 < 2 {
             grid.build::<false>(&tris, h);
