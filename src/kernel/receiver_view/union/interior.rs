@@ -156,15 +156,7 @@ impl Interior {
         let margin = self.w / f64::from(1_u32 << 20);
         let last = n as f64;
         'tris: for (index, t) in tris.iter().enumerate() {
-            // A triangle whose bounds' cells (a column to spare either
-            // side) are marked already would mark none anew: its marks lie
-            // inside it (the same raster, bit for bit).
-            let rows = (self.cell(t.lo.y), self.cell(t.hi.y));
-            let columns = (
-                self.cell(t.lo.x).saturating_sub(1),
-                (self.cell(t.hi.x) + 1).min(n - 1),
-            );
-            if SKIP && index >= skip_from && self.box_marked(rows, columns) {
+            if SKIP && index >= skip_from && self.marked_already(t) {
                 self.skipped += 1;
                 continue;
             }
@@ -232,23 +224,20 @@ impl Interior {
         true
     }
 
-    /// Whether every cell of the rows `r0..=r1` and the columns `k0..=k1`
-    /// is marked: the first and last rows first (where a triangle's bounds
-    /// most often reach past the marks), then the others.
+    /// Whether every cell of the rows and columns of `t`'s bounds (a
+    /// column to spare either side) is marked: then `t` would mark none
+    /// anew, its marks lying inside it (the same raster, bit for bit). The
+    /// first and last rows first (where a triangle's bounds most often
+    /// reach past the marks), then the others.
     #[inline(always)]
-    fn box_marked(&self, (r0, r1): (usize, usize), (k0, k1): (usize, usize)) -> bool {
-        let words = self.n / 64;
-        let (i0, i1, first, last) = span_masks(k0, k1);
-        let held = |r: usize| {
-            let row = &self.bits[r * words..(r + 1) * words];
-            if i0 == i1 {
-                row[i0] & first & last == first & last
-            } else {
-                row[i0] & first == first
-                    && row[i0 + 1..i1].iter().all(|&w| w == u64::MAX)
-                    && row[i1] & last == last
-            }
-        };
+    fn marked_already(&self, t: &Tri) -> bool {
+        let (r0, r1) = (self.cell(t.lo.y), self.cell(t.hi.y));
+        let (k0, k1) = (
+            self.cell(t.lo.x).saturating_sub(1),
+            (self.cell(t.hi.x) + 1).min(self.n - 1),
+        );
+        let masks = span_masks(k0, k1);
+        let held = |r: usize| all_masked(self.row(r), masks);
         held(r0) && held(r1) && (r0 + 1..r1).all(held)
     }
 
@@ -552,7 +541,13 @@ pub(super) fn span_masks(k0: usize, k1: usize) -> (usize, usize, u64, u64) {
 /// Whether the bits `k0..=k1` (`k0 ≤ k1`) of the row `words` are all set.
 #[inline(always)]
 pub(super) fn all_set(words: &[u64], k0: usize, k1: usize) -> bool {
-    let (i0, i1, first, last) = span_masks(k0, k1);
+    all_masked(words, span_masks(k0, k1))
+}
+
+/// Whether the bits of the row `words` that [`span_masks`] gave are all
+/// set.
+#[inline(always)]
+fn all_masked(words: &[u64], (i0, i1, first, last): (usize, usize, u64, u64)) -> bool {
     if i0 == i1 {
         words[i0] & first & last == first & last
     } else {
