@@ -61,6 +61,9 @@ pub(super) struct Interior {
     /// The blocks of [`Interior::BLOCK`] cells a side all marked, in the
     /// same layout: `n / BLOCK` blocks a side, a row's bits in whole words.
     full: Vec<u64>,
+    /// How many triangles the last build left out, their cells marked
+    /// already.
+    pub(super) skipped: usize,
 }
 
 impl Interior {
@@ -81,6 +84,14 @@ impl Interior {
     /// The most cells a side.
     const MOST: usize = 1024;
 
+    /// The estimated depth of the triangles marked so far from which a
+    /// triangle whose bounds' cells are all marked already is left out:
+    /// testing its bounds costs a few instructions a row against tens for
+    /// marking it, and pays where the pile is deep enough that most bounds
+    /// lie in marked cells (ours, chosen by measurement: see
+    /// benches/README.md § The union's search).
+    const SKIP_DEPTH: f64 = 4.0;
+
     /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
     pub(super) const BLOCK: usize = 8;
 
@@ -92,7 +103,15 @@ impl Interior {
     /// Marks the cells inside `tris`' triangles, if the pile is deep;
     /// whether it is (else [`Interior::covers`] is not to be called).
     pub(super) fn build(&mut self, tris: &[Tri], half: f64) -> bool {
+        self.build_skipping::<true>(tris, half)
+    }
+
+    /// [`Interior::build`]; with `SKIP`, a triangle whose bounds lie in
+    /// cells marked already is left out (the same marks), once the
+    /// triangles before it pile [`Interior::SKIP_DEPTH`] deep.
+    pub(super) fn build_skipping<const SKIP: bool>(&mut self, tris: &[Tri], half: f64) -> bool {
         self.n = 0;
+        self.skipped = 0;
         if tris.len() < Interior::FEWEST {
             return false;
         }
@@ -111,6 +130,11 @@ impl Interior {
         if area * scale < Interior::DEPTH * bounds {
             return false;
         }
+        // Where the triangles before have piled [`Interior::SKIP_DEPTH`]
+        // deep (estimated), those whose cells are marked already begin to
+        // be left out.
+        let skip_from = (tris.len() as f64 * Interior::SKIP_DEPTH * bounds / (area * scale))
+            .min(tris.len() as f64) as usize;
         let mean = width / Interior::SAMPLES as f64;
         // Large images go to the grid's coarse levels, where an edge meets
         // the largest first and its search ends soon: the raster saves
@@ -131,7 +155,11 @@ impl Interior {
         self.bits.resize(n * (n / 64), 0);
         let margin = self.w / f64::from(1_u32 << 20);
         let last = n as f64;
-        'tris: for t in tris {
+        'tris: for (index, t) in tris.iter().enumerate() {
+            if SKIP && index >= skip_from && self.marked_already(t) {
+                self.skipped += 1;
+                continue;
+            }
             // The edges' lines as bounds on the cells of a row inside them.
             let mut bounds = RowBounds::default();
             for e in 0..3 {
@@ -194,6 +222,23 @@ impl Interior {
         }
         self.find_full_blocks();
         true
+    }
+
+    /// Whether every cell of the rows and columns of `t`'s bounds (a
+    /// column to spare either side) is marked: then `t` would mark none
+    /// anew, its marks lying inside it (the same raster, bit for bit). The
+    /// first and last rows first (where a triangle's bounds most often
+    /// reach past the marks), then the others.
+    #[inline(always)]
+    fn marked_already(&self, t: &Tri) -> bool {
+        let (r0, r1) = (self.cell(t.lo.y), self.cell(t.hi.y));
+        let (k0, k1) = (
+            self.cell(t.lo.x).saturating_sub(1),
+            (self.cell(t.hi.x) + 1).min(self.n - 1),
+        );
+        let masks = span_masks(k0, k1);
+        let held = |r: usize| all_masked(self.row(r), masks);
+        held(r0) && held(r1) && (r0 + 1..r1).all(held)
     }
 
     /// How far inside some triangle every point of a marked cell lies:
@@ -496,7 +541,13 @@ pub(super) fn span_masks(k0: usize, k1: usize) -> (usize, usize, u64, u64) {
 /// Whether the bits `k0..=k1` (`k0 ≤ k1`) of the row `words` are all set.
 #[inline(always)]
 pub(super) fn all_set(words: &[u64], k0: usize, k1: usize) -> bool {
-    let (i0, i1, first, last) = span_masks(k0, k1);
+    all_masked(words, span_masks(k0, k1))
+}
+
+/// Whether the bits of the row `words` that [`span_masks`] gave are all
+/// set.
+#[inline(always)]
+fn all_masked(words: &[u64], (i0, i1, first, last): (usize, usize, u64, u64)) -> bool {
     if i0 == i1 {
         words[i0] & first & last == first & last
     } else {
