@@ -8,7 +8,7 @@ mod image;
 mod project;
 
 use crate::kernel::receiver_view::bounded::{det3_exact, max_abs, Bounded, Cross, Row};
-use crate::kernel::receiver_view::union::{union_area, Measure, Tri};
+use crate::kernel::receiver_view::union::{union_area, Measure, Tri, SWEEP_FROM};
 use crate::kernel::receiver_view::{Fraction, Scratch};
 use glam::DVec3;
 pub use image::Image;
@@ -319,6 +319,7 @@ impl AreaView {
             self.measure,
             self.half,
             &mut scratch.union,
+            SWEEP_FROM,
         );
         let area = self.light_area();
         let value = (covered / area).clamp(0.0, 1.0);

@@ -15,7 +15,7 @@ use super::tree::{Ray, Spans, Tree};
 use super::tri::{Measure, Tri};
 use glam::DVec2;
 
-/// [`union_area_sweeping_from`](super::union_area_sweeping_from), with
+/// [`union_area`](super::union_area), with
 /// `DEEP` whether [`Interior`] is built (and the grid lists the fine level
 /// by area). The helpers it calls per edge, per candidate and per triangle
 /// are `#[inline(always)]`, else the compiler keeps them out of line in its

@@ -45,33 +45,19 @@ pub(super) use tri::{Measure, Tri};
 /// An edge lying on a side of the clip square can be covered only by the
 /// edges of other triangles on that side (every triangle lies in the closed
 /// square), and by the rule of coinciding edges only by those of lower
-/// index. Where at least [`SWEEP_FROM`] edges lie on one side — images
+/// index. Where at least `sweep_from` edges lie on one side (the exact
+/// reference's: [`SWEEP_FROM`]) — images
 /// crossing the same side of the square, each edge overlapping all the
 /// others, which made the search quadratic — that side is swept instead:
 /// its edges, in index order, take what the earlier ones leave uncovered
 /// from a set of merged intervals, cut at the earlier edges' own corners
 /// (exact) rather than at parameters computed along the edge (rounded):
 /// the same set, its pieces' ends differing in the last bits.
-pub(super) fn union_area<const B: bool>(
-    tris: &[Tri],
-    weights: &[[f64; 3]],
-    reach: f64,
-    measure: Measure,
-    half: f64,
-    scratch: &mut UnionScratch,
-) -> (f64, f64) {
-    union_area_sweeping_from::<B>(tris, weights, reach, measure, half, scratch, SWEEP_FROM)
-}
-
-/// Sides holding at least this many edges are swept ([`union_area`]; ours:
-/// no built-in scene's receiver has a side that full).
-pub(super) const SWEEP_FROM: usize = 64;
-
-/// [`union_area`], sweeping the sides that hold `sweep_from` edges or more.
+///
 /// With `B`, also a bound on the area's error (else 0): `weights` holds
 /// each triangle's edges' area allowances (how far the exact images may
 /// differ from these along each edge; see [`union_area_in`]).
-pub(super) fn union_area_sweeping_from<const B: bool>(
+pub(super) fn union_area<const B: bool>(
     tris: &[Tri],
     weights: &[[f64; 3]],
     reach: f64,
@@ -100,3 +86,7 @@ pub(super) fn union_area_sweeping_from<const B: bool>(
         }
     }
 }
+
+/// Sides holding at least this many edges are swept ([`union_area`]; ours:
+/// no built-in scene's receiver has a side that full).
+pub(super) const SWEEP_FROM: usize = 64;

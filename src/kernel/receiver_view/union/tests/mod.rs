@@ -62,13 +62,12 @@ fn area_of_sweeping_from(
     scratch: &mut UnionScratch,
     sweep_from: usize,
 ) -> f64 {
-    union_area_sweeping_from::<false>(tris, &[], f64::INFINITY, measure, h, scratch, sweep_from).0
+    union_area::<false>(tris, &[], f64::INFINITY, measure, h, scratch, sweep_from).0
 }
 
-/// [`union_area`] where no image has an allowance, as
-/// [`area_of_sweeping_from`].
+/// [`area_of_sweeping_from`] with the exact reference's sides swept.
 fn area_of(tris: &[Tri], measure: Measure, h: f64, scratch: &mut UnionScratch) -> f64 {
-    union_area::<false>(tris, &[], f64::INFINITY, measure, h, scratch).0
+    area_of_sweeping_from(tris, measure, h, scratch, SWEEP_FROM)
 }
 
 /// The sweep of the square's sides and the search over the grid give
@@ -719,8 +718,15 @@ fn bands_held_deep_inside_other_triangles_are_left_out() {
                 })
             })
             .collect();
-        let (area, bound) =
-            union_area::<true>(&tris, &weights, e, Measure::Square, 1.0, &mut scratch);
+        let (area, bound) = union_area::<true>(
+            &tris,
+            &weights,
+            e,
+            Measure::Square,
+            1.0,
+            &mut scratch,
+            SWEEP_FROM,
+        );
         let exact = 4.0 - 2.0 * (2.0 * e - m).max(0.0);
         assert!(
             (area - exact).abs() <= bound,

@@ -14,8 +14,8 @@ fn area_by(
 ) -> [(f64, f64); 2] {
     scratch.search = search;
     [
-        union_area::<false>(tris, w, reach, measure, h, scratch),
-        union_area::<true>(tris, w, reach, measure, h, scratch),
+        union_area::<false>(tris, w, reach, measure, h, scratch, SWEEP_FROM),
+        union_area::<true>(tris, w, reach, measure, h, scratch, SWEEP_FROM),
     ]
 }
 
