@@ -412,7 +412,7 @@ pub(super) fn span_of<const B: bool>(
     (band, (bounded, deep)): (Deep, Found<'_>),
 ) -> Option<(f64, f64)> {
     let tj = &tris[j];
-    if j == i || tj.hi.x < lo.x || tj.lo.x > hi.x || tj.hi.y < lo.y || tj.lo.y > hi.y {
+    if j == i || tj.bounds_miss(lo, hi) {
         return None;
     }
     let span = covered_span(a, b, tj, j < i);

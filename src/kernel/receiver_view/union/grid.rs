@@ -239,7 +239,7 @@ impl Unbuilt {
         let levels = Grid::levels(side);
         self.order.clear();
         for (t, j) in tris.iter().zip(0_u32..) {
-            if t.hi.x < lo.x || t.lo.x > hi.x || t.hi.y < lo.y || t.lo.y > hi.y || j as usize == i {
+            if t.bounds_miss(lo, hi) || j as usize == i {
                 continue;
             }
             let (rank, n, key) = match Grid::level_of(t, side, levels, half) {

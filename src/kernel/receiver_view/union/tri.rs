@@ -36,6 +36,13 @@ impl Tri {
         self.v[0] == a && self.v[1] == b
     }
 
+    /// Whether the triangle's bounds miss the box `lo..hi` (touching
+    /// meets it).
+    #[inline(always)]
+    pub(super) fn bounds_miss(&self, lo: DVec2, hi: DVec2) -> bool {
+        self.hi.x < lo.x || self.lo.x > hi.x || self.hi.y < lo.y || self.lo.y > hi.y
+    }
+
     pub(super) fn edge(&self, k: usize) -> (DVec2, DVec2) {
         (self.v[k], self.v[(k + 1) % 3])
     }
