@@ -23,13 +23,44 @@ use core::ops::{Add, BitAnd, BitOr, Div, Mul, Neg, Not, Sub};
 #[inline(always)]
 pub(crate) fn vectorized<R>(f: impl FnOnce(bool) -> R) -> R {
     #[cfg(all(feature = "simd", target_arch = "x86_64"))]
-    if let Some(v3) = pulp::x86::V3::try_new() {
+    if let Some(v3) = pulp::x86::V3::try_new().filter(|_| dispatch::on()) {
         return v3.vectorize(
             #[inline(always)]
             || f(true),
         );
     }
     f(cfg!(target_feature = "fma"))
+}
+
+/// Whether [`vectorized`] dispatches: always, but in a unit test that asks
+/// for the build's target with [`dispatch::without`], so that it can check
+/// the dispatched code against the same code compiled for the target.
+pub(crate) mod dispatch {
+    #[cfg(test)]
+    std::thread_local! {
+        static OFF: core::cell::Cell<bool> = const { core::cell::Cell::new(false) };
+    }
+
+    #[cfg(all(feature = "simd", target_arch = "x86_64", not(test)))]
+    #[inline(always)]
+    pub(super) fn on() -> bool {
+        true
+    }
+
+    #[cfg(all(feature = "simd", target_arch = "x86_64", test))]
+    pub(super) fn on() -> bool {
+        !OFF.get()
+    }
+
+    /// `f()` with every [`vectorized`](super::vectorized) call on this
+    /// thread run as compiled for the build's target.
+    #[cfg(test)]
+    pub(crate) fn without<R>(f: impl FnOnce() -> R) -> R {
+        OFF.set(true);
+        let r = f();
+        OFF.set(false);
+        r
+    }
 }
 
 /// Arithmetic on one value or on lanes of values: IEEE operations, lane by
@@ -331,6 +362,23 @@ lanes_real!(f32, u32, i32);
 #[cfg(test)]
 mod tests {
     use super::*;
+
+    /// Inside [`dispatch::without`], `vectorized` runs `f` as compiled for
+    /// the build's target (a fused multiply-add only where the target has
+    /// it); outside, where the processor has AVX2 and FMA and the `simd`
+    /// feature is on, dispatched to them.
+    #[test]
+    fn without_dispatch_runs_the_targets_code() {
+        assert_eq!(
+            dispatch::without(|| vectorized(|fma| fma)),
+            cfg!(target_feature = "fma")
+        );
+        #[cfg(all(feature = "simd", target_arch = "x86_64"))]
+        assert_eq!(
+            vectorized(|fma| fma),
+            pulp::x86::V3::try_new().is_some() || cfg!(target_feature = "fma")
+        );
+    }
 
     /// Every `Lanes` operation is the scalar operation lane by lane, bit for
     /// bit, on values chosen to break it: signed zeros, infinities, NaNs of

@@ -216,10 +216,10 @@ impl Binned {
     /// Prepares the decisions for receiver `p` and `samples` samples on a
     /// grid of `cells²` cells (on a segment, one row of `cells²`); `false`
     /// when they do not apply (fewer than [`BINNED_FROM`] samples, a point
-    /// emitter, coordinates
-    /// outside the fast path's domain, a receiver not certainly in front
-    /// of the light, a set-up past its budget): then every sample casts
-    /// its ray.
+    /// emitter, coordinates outside the fast path's domain, a receiver not
+    /// certainly in front of the light, a set-up past its budget): then
+    /// every sample casts its ray. Compiled for AVX2 where the processor
+    /// has it ([`lanes::vectorized`]).
     pub(super) fn build(
         &mut self,
         bvh: &Bvh,
@@ -230,54 +230,44 @@ impl Binned {
     ) -> bool {
         lanes::vectorized(
             #[inline(always)]
-            |_| self.build_here(bvh, emitter, p, samples, cells),
+            |_| {
+                self.map = None;
+                self.all = None;
+                if samples < BINNED_FROM {
+                    return false;
+                }
+                let Some(map) = emitter.plane_map() else {
+                    return false;
+                };
+                let Some(view) = View::new(&map, p) else {
+                    return false;
+                };
+                self.hull = view.hull(p);
+                // Worth it only while the set-up costs less than the rays
+                // it saves: a candidate costs about half a ray to prepare,
+                // finding one a tenth of a ray, a cell test a tenth
+                // (measured on piles of occluders over one receiver,
+                // `benches/references.rs`: 4096 candidates prepared and
+                // their samples decided took 0.6 of the time of 4096 rays).
+                // So at most `samples/2` candidates: the set-up never costs
+                // much more than the rays, and a query past the cap is
+                // abandoned after a twentieth of their cost.
+                let cap = samples as usize / 2;
+                if !bvh.triangles_meeting_hull_at_most(&self.hull, &mut self.candidates, cap) {
+                    return false;
+                }
+                let grid = if view.segment {
+                    [cells * cells, 1]
+                } else {
+                    [cells, cells]
+                };
+                let Some(uncovered) = self.list_images(bvh, &view, p, samples, grid) else {
+                    return false;
+                };
+                self.finish(map, grid, uncovered);
+                true
+            },
         )
-    }
-
-    /// [`Binned::build`], compiled where it is called.
-    #[inline(always)]
-    fn build_here(
-        &mut self,
-        bvh: &Bvh,
-        emitter: &Emitter,
-        p: DVec3,
-        samples: u32,
-        cells: usize,
-    ) -> bool {
-        self.map = None;
-        self.all = None;
-        if samples < BINNED_FROM {
-            return false;
-        }
-        let Some(map) = emitter.plane_map() else {
-            return false;
-        };
-        let Some(view) = View::new(&map, p) else {
-            return false;
-        };
-        self.hull = view.hull(p);
-        // Worth it only while the set-up costs less than the rays it
-        // saves: a candidate costs about half a ray to prepare, finding one
-        // a tenth of a ray, a cell test a tenth (measured on piles of
-        // occluders over one receiver, `benches/references.rs`: 4096
-        // candidates prepared and their samples decided took 0.6 of the
-        // time of 4096 rays). So at most `samples/2` candidates: the set-up
-        // never costs much more than the rays, and a query past the cap is
-        // abandoned after a twentieth of their cost.
-        let cap = samples as usize / 2;
-        if !bvh.triangles_meeting_hull_at_most(&self.hull, &mut self.candidates, cap) {
-            return false;
-        }
-        let grid = if view.segment {
-            [cells * cells, 1]
-        } else {
-            [cells, cells]
-        };
-        let Some(uncovered) = self.list_images(bvh, &view, p, samples, grid) else {
-            return false;
-        };
-        self.finish(map, grid, uncovered);
-        true
     }
 
     /// Lists the candidates' images in the cells of the light's `grid`
