@@ -359,8 +359,8 @@ fn rescale<T: LinearFloat>(m: T) -> T {
         return T::of(1.0);
     }
     let limit = T::MAX_EXP - 2;
-    // An integer-valued float: the same `i32` from either width.
-    let e = (m.log2().floor().to_f64() as i32).clamp(-limit, limit);
+    // An integer-valued float, converted in its own width (`to_i32`).
+    let e = m.log2().floor().to_i32().clamp(-limit, limit);
     T::of(2.0).powi(-e)
 }
 

@@ -196,9 +196,9 @@ fn new_wedge<T: Float>(
         .max(a[1].abs().max_element())
         .max(radius);
     // A power of two brings the magnitudes near 1 exactly, so squares
-    // neither overflow nor underflow (an integer-valued exponent: the same
-    // `i32` from either width).
-    let scale = T::of(2.0).powi(-(span.log2().ceil().to_f64() as i32));
+    // neither overflow nor underflow (an integer-valued exponent, converted
+    // in its own width).
+    let scale = T::of(2.0).powi(-span.log2().ceil().to_i32());
     let a_s = [a[0] * scale, a[1] * scale];
     let u_s = (e1 - e0) * scale;
     let r_s = radius * scale;
