@@ -33,7 +33,7 @@ pub(crate) fn vectorized<R>(f: impl FnOnce(bool) -> R) -> R {
 }
 
 /// Whether [`vectorized`] dispatches: always, but in a unit test that asks
-/// for the build's target with [`dispatch::without`], so that it can check
+/// for the build's target with `dispatch::without`, so that it can check
 /// the dispatched code against the same code compiled for the target.
 pub(crate) mod dispatch {
     #[cfg(test)]
