@@ -1,4 +1,4 @@
-//! The two references as methods: [`Exact`] and [`MonteCarlo`].
+//! The two references as methods: [`Exact`](struct@Exact) and [`MonteCarlo`].
 
 use super::options::{from_options, method_options, Configurable};
 use super::{per_receiver, Input, Method, MethodError, Output};

@@ -13,7 +13,7 @@ use glam::DVec3;
 /// (non-dyadic) offset, every coordinate rounded. The closed form is then
 /// evaluated for the scene as rounded: the edge's trace on the light's
 /// plane from the rounded corners, the receiver and the light (its stored
-/// centre, normal and radius), in double-double ([`dd`](super::dd)); the segment's
+/// centre, normal and radius), in double-double ([`dd`]); the segment's
 /// area from that distance in `f64` ([`segment_area`](super::plate::segment_area)).
 pub(super) struct General {
     /// The frame: `x` across the edge, `y` toward the light, `z` along the

@@ -23,7 +23,7 @@ pub struct Image {
     pub(super) err: [f64; Image::CAP],
     /// Per edge (from each vertex to the next), a bound on the area by
     /// which the exact image differs from this one along it
-    /// ([`AreaView::image_weights`]).
+    /// (set with its vertices: [`Image::from_slice`], or the clip).
     pub(super) w: [f64; Image::CAP],
     /// A bound on the area the exact image may hold beyond all edges'
     /// (lines passing within their error of a vertex without cutting).
