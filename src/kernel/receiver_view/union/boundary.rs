@@ -438,7 +438,7 @@ type Found<'a> = (&'a mut Vec<[f64; 4]>, &'a mut Vec<(f64, f64)>);
 pub enum Search {
     /// [`Search::Tree`] where the images lie many deep over the measure in
     /// large triangles, [`Search::Grid`] otherwise, decided per answer
-    /// before either is built by a pass over the image triangles' bounds
+    /// before either is built by passes over the image triangles' bounds
     /// and areas (no predicate): the tree where there are at least
     /// [`Search::TREE_FROM`] of them and those the grid would list on its
     /// coarse levels — bounds wider than 4 of its fine cells, about
@@ -450,7 +450,10 @@ pub enum Search {
     /// in turn until one covers it, while the tree leaves out what the
     /// edge's cover already holds. A pile of small images (none large), or
     /// a polygon given as a fan of slivers (large, but one layer deep
-    /// however many), does not: there the grid costs less.
+    /// however many), does not: there the grid costs less. On stacks the
+    /// tree costs at most 1.8 times the grid where the grid does well, and
+    /// the grid up to 10 times the tree from about 10⁴ triangles on,
+    /// depending on how the layers lie: the thresholds take the tree early.
     #[default]
     Auto,
     /// Uniform grids of the triangles' bounds (fine, and coarse levels for
