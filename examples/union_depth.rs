@@ -3,7 +3,7 @@
 //! Carlo at 4096 samples), layers stacked `10⁻⁴` apart, and one convex
 //! polygon given as a fan of slivers. Median of `runs` calls each.
 //!
-//! `UNION=grid|tree cargo run --release --example union_depth -- [pile|stacked|fan|all] [runs]`,
+//! `UNION=auto|grid|tree cargo run --release --example union_depth -- [pile|stacked|fan|all] [runs]`,
 //! or `... -- one CASE N CALLS` (see [`one`]).
 
 #[path = "../benches/support/pile.rs"]
@@ -116,10 +116,11 @@ fn main() {
     let what = args.get(1).map_or("all", String::as_str);
     let runs: usize = args.get(2).and_then(|s| s.parse().ok()).unwrap_or(5);
     let mut scratch = Scratch::default();
-    // UNION=grid (the default) or tree.
+    // UNION=auto (the default), grid or tree.
     match std::env::var("UNION").as_deref() {
         Ok("tree") => scratch.set_union_search(UnionSearch::Tree),
-        _ => scratch.set_union_search(UnionSearch::Grid),
+        Ok("grid") => scratch.set_union_search(UnionSearch::Grid),
+        _ => scratch.set_union_search(UnionSearch::Auto),
     }
     if what == "one" {
         one(&args, &mut scratch);

@@ -1,6 +1,7 @@
 //! The union's two searches (issue 46) give the same exact answers bit for
-//! bit: the grid (`UnionSearch::Grid`, the design before) and the tree of
-//! bounding boxes pruned by the edge's cover (`Tree`), through the whole
+//! bit: the grid (`UnionSearch::Grid`) and the tree of bounding boxes
+//! pruned by the edge's cover (`Tree`), and the default (`Auto`) the
+//! same value with the bound of the one it chose, through the whole
 //! exact reference — every
 //! built-in scene's floor grid under its own light, a pile of random
 //! occluders, layers stacked `10⁻⁴` apart, and convex polygons given as
@@ -22,9 +23,12 @@ use softshadow::scene::Light;
 const TIGHT: f64 = 1e-11;
 
 /// Every receiver's `V` bits under each search, compared with the grid's
-/// (and both bounds tight, at most [`TIGHT`]); how many answers lie strictly between 0 and 1.
-fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3]) -> usize {
-    let searches = [UnionSearch::Grid, UnionSearch::Tree];
+/// (and every bound tight, at most [`TIGHT`]); the automatic choice's
+/// bound is the grid's or the tree's bits, the tree's if `tree` (the
+/// cases where it must choose the tree, else the grid's). How many answers
+/// lie strictly between 0 and 1.
+fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3], tree: bool) -> usize {
+    let searches = [UnionSearch::Grid, UnionSearch::Tree, UnionSearch::Auto];
     let mut scratch: Vec<Scratch> = searches
         .iter()
         .map(|&s| {
@@ -42,22 +46,24 @@ fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3]) -> usize {
                 Err(_) => (u64::MAX, u64::MAX),
             })
             .collect();
+        let shown = |search: &UnionSearch, answer: &(u64, u64)| {
+            format!(
+                "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
+                (f64::from_bits(answers[0].0), f64::from_bits(answers[0].1)),
+                (f64::from_bits(answer.0), f64::from_bits(answer.1))
+            )
+        };
         for (search, answer) in searches.iter().zip(&answers).skip(1) {
-            let shown = || {
-                format!(
-                    "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
-                    (f64::from_bits(answers[0].0), f64::from_bits(answers[0].1)),
-                    (f64::from_bits(answer.0), f64::from_bits(answer.1))
-                )
-            };
-            assert_eq!(answers[0].0, answer.0, "{}", shown());
+            assert_eq!(answers[0].0, answer.0, "{}", shown(search, answer));
             let (a, b) = (f64::from_bits(answers[0].1), f64::from_bits(answer.1));
             assert!(
                 a <= TIGHT && b <= TIGHT,
                 "a bound above {TIGHT:e}: {}",
-                shown()
+                shown(search, answer)
             );
         }
+        let chosen = answers[usize::from(tree)].1;
+        assert_eq!(answers[2].1, chosen, "{}", shown(&searches[2], &answers[2]));
         let v = f64::from_bits(answers[0].0);
         partial += usize::from(v > 0.0 && v < 1.0);
     }
@@ -70,7 +76,7 @@ fn the_searches_agree_on_the_built_in_scenes() {
         let scene = builtin(name).expect("a built-in scene");
         let bvh = Bvh::new(Occluders::from_scene(&scene));
         let receivers = floor_receivers(&scene, 20);
-        let partial = compare(name, &bvh, scene.light(), &receivers);
+        let partial = compare(name, &bvh, scene.light(), &receivers, false);
         assert!(partial > 10, "{name}: {partial} receivers in a penumbra");
     }
 }
@@ -97,7 +103,7 @@ fn the_searches_agree_under_a_pile() {
         let receivers: Vec<DVec3> = (0..6)
             .map(|_| DVec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), 0.0))
             .collect();
-        assert!(compare("pile", &bvh, &light, &receivers) > 0);
+        assert!(compare("pile", &bvh, &light, &receivers, false) > 0);
     }
 }
 
@@ -124,6 +130,7 @@ fn the_searches_agree_on_stacked_layers_and_fans() {
         &Bvh::new(Occluders::from_triangles(stacked)),
         &light,
         &receivers,
+        false,
     );
     let disk = Light::disk(
         DVec3::new(0.1031, 0.2017, 4.0),
@@ -152,6 +159,46 @@ fn the_searches_agree_on_stacked_layers_and_fans() {
             })
             .collect();
         let tris: Vec<[DVec3; 3]> = (0..n).map(|k| [apex, ring[k], ring[(k + 1) % n]]).collect();
-        compare("fan", &Bvh::new(Occluders::from_triangles(tris)), &disk, &p);
+        compare(
+            "fan",
+            &Bvh::new(Occluders::from_triangles(tris)),
+            &disk,
+            &p,
+            false,
+        );
+    }
+}
+
+/// Layers stacked many deep at ordinary (non-dyadic) heights and offsets,
+/// enough for the automatic choice to take the tree: 4500 layers of one
+/// triangle, each a random `0.5–1.5·10⁻⁴` above the last and shifted by
+/// up to `10⁻⁶` sideways, and as many copies of one triangle stacked
+/// `10⁻⁹` apart (near-coincident), seen from receivers whose answers lie
+/// in the penumbra.
+#[test]
+fn the_automatic_search_takes_the_tree_under_deep_stacks() {
+    let mut rng = Rng::new(11);
+    let t = [
+        DVec3::new(-1.0137, 1.0071, -0.9893),
+        DVec3::new(1.0213, 0.9969, -1.0311),
+        DVec3::new(0.0173, 1.0029, 1.0097),
+    ];
+    let light = Light::sphere(DVec3::new(0.0113, 3.0217, -0.0071), 0.5).expect("a light");
+    let receivers = [
+        DVec3::new(0.9013, 0.0, 0.0037),
+        DVec3::new(0.8317, 0.0, 0.2113),
+    ];
+    for (what, step) in [("stacked", 1e-4), ("near-coincident", 1e-9)] {
+        let mut y = 0.0;
+        let layers: Vec<[DVec3; 3]> = (0..4500)
+            .map(|_| {
+                y += step * rng.uniform(0.5, 1.5);
+                let d = DVec3::new(rng.uniform(-1e-6, 1e-6), y, rng.uniform(-1e-6, 1e-6));
+                t.map(|v| v + d)
+            })
+            .collect();
+        let bvh = Bvh::new(Occluders::from_triangles(layers));
+        let partial = compare(what, &bvh, &light, &receivers, true);
+        assert!(partial > 0, "{what}: no receiver in a penumbra");
     }
 }

@@ -234,9 +234,11 @@ pub struct Scratch {
 
 impl Scratch {
     /// Chooses how the union of the images finds, for each image edge, the
-    /// images that may cover it ([`UnionSearch`]): both designs give the
-    /// same answer bit for bit; kept side by side so that benchmarks and
-    /// tests can compare them.
+    /// images that may cover it ([`UnionSearch`]; by default
+    /// [`UnionSearch::Auto`], decided per answer from the images' sizes).
+    /// Every choice gives the same value bit for bit, with its own
+    /// search's certified bound; the explicit ones are there so that
+    /// benchmarks and tests can compare the two designs.
     pub fn set_union_search(&mut self, search: UnionSearch) {
         self.union.search = search;
     }

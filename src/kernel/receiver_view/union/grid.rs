@@ -85,6 +85,23 @@ impl Grid {
         })
     }
 
+    /// How many of `tris` a grid over `[−half, half]²` would put on its
+    /// coarse levels ([`Grid::level_of`]), and the sum of their doubled
+    /// areas.
+    pub(super) fn large_area(tris: &[Tri], half: f64) -> (usize, f64) {
+        let side = Grid::side(tris.len());
+        let levels = Grid::levels(side);
+        let mut count = 0;
+        let mut doubled = 0.0;
+        for t in tris {
+            if Grid::level_of(t, side, levels, half).is_some() {
+                count += 1;
+                doubled += t.doubled_area();
+            }
+        }
+        (count, doubled)
+    }
+
     /// The key that orders a coarse level's triangles (decreasing area of
     /// the bounds).
     fn area_key(t: &Tri) -> u64 {

@@ -71,18 +71,19 @@ pub(super) fn union_area<const B: bool>(
     // benches/README.md § The union's constants and its two copies of
     // the loop).
     let deep = scratch.interior.build(tris, half);
-    match (scratch.search, deep) {
-        (Search::Grid, true) => {
-            union_area_in::<true, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
-        }
-        (Search::Grid, false) => {
-            union_area_in::<false, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
-        }
+    let search = scratch.search.resolve(tris, half);
+    match (search, deep) {
         (Search::Tree, true) => {
             union_area_tree::<true, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
         }
         (Search::Tree, false) => {
             union_area_tree::<false, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
+        }
+        (_, true) => {
+            union_area_in::<true, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
+        }
+        (_, false) => {
+            union_area_in::<false, B>(tris, (weights, reach), measure, half, scratch, sweep_from)
         }
     }
 }

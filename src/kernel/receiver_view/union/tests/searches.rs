@@ -19,6 +19,21 @@ fn area_by(
     ]
 }
 
+/// Random allowances for the edges of `tris`, each up to `10⁻¹⁶` of its
+/// edge's length.
+fn weights(tris: &[Tri], rng: &mut Rng) -> Vec<[f64; 3]> {
+    tris.iter()
+        .map(|t| {
+            let mut w = [0.0; 3];
+            for (k, wk) in w.iter_mut().enumerate() {
+                let (a, b) = t.edge(k);
+                *wk = 1e-16 * rng.unit() * (b - a).length();
+            }
+            w
+        })
+        .collect()
+}
+
 /// Homothets of one triangle: `n` copies scaled by `1 + k s` about
 /// `centre` (inside: nested; outside: stacked layers seen from a
 /// receiver), clamped to the square.
@@ -145,17 +160,7 @@ fn the_tree_search_gives_the_grid_area_bit_for_bit() {
     let mut nonzero = 0;
     for case in 0..270 {
         let (h, tris) = family(case, &mut rng);
-        let w: Vec<[f64; 3]> = tris
-            .iter()
-            .map(|t| {
-                let mut w = [0.0; 3];
-                for (k, wk) in w.iter_mut().enumerate() {
-                    let (a, b) = t.edge(k);
-                    *wk = 1e-16 * rng.unit() * (b - a).length();
-                }
-                w
-            })
-            .collect();
+        let w = weights(&tris, &mut rng);
         for measure in [Measure::Disk(1.0), Measure::Square] {
             let unknown = (&w[..], f64::INFINITY);
             let grid = area_by(Search::Grid, &tris, unknown, measure, h, &mut scratch);
@@ -351,6 +356,82 @@ fn the_union_is_the_brute_force_area_on_small_piles() {
                 "case {case} ({search:?}): {} triangles, {area} against {expected}",
                 tris.len()
             );
+        }
+    }
+}
+
+/// Large unions for [`Search::Auto`]'s choice, in the square of
+/// half-width `h`, with what it must choose: layers stacked many deep
+/// (homothets about a point outside, in steps of `10⁻⁶`–`2·10⁻⁵`), nested
+/// ones (about their centroid), coincident and near-coincident copies of
+/// one large triangle, all at random non-dyadic corners and more than
+/// [`Search::TREE_FROM`] of them (the tree); and as many slivers of a fan
+/// (one layer deep), a random pile of small triangles a few deep, and a
+/// stack of fewer than [`Search::TREE_FROM`] layers (the grid).
+fn auto_cases(rng: &mut Rng, h: f64) -> Vec<(&'static str, Vec<Tri>, Search)> {
+    let many = Search::TREE_FROM + 1 + rng.below(2000) as usize;
+    let corner = |rng: &mut Rng| DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
+    // A large triangle, its corners jittered: about a quarter of the square.
+    let t = [(-0.8, -0.7), (0.75, -0.6), (0.1, 0.8)]
+        .map(|(x, y)| DVec2::new(x, y) * h + corner(rng) * 0.1);
+    let outside = DVec2::new(rng.uniform(2.0, 4.0) * h, rng.uniform(-h, h));
+    let centroid = (t[0] + t[1] + t[2]) / 3.0;
+    let step = rng.uniform(1e-12, 1e-9);
+    let copies = (0..many)
+        .filter_map(|k| {
+            let d = DVec2::new(step * (k % 7) as f64, -step * (k % 3) as f64);
+            Tri::new(t[0] + d, t[1] + d, t[2] + d)
+        })
+        .collect();
+    let stacked = homothets(t, outside, many, rng.uniform(1e-6, 2e-5), h);
+    let nested = homothets(t, centroid, many, rng.uniform(1e-6, 2e-5), h);
+    let few = homothets(t, outside, Search::TREE_FROM / 2, 1e-5, h);
+    let fan = fan(
+        corner(rng) * 0.5,
+        corner(rng) * 0.2,
+        rng.uniform(0.5, 3.0),
+        many,
+        h,
+    );
+    let depth = rng.uniform(2.0, 5.0);
+    let pile = pile(0, rng, many, depth, h);
+    vec![
+        ("stacked", stacked, Search::Tree),
+        ("nested", nested, Search::Tree),
+        ("copies", copies, Search::Tree),
+        ("fan", fan, Search::Grid),
+        ("pile", pile, Search::Grid),
+        ("fewer stacked", few, Search::Grid),
+    ]
+}
+
+/// [`Search::Auto`] takes the tree on images stacked, nested or copied
+/// many deep, and the grid on a fan of slivers, a pile of small images
+/// and a shallower stack (that the searches it chooses between give the
+/// same value bits, and that its bound is the chosen one's, is checked
+/// through the whole exact reference by `tests/union_search.rs`).
+#[test]
+fn the_automatic_search_is_the_tree_on_deep_stacks_only() {
+    let mut rng = Rng::new(71);
+    for h in [1.5, 1.0, 0.73] {
+        for (what, tris, expected) in auto_cases(&mut rng, h) {
+            let (count, doubled) = Grid::large_area(&tris, h);
+            let depth = doubled / (8.0 * h * h);
+            let shown = format!(
+                "{what}: {} triangles, {count} large, depth {depth}",
+                tris.len()
+            );
+            // The tree's cases as many as it asks for, the grid's many.
+            let fewest = if expected == Search::Tree {
+                Search::TREE_FROM
+            } else {
+                Search::TREE_FROM / 4
+            };
+            assert!(tris.len() >= fewest, "{shown}");
+            assert_eq!(Search::Auto.resolve(&tris, h), expected, "{shown}");
+            for explicit in [Search::Grid, Search::Tree] {
+                assert_eq!(explicit.resolve(&tris, h), explicit, "{shown}");
+            }
         }
     }
 }
