@@ -526,7 +526,7 @@ pub(super) struct Ray32 {
     /// The origin subtracted from the exit plane of each axis.
     pub(super) far: [f32; 3],
     /// `1/d` per axis.
-    inv: [f32; 3],
+    pub(super) inv: [f32; 3],
     /// The side (index of [`Node::q`]) of the entry plane of each axis: `1`
     /// (the maximum) where `dᵢ < 0`.
     pub(super) entry: [usize; 3],
