@@ -499,6 +499,18 @@ fn wide_hits(node: &WideNode, p: DVec3, x: DVec3) -> u32 {
     portable
 }
 
+/// A size (`10⁻⁶` to `10⁶`) and a centre (the origin, or up to `10⁹` off
+/// on every axis) for the slab tests' boxes and segments.
+fn size_and_centre(rng: &mut Rng) -> (f64, f64) {
+    let scale = rng.log_uniform(-6.0, 6.0);
+    let centre = if rng.chance(0.5) {
+        0.0
+    } else {
+        rng.log_uniform(0.0, 9.0) * rng.sign()
+    };
+    (scale, centre)
+}
+
 /// The slab test never drops a box the segment meets, at the edges:
 /// segments ending or starting exactly on a face, at a corner, lying in a
 /// face's plane across it, running along an edge; boxes of every size at
@@ -515,12 +527,7 @@ fn slab_test_keeps_boxes_the_segment_touches() {
         }
     };
     for case in 0..50_000 {
-        let scale = rng.log_uniform(-6.0, 6.0);
-        let centre = if rng.chance(0.5) {
-            0.0
-        } else {
-            rng.log_uniform(0.0, 9.0) * rng.sign()
-        };
+        let (scale, centre) = size_and_centre(&mut rng);
         let mut node = WideNode::EMPTY_NODE;
         let lanes = 1 + rng.below(WIDE as u64) as usize;
         let mut boxes = Vec::new();
@@ -614,12 +621,7 @@ fn slab_test_keeps_boxes_the_segment_touches() {
 fn node_test_is_the_sequential_slab_test() {
     let mut rng = Rng::new(71);
     for _ in 0..20_000 {
-        let scale = rng.log_uniform(-6.0, 6.0);
-        let centre = if rng.chance(0.5) {
-            0.0
-        } else {
-            rng.log_uniform(0.0, 9.0) * rng.sign()
-        };
+        let (scale, centre) = size_and_centre(&mut rng);
         let point = |rng: &mut Rng| {
             DVec3::new(
                 centre + rng.uniform(-1.0, 1.0) * scale,
