@@ -407,17 +407,18 @@ impl<F: Copy> WideSlab<F> {
     /// that lets the plane be read straight from memory by the subtraction.
     #[inline(always)]
     pub(super) fn hits<S: Lanes<WIDE, F = F>>(&self, s: S, n: &WideNode) -> u32 {
-        let mut t_near = s.splat(0.0);
-        let mut t_far = self.one;
+        let (mut a, mut b) = ([s.splat(0.0); 3], [self.one; 3]);
         for axis in 0..3 {
             let side = self.entry[axis];
             let entry = s.load(&n.planes[side][axis]);
             let exit = s.load(&n.planes[1 - side][axis]);
-            let a = s.mul(s.sub(self.near[axis], entry), self.neg_inv[axis]);
-            let b = s.mul(s.sub(self.far[axis], exit), self.neg_inv[axis]);
-            t_near = s.max(a, t_near);
-            t_far = s.min(b, t_far);
+            a[axis] = s.mul(s.sub(self.near[axis], entry), self.neg_inv[axis]);
+            b[axis] = s.mul(s.sub(self.far[axis], exit), self.neg_inv[axis]);
         }
+        // `max` and `min` are exact (no NaN arises): taken pairwise, the
+        // same bits as one after another, in two steps rather than three.
+        let t_near = s.max(s.max(a[0], a[1]), s.max(a[2], s.splat(0.0)));
+        let t_far = s.min(s.min(b[0], b[1]), s.min(b[2], self.one));
         s.le(t_near, s.mul(t_far, self.slack))
     }
 }
@@ -525,7 +526,7 @@ pub(super) struct Ray32 {
     /// The origin subtracted from the exit plane of each axis.
     pub(super) far: [f32; 3],
     /// `1/d` per axis.
-    inv: [f32; 3],
+    pub(super) inv: [f32; 3],
     /// The side (index of [`Node::q`]) of the entry plane of each axis: `1`
     /// (the maximum) where `dᵢ < 0`.
     pub(super) entry: [usize; 3],

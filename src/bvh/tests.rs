@@ -4,7 +4,7 @@
 use super::lanes::Portable;
 use super::leaf::PACK;
 use super::node::{decode, Node, EMPTY, LEAF, WIDTH};
-use super::ray::{Ray32, WideSlab};
+use super::ray::{Ray32, WideSlab, T_SLACK};
 use super::wide::{WideNode, EMPTY as WIDE_EMPTY, LEAF as WIDE_LEAF, WIDE};
 use super::{Bvh, Occluders, OcclusionCounts};
 use crate::arbitrary::Rng;
@@ -499,6 +499,18 @@ fn wide_hits(node: &WideNode, p: DVec3, x: DVec3) -> u32 {
     portable
 }
 
+/// A size (`10⁻⁶` to `10⁶`) and a centre (the origin, or up to `10⁹` off
+/// on every axis) for the slab tests' boxes and segments.
+fn size_and_centre(rng: &mut Rng) -> (f64, f64) {
+    let scale = rng.log_uniform(-6.0, 6.0);
+    let centre = if rng.chance(0.5) {
+        0.0
+    } else {
+        rng.log_uniform(0.0, 9.0) * rng.sign()
+    };
+    (scale, centre)
+}
+
 /// The slab test never drops a box the segment meets, at the edges:
 /// segments ending or starting exactly on a face, at a corner, lying in a
 /// face's plane across it, running along an edge; boxes of every size at
@@ -515,12 +527,7 @@ fn slab_test_keeps_boxes_the_segment_touches() {
         }
     };
     for case in 0..50_000 {
-        let scale = rng.log_uniform(-6.0, 6.0);
-        let centre = if rng.chance(0.5) {
-            0.0
-        } else {
-            rng.log_uniform(0.0, 9.0) * rng.sign()
-        };
+        let (scale, centre) = size_and_centre(&mut rng);
         let mut node = WideNode::EMPTY_NODE;
         let lanes = 1 + rng.below(WIDE as u64) as usize;
         let mut boxes = Vec::new();
@@ -601,6 +608,56 @@ fn slab_test_keeps_boxes_the_segment_touches() {
             "case {case}: lane {lane} {lo:?}..{hi:?} dropped for {p:?} → {x:?}"
         );
         assert_eq!(wide_hits(&node, p, x) >> lanes, 0, "empty lanes kept");
+    }
+}
+
+/// The node test's lanes are those of the slab test written one lane and
+/// one axis at a time — `t_near = max(0, a₀, a₁, a₂)` and `t_far = min(1,
+/// b₀, b₁, b₂)` taken in sequence, `t_near ≤ t_far (1 + 2⁻²⁰)` — whatever
+/// order `WideSlab::hits` takes them in: on boxes and segments of every
+/// size at offsets up to `10⁹`, with empty lanes, where the parameters of
+/// several axes tie now and then (a box's planes on the segment's ends).
+#[test]
+fn node_test_is_the_sequential_slab_test() {
+    let mut rng = Rng::new(71);
+    for _ in 0..20_000 {
+        let (scale, centre) = size_and_centre(&mut rng);
+        let point = |rng: &mut Rng| {
+            DVec3::new(
+                centre + rng.uniform(-1.0, 1.0) * scale,
+                centre + rng.uniform(-1.0, 1.0) * scale,
+                centre + rng.uniform(-1.0, 1.0) * scale,
+            )
+        };
+        let (p, x) = (point(&mut rng), point(&mut rng));
+        let mut node = WideNode::EMPTY_NODE;
+        for lane in 0..rng.below(WIDE as u64 + 1) as usize {
+            let (mut a, mut b) = (point(&mut rng), point(&mut rng));
+            if rng.chance(0.2) {
+                (a, b) = (p.min(x), p.max(x));
+            }
+            let (lo, hi) = (a.min(b).as_vec3(), a.max(b).as_vec3());
+            for axis in 0..3 {
+                node.planes[0][axis][lane] = lo[axis];
+                node.planes[1][axis][lane] = hi[axis];
+            }
+        }
+        let ray = Ray32::new(p, x).expect("within the f32 range");
+        let mut expected = 0;
+        for lane in 0..WIDE {
+            let (mut t_near, mut t_far) = (0.0f32, 1.0f32);
+            for axis in 0..3 {
+                let side = ray.entry[axis];
+                let entry = node.planes[side][axis][lane];
+                let exit = node.planes[1 - side][axis][lane];
+                let a = (entry - ray.near[axis]) * ray.inv[axis];
+                let b = (exit - ray.far[axis]) * ray.inv[axis];
+                t_near = if a > t_near { a } else { t_near };
+                t_far = if b < t_far { b } else { t_far };
+            }
+            expected |= u32::from(t_near <= t_far * T_SLACK) << lane;
+        }
+        assert_eq!(wide_hits(&node, p, x), expected, "{p:?} → {x:?}");
     }
 }
 
