@@ -198,7 +198,10 @@ impl Interior {
                 side[usize::from(side[0].0.is_finite())] = (alpha, beta);
             }
             for r in self.cell(t.lo.y)..=self.cell(t.hi.y) {
-                let y0 = -half + r as f64 * self.w;
+                // The row as a number (exact: `r < 2¹⁰`), converted from 32
+                // bits, which needs no fix-up for a sign.
+                let rf = f64::from(r as u32);
+                let y0 = -half + rf * self.w;
                 let outside = bounds.flat[..bounds.flats].iter().any(|&(p, d, m)| {
                     let y = if d > 0.0 { y0 } else { y0 + self.w };
                     d * (y - p) < m
@@ -210,9 +213,12 @@ impl Interior {
                 // the cell's left `k ≥ v` past the left edges (the first
                 // such `k` is at most `floor(v) + 1`, by truncation of `v +
                 // 1 ≥ 0`), its right `k + 1 ≤ v` short of the right ones.
-                let at = |(alpha, beta): (f64, f64)| alpha + beta * r as f64;
-                let v0 = at(bounds.left[0]).max(at(bounds.left[1]));
-                let v1 = at(bounds.right[0]).min(at(bounds.right[1]));
+                // No crossing is NaN (`α`, `β` finite, a missing edge's
+                // `±∞ + 0 r`), so the larger and smaller need no test for
+                // one (of `±0`, either gives the same cells).
+                let at = |(alpha, beta): (f64, f64)| alpha + beta * rf;
+                let v0 = larger(at(bounds.left[0]), at(bounds.left[1]));
+                let v1 = smaller(at(bounds.right[0]), at(bounds.right[1]));
                 let k0 = (v0.max(-1.0).min(last) + 1.0) as i64;
                 let k1 = v1.max(0.0).min(last) as i64 - 1;
                 if k0 <= k1 {
@@ -293,15 +299,15 @@ impl Interior {
     }
 
     fn mark(&mut self, r: usize, k0: usize, k1: usize) {
-        let words = self.n / 64;
-        let row = &mut self.bits[r * words..(r + 1) * words];
         let (i0, i1, first, last) = span_masks(k0, k1);
+        // `k1 < n`: the words lie in row `r`.
+        let at = r * (self.n / 64);
         if i0 == i1 {
-            row[i0] |= first & last;
+            self.bits[at + i0] |= first & last;
         } else {
-            row[i0] |= first;
-            row[i0 + 1..i1].fill(u64::MAX);
-            row[i1] |= last;
+            self.bits[at + i0] |= first;
+            self.bits[at + i0 + 1..at + i1].fill(u64::MAX);
+            self.bits[at + i1] |= last;
         }
     }
 
@@ -463,7 +469,10 @@ impl Walk {
         if self.level {
             self.hi.x
         } else {
-            self.lo.x + (((r + 1) as f64).min(self.hi.y) - self.lo.y) * self.slope
+            // `r < 2¹⁰`: exact, converted from 32 bits (no fix-up for a
+            // sign).
+            let next = f64::from((r + 1) as u32);
+            self.lo.x + (next.min(self.hi.y) - self.lo.y) * self.slope
         }
     }
 
@@ -554,5 +563,27 @@ fn all_masked(words: &[u64], (i0, i1, first, last): (usize, usize, u64, u64)) ->
         words[i0] & first == first
             && words[i0 + 1..i1].iter().all(|&w| w == u64::MAX)
             && words[i1] & last == last
+    }
+}
+
+/// The larger of `a` and `b`, neither NaN (`f64::max` without its test for
+/// NaN; either zero where they are `±0`).
+#[inline(always)]
+fn larger(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The smaller of `a` and `b`, neither NaN (`f64::min` without its test
+/// for NaN; either zero where they are `±0`).
+#[inline(always)]
+fn smaller(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
     }
 }
