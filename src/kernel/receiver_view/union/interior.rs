@@ -326,8 +326,9 @@ impl Interior {
         let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
         let to = |v: f64| (v + self.half) * self.inv_w;
         let (lx, ly, hx, hy) = (to(lo.x), to(lo.y), to(hi.x), to(hi.y));
-        let top = self.n - 1;
-        let cell = |v: f64| (v.max(0.0) as usize).min(top);
+        // Clamped before the conversion (the same row as after it).
+        let top = (self.n - 1) as f64;
+        let cell = |v: f64| v.max(0.0).min(top) as i64 as usize;
         Some(Course {
             lo: DVec2::new(lx, ly),
             hi: DVec2::new(hx, hy),
@@ -357,7 +358,7 @@ impl Interior {
             if all_set(self.block_row(block_row), k0, k1) {
                 continue;
             }
-            let cells = cells.get_or_insert_with(|| Walk::new(c, self.n));
+            let cells = cells.get_or_insert_with(|| blocks.over(c, self.n));
             let rows = c.rows.0.max(B * block_row)..=c.rows.1.min(B * block_row + B - 1);
             cells.enter(*rows.start());
             for r in rows {
@@ -435,7 +436,8 @@ pub(super) struct Walk {
     level: bool,
     slope: f64,
     eps: f64,
-    top: i64,
+    /// The last column, `n − 1`.
+    top: f64,
     /// The course's `x` where it enters the next row.
     x_in: f64,
 }
@@ -457,8 +459,27 @@ impl Walk {
             level,
             slope,
             eps: Course::EPS * (1.0 + slope.abs()),
-            top: (n - 1) as i64,
+            top: (n - 1) as f64,
             x_in: lo.x,
+        }
+    }
+
+    /// The walk along `c` (in a raster `n` cells a side) of which this one
+    /// is the walk over the blocks ([`Course::in_blocks`]), from its first
+    /// row. Its slope is the one [`Walk::new`] would compute, bit for bit:
+    /// the block course's ends are the cells' times `2⁻³`, exactly (in
+    /// cells from the square's corner, each `0` or at least `2⁻⁶⁰`, far
+    /// from underflow), so are their differences, and the quotient of two
+    /// numbers scaled alike by a power of two is the same.
+    #[inline(always)]
+    pub(super) fn over(&self, c: &Course, n: usize) -> Walk {
+        Walk {
+            lo: c.lo,
+            hi: c.hi,
+            first: c.rows.0,
+            top: (n - 1) as f64,
+            x_in: c.lo.x,
+            ..*self
         }
     }
 
@@ -501,9 +522,10 @@ impl Walk {
         if !self.level {
             self.x_in = x_out;
         }
-        let k0 = ((x0 - self.eps) as i64).clamp(0, self.top) as usize;
-        let k1 = ((x1 + self.eps) as i64).clamp(0, self.top) as usize;
-        (k0, k1)
+        // Clamped before the conversion (the same column as after it, a
+        // NaN to 0 either way), which then needs no clamp of its own.
+        let column = |x: f64| x.max(0.0).min(self.top) as i64 as usize;
+        (column(x0 - self.eps), column(x1 + self.eps))
     }
 }
 
