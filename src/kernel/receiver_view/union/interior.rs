@@ -311,6 +311,62 @@ impl Interior {
         }
     }
 
+    /// Whether every edge of `t` is covered ([`Interior::covers`]), shown
+    /// once for the triangle: where every block its bounds overlap, grown
+    /// by [`Interior::SPREAD`] cells across and [`Course::EPS`] along `y`,
+    /// is all marked, and no edge is steeper than [`Interior::STEEPEST`].
+    /// `false` where that does not show it (an edge may still be covered).
+    ///
+    /// A walk along an edge takes, in each row, the columns within `10⁻⁶
+    /// (1 + |s|)` of the course's `x` there, and that `x` lies within
+    /// `10⁻⁶ |s|` of the edge's `x` range (the first row's crossing is
+    /// taken at most [`Course::EPS`] before the edge's end), to rounding
+    /// far below `10⁻⁹` of a cell, `s` its slope against `y`: with `|s|`
+    /// at most [`Interior::STEEPEST`], every cell it takes lies within
+    /// [`Interior::SPREAD`] of the bounds' columns, in rows within
+    /// [`Course::EPS`] of theirs, and the same rows of blocks. So in each
+    /// row of blocks either the walk over the blocks finds its blocks all
+    /// marked, or the walk over the cells takes only cells in blocks all
+    /// marked: [`Interior::course_covered`] answers yes.
+    #[inline(always)]
+    pub(super) fn holds_edges_of(&self, t: &Tri) -> bool {
+        const B: usize = Interior::BLOCK;
+        let h = self.half;
+        if t.lo.x < -h || t.lo.y < -h || t.hi.x > h || t.hi.y > h {
+            // An edge leaving the square has no course.
+            return false;
+        }
+        let to = |v: f64| (v + h) * self.inv_w;
+        let steep = (0..3).any(|k| {
+            let (a, b) = t.edge(k);
+            let (dx, dy) = ((to(b.x) - to(a.x)).abs(), (to(b.y) - to(a.y)).abs());
+            dy != 0.0 && dx > Interior::STEEPEST * dy
+        });
+        if steep {
+            return false;
+        }
+        let top = (self.n - 1) as f64;
+        let cell = |v: f64| v.max(0.0).min(top) as i64 as usize;
+        let (r0, r1) = (
+            cell(to(t.lo.y) - Course::EPS),
+            cell(to(t.hi.y) + Course::EPS),
+        );
+        let (k0, k1) = (
+            cell(to(t.lo.x) - Interior::SPREAD) / B,
+            cell(to(t.hi.x) + Interior::SPREAD) / B,
+        );
+        (r0 / B..=r1 / B).all(|br| all_set(self.block_row(br), k0, k1))
+    }
+
+    /// The steepest slope against `y`, in cells, of the edges
+    /// [`Interior::holds_edges_of`] answers for.
+    const STEEPEST: f64 = 1000.0;
+
+    /// How far past a triangle's bounds, in cells, the walks along its
+    /// edges may take columns: `10⁻⁶ (1 + 2 · STEEPEST)` and rounding
+    /// ([`Interior::holds_edges_of`]).
+    const SPREAD: f64 = 2.5e-3;
+
     /// Whether every cell the edge `a → b` may pass through is marked
     /// ([`Interior::course_covered`]).
     pub(super) fn covers(&self, a: DVec2, b: DVec2) -> bool {
