@@ -104,17 +104,30 @@ impl Measure {
         if fx * fx + fy * fy < r * r * (1.0 - INSIDE) {
             return false;
         }
-        let centre_outside = (0..3).any(|k| {
+        // The centre outside (some edge has it on its right), then every
+        // edge at least `r` from it; loops written out, which the compiler
+        // keeps inline.
+        let mut centre_outside = false;
+        for k in 0..3 {
             let (a, b) = t.edge(k);
-            orient2d(a, b, DVec2::ZERO) == Sign::Negative
-        });
-        centre_outside
-            && (0..3).all(|k| {
-                let (a, b) = t.edge(k);
-                let d = b - a;
-                let s = (-a.dot(d) / d.length_squared()).clamp(0.0, 1.0);
-                (a + d * s).length_squared() >= r * r
-            })
+            if orient2d(a, b, DVec2::ZERO) == Sign::Negative {
+                centre_outside = true;
+                break;
+            }
+        }
+        if !centre_outside {
+            return false;
+        }
+        for k in 0..3 {
+            let (a, b) = t.edge(k);
+            let d = b - a;
+            let s = (-a.dot(d) / d.length_squared()).clamp(0.0, 1.0);
+            let away = (a + d * s).length_squared() >= r * r;
+            if !away {
+                return false;
+            }
+        }
+        true
     }
 
     /// Whether some point within `margin` of the triangle `v` (any
