@@ -355,7 +355,13 @@ impl Interior {
             cell(to(t.lo.x) - Interior::SPREAD) / B,
             cell(to(t.hi.x) + Interior::SPREAD) / B,
         );
-        (r0 / B..=r1 / B).all(|br| all_set(self.block_row(br), k0, k1))
+        // A loop written out, which the compiler keeps inline.
+        for br in r0 / B..=r1 / B {
+            if !all_set(self.block_row(br), k0, k1) {
+                return false;
+            }
+        }
+        true
     }
 
     /// The steepest slope against `y`, in cells, of the edges
