@@ -300,6 +300,8 @@ fn walk_edges<const DEEP: bool, const B: bool>(
     let mut sum = Sum::default();
     let mut bound = 0.0;
     for (i, ti) in tris.iter().enumerate() {
+        // Every edge covered by the raster, shown once for the triangle.
+        let held = DEEP && interior.holds_edges_of(ti);
         #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.
         for k in 0..3 {
             let (a, b) = ti.edge(k);
@@ -311,10 +313,14 @@ fn walk_edges<const DEEP: bool, const B: bool>(
                     continue;
                 }
             }
+            if !B && held {
+                // Shared or covered: dropped either way.
+                continue;
+            }
             if edges.has_reverse(tris, a, b) {
                 continue;
             }
-            if DEEP && interior.covers(a, b) {
+            if DEEP && (held || interior.covers(a, b)) {
                 // Covered whole, as the search would find (see
                 // [`Interior`]), with a margin: if the images' reach is
                 // far smaller, the band lies in marked cells.

@@ -35,6 +35,10 @@ pub(super) struct Grid {
     /// The fine level's triangles by decreasing area (a key and the
     /// index), when they are listed in that order.
     order: Vec<(u64, u32)>,
+    /// Each triangle's cells in the fine level while building (found once
+    /// for the count and the listing), [`Grid::COARSE`] for one on a
+    /// coarse level.
+    ranges: Vec<[u16; 4]>,
 }
 
 /// One level of a [`Grid`], in compressed rows: cell `c` holds
@@ -57,6 +61,10 @@ impl Grid {
     /// fine grid; the nested and near-coincident images that would make
     /// building it quadratic, each many fine cells wide, go up).
     pub(super) const LARGE: f64 = 4.0;
+
+    /// In [`Grid::ranges`], a triangle on a coarse level (no fine cell is
+    /// numbered so: the fine grid is at most [`Grid::MAX_SIDE`] a side).
+    const COARSE: [u16; 4] = [u16::MAX; 4];
 
     /// The fine grid's cells a side for `n` triangles.
     pub(super) fn side(n: usize) -> usize {
@@ -113,22 +121,31 @@ impl Grid {
         let side = Grid::side(tris.len());
         self.half = half;
         let levels = Grid::levels(side);
-        let large = |t: &Tri| Grid::level_of(t, side, levels, half);
         self.fine.reset(side, half);
         self.large.clear();
+        self.ranges.clear();
         for (t, i) in tris.iter().zip(0_u32..) {
-            match large(t) {
-                Some(k) => self.large.push((k, Grid::area_key(t), i)),
-                None => self.fine.count(t, half),
-            }
+            let range = match Grid::level_of(t, side, levels, half) {
+                Some(k) => {
+                    self.large.push((k, Grid::area_key(t), i));
+                    Grid::COARSE
+                }
+                None => {
+                    let range = self.fine.range(t.lo, t.hi, half);
+                    self.fine.count_in(range);
+                    // Cells below `MAX_SIDE`.
+                    [range.0, range.1, range.2, range.3].map(|c| c as u16)
+                }
+            };
+            self.ranges.push(range);
         }
         self.fine.prefix(&mut self.fill);
         if BY_AREA {
-            self.put_by_area(tris, half, |t| large(t).is_none());
+            self.put_by_area(tris);
         } else {
-            for (t, i) in tris.iter().zip(0_u32..) {
-                if large(t).is_none() {
-                    self.fine.put(t, i, half, &mut self.fill);
+            for (range, i) in self.ranges.iter().zip(0_u32..) {
+                if *range != Grid::COARSE {
+                    self.fine.put_in(cells(*range), i, &mut self.fill);
                 }
             }
         }
@@ -155,19 +172,21 @@ impl Grid {
         }
     }
 
-    /// Lists the triangles `fine` takes in the fine level, by decreasing
-    /// area.
-    fn put_by_area(&mut self, tris: &[Tri], half: f64, fine: impl Fn(&Tri) -> bool) {
+    /// Lists the triangles of the fine level ([`Grid::ranges`]) in it, by
+    /// decreasing area.
+    fn put_by_area(&mut self, tris: &[Tri]) {
         self.order.clear();
         self.order.extend(
             tris.iter()
+                .zip(&self.ranges)
                 .zip(0_u32..)
-                .filter(|(t, _)| fine(t))
-                .map(|(t, i)| (!t.doubled_area().to_bits(), i)),
+                .filter(|((_, range), _)| **range != Grid::COARSE)
+                .map(|((t, _), i)| (!t.doubled_area().to_bits(), i)),
         );
         self.order.sort_unstable();
         for &(_, i) in &self.order {
-            self.fine.put(&tris[i as usize], i, half, &mut self.fill);
+            let range = cells(self.ranges[i as usize]);
+            self.fine.put_in(range, i, &mut self.fill);
         }
     }
 
@@ -289,10 +308,16 @@ impl Level {
     /// Counts the triangle in the cells it overlaps.
     #[inline(always)]
     fn count(&mut self, t: &Tri, half: f64) {
-        let (x0, y0, x1, y1) = self.range(t.lo, t.hi, half);
+        self.count_in(self.range(t.lo, t.hi, half));
+    }
+
+    /// Counts a triangle in the cells `x0..=x1`, `y0..=y1`.
+    #[inline(always)]
+    fn count_in(&mut self, (x0, y0, x1, y1): (usize, usize, usize, usize)) {
         for y in y0..=y1 {
-            for x in x0..=x1 {
-                self.start[y * self.n + x + 1] += 1;
+            let at = y * self.n + 1;
+            for count in &mut self.start[at + x0..=at + x1] {
+                *count += 1;
             }
         }
     }
@@ -314,12 +339,18 @@ impl Level {
     /// of this level: `fill` is this level's).
     #[inline(always)]
     fn put(&mut self, t: &Tri, i: u32, half: f64, fill: &mut [u32]) {
-        let (x0, y0, x1, y1) = self.range(t.lo, t.hi, half);
+        self.put_in(self.range(t.lo, t.hi, half), i, fill);
+    }
+
+    /// Lists the triangle `i` in the cells `x0..=x1`, `y0..=y1`, row by
+    /// row.
+    #[inline(always)]
+    fn put_in(&mut self, (x0, y0, x1, y1): (usize, usize, usize, usize), i: u32, fill: &mut [u32]) {
         for y in y0..=y1 {
-            for x in x0..=x1 {
-                let c = y * self.n + x;
-                self.items[fill[c] as usize] = i;
-                fill[c] += 1;
+            let at = y * self.n;
+            for next in &mut fill[at + x0..=at + x1] {
+                self.items[*next as usize] = i;
+                *next += 1;
             }
         }
     }
@@ -373,6 +404,11 @@ impl Level {
     }
 }
 
+/// The cells of a range kept in [`Grid::ranges`].
+fn cells([x0, y0, x1, y1]: [u16; 4]) -> (usize, usize, usize, usize) {
+    (x0.into(), y0.into(), x1.into(), y1.into())
+}
+
 /// The row or column, of `n`, of the coordinate `v` in cells of width
 /// `1 / inv_cell` from `−half`, clamped. Truncation is the floor where it
 /// is taken (`c ≥ 0`; a NaN gives 0): no call to `floor`, which the
@@ -380,7 +416,8 @@ impl Level {
 pub(super) fn cell_of(v: f64, half: f64, inv_cell: f64, n: usize) -> usize {
     let c = (v + half) * inv_cell;
     if c >= 0.0 {
-        (c as usize).min(n - 1)
+        // Clamped before the conversion (the same cell as after it).
+        c.min((n - 1) as f64) as i64 as usize
     } else {
         0
     }

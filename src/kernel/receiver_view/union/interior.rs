@@ -198,7 +198,10 @@ impl Interior {
                 side[usize::from(side[0].0.is_finite())] = (alpha, beta);
             }
             for r in self.cell(t.lo.y)..=self.cell(t.hi.y) {
-                let y0 = -half + r as f64 * self.w;
+                // The row as a number (exact: `r < 2¹⁰`), converted from 32
+                // bits, which needs no fix-up for a sign.
+                let rf = f64::from(r as u32);
+                let y0 = -half + rf * self.w;
                 let outside = bounds.flat[..bounds.flats].iter().any(|&(p, d, m)| {
                     let y = if d > 0.0 { y0 } else { y0 + self.w };
                     d * (y - p) < m
@@ -210,9 +213,12 @@ impl Interior {
                 // the cell's left `k ≥ v` past the left edges (the first
                 // such `k` is at most `floor(v) + 1`, by truncation of `v +
                 // 1 ≥ 0`), its right `k + 1 ≤ v` short of the right ones.
-                let at = |(alpha, beta): (f64, f64)| alpha + beta * r as f64;
-                let v0 = at(bounds.left[0]).max(at(bounds.left[1]));
-                let v1 = at(bounds.right[0]).min(at(bounds.right[1]));
+                // No crossing is NaN (`α`, `β` finite, a missing edge's
+                // `±∞ + 0 r`), so the larger and smaller need no test for
+                // one (of `±0`, either gives the same cells).
+                let at = |(alpha, beta): (f64, f64)| alpha + beta * rf;
+                let v0 = larger(at(bounds.left[0]), at(bounds.left[1]));
+                let v1 = smaller(at(bounds.right[0]), at(bounds.right[1]));
                 let k0 = (v0.max(-1.0).min(last) + 1.0) as i64;
                 let k1 = v1.max(0.0).min(last) as i64 - 1;
                 if k0 <= k1 {
@@ -293,17 +299,79 @@ impl Interior {
     }
 
     fn mark(&mut self, r: usize, k0: usize, k1: usize) {
-        let words = self.n / 64;
-        let row = &mut self.bits[r * words..(r + 1) * words];
         let (i0, i1, first, last) = span_masks(k0, k1);
+        // `k1 < n`: the words lie in row `r`.
+        let at = r * (self.n / 64);
         if i0 == i1 {
-            row[i0] |= first & last;
+            self.bits[at + i0] |= first & last;
         } else {
-            row[i0] |= first;
-            row[i0 + 1..i1].fill(u64::MAX);
-            row[i1] |= last;
+            self.bits[at + i0] |= first;
+            self.bits[at + i0 + 1..at + i1].fill(u64::MAX);
+            self.bits[at + i1] |= last;
         }
     }
+
+    /// Whether every edge of `t` is covered ([`Interior::covers`]), shown
+    /// once for the triangle: where every block its bounds overlap, grown
+    /// by [`Interior::SPREAD`] cells across and [`Course::EPS`] along `y`,
+    /// is all marked, and no edge is steeper than [`Interior::STEEPEST`].
+    /// `false` where that does not show it (an edge may still be covered).
+    ///
+    /// A walk along an edge takes, in each row, the columns within `10⁻⁶
+    /// (1 + |s|)` of the course's `x` there, and that `x` lies within
+    /// `10⁻⁶ |s|` of the edge's `x` range (the first row's crossing is
+    /// taken at most [`Course::EPS`] before the edge's end), to rounding
+    /// far below `10⁻⁹` of a cell, `s` its slope against `y`: with `|s|`
+    /// at most [`Interior::STEEPEST`], every cell it takes lies within
+    /// [`Interior::SPREAD`] of the bounds' columns, in rows within
+    /// [`Course::EPS`] of theirs, and the same rows of blocks. So in each
+    /// row of blocks either the walk over the blocks finds its blocks all
+    /// marked, or the walk over the cells takes only cells in blocks all
+    /// marked: [`Interior::course_covered`] answers yes.
+    #[inline(always)]
+    pub(super) fn holds_edges_of(&self, t: &Tri) -> bool {
+        const B: usize = Interior::BLOCK;
+        let h = self.half;
+        if t.lo.x < -h || t.lo.y < -h || t.hi.x > h || t.hi.y > h {
+            // An edge leaving the square has no course.
+            return false;
+        }
+        let to = |v: f64| (v + h) * self.inv_w;
+        let steep = (0..3).any(|k| {
+            let (a, b) = t.edge(k);
+            let (dx, dy) = ((to(b.x) - to(a.x)).abs(), (to(b.y) - to(a.y)).abs());
+            dy != 0.0 && dx > Interior::STEEPEST * dy
+        });
+        if steep {
+            return false;
+        }
+        let top = (self.n - 1) as f64;
+        let cell = |v: f64| v.max(0.0).min(top) as i64 as usize;
+        let (r0, r1) = (
+            cell(to(t.lo.y) - Course::EPS),
+            cell(to(t.hi.y) + Course::EPS),
+        );
+        let (k0, k1) = (
+            cell(to(t.lo.x) - Interior::SPREAD) / B,
+            cell(to(t.hi.x) + Interior::SPREAD) / B,
+        );
+        // A loop written out, which the compiler keeps inline.
+        for br in r0 / B..=r1 / B {
+            if !all_set(self.block_row(br), k0, k1) {
+                return false;
+            }
+        }
+        true
+    }
+
+    /// The steepest slope against `y`, in cells, of the edges
+    /// [`Interior::holds_edges_of`] answers for.
+    const STEEPEST: f64 = 1000.0;
+
+    /// How far past a triangle's bounds, in cells, the walks along its
+    /// edges may take columns: `10⁻⁶ (1 + 2 · STEEPEST)` and rounding
+    /// ([`Interior::holds_edges_of`]).
+    const SPREAD: f64 = 2.5e-3;
 
     /// Whether every cell the edge `a → b` may pass through is marked
     /// ([`Interior::course_covered`]).
@@ -320,8 +388,9 @@ impl Interior {
         let (lo, hi) = if a.y <= b.y { (a, b) } else { (b, a) };
         let to = |v: f64| (v + self.half) * self.inv_w;
         let (lx, ly, hx, hy) = (to(lo.x), to(lo.y), to(hi.x), to(hi.y));
-        let top = self.n - 1;
-        let cell = |v: f64| (v.max(0.0) as usize).min(top);
+        // Clamped before the conversion (the same row as after it).
+        let top = (self.n - 1) as f64;
+        let cell = |v: f64| v.max(0.0).min(top) as i64 as usize;
         Some(Course {
             lo: DVec2::new(lx, ly),
             hi: DVec2::new(hx, hy),
@@ -351,7 +420,7 @@ impl Interior {
             if all_set(self.block_row(block_row), k0, k1) {
                 continue;
             }
-            let cells = cells.get_or_insert_with(|| Walk::new(c, self.n));
+            let cells = cells.get_or_insert_with(|| blocks.over(c, self.n));
             let rows = c.rows.0.max(B * block_row)..=c.rows.1.min(B * block_row + B - 1);
             cells.enter(*rows.start());
             for r in rows {
@@ -429,7 +498,8 @@ pub(super) struct Walk {
     level: bool,
     slope: f64,
     eps: f64,
-    top: i64,
+    /// The last column, `n − 1`.
+    top: f64,
     /// The course's `x` where it enters the next row.
     x_in: f64,
 }
@@ -451,8 +521,27 @@ impl Walk {
             level,
             slope,
             eps: Course::EPS * (1.0 + slope.abs()),
-            top: (n - 1) as i64,
+            top: (n - 1) as f64,
             x_in: lo.x,
+        }
+    }
+
+    /// The walk along `c` (in a raster `n` cells a side) of which this one
+    /// is the walk over the blocks ([`Course::in_blocks`]), from its first
+    /// row. Its slope is the one [`Walk::new`] would compute, bit for bit:
+    /// the block course's ends are the cells' times `2⁻³`, exactly (in
+    /// cells from the square's corner, each `0` or at least `2⁻⁶⁰`, far
+    /// from underflow), so are their differences, and the quotient of two
+    /// numbers scaled alike by a power of two is the same.
+    #[inline(always)]
+    pub(super) fn over(&self, c: &Course, n: usize) -> Walk {
+        Walk {
+            lo: c.lo,
+            hi: c.hi,
+            first: c.rows.0,
+            top: (n - 1) as f64,
+            x_in: c.lo.x,
+            ..*self
         }
     }
 
@@ -463,7 +552,10 @@ impl Walk {
         if self.level {
             self.hi.x
         } else {
-            self.lo.x + (((r + 1) as f64).min(self.hi.y) - self.lo.y) * self.slope
+            // `r < 2¹⁰`: exact, converted from 32 bits (no fix-up for a
+            // sign).
+            let next = f64::from((r + 1) as u32);
+            self.lo.x + (next.min(self.hi.y) - self.lo.y) * self.slope
         }
     }
 
@@ -492,9 +584,10 @@ impl Walk {
         if !self.level {
             self.x_in = x_out;
         }
-        let k0 = ((x0 - self.eps) as i64).clamp(0, self.top) as usize;
-        let k1 = ((x1 + self.eps) as i64).clamp(0, self.top) as usize;
-        (k0, k1)
+        // Clamped before the conversion (the same column as after it, a
+        // NaN to 0 either way), which then needs no clamp of its own.
+        let column = |x: f64| x.max(0.0).min(self.top) as i64 as usize;
+        (column(x0 - self.eps), column(x1 + self.eps))
     }
 }
 
@@ -554,5 +647,27 @@ fn all_masked(words: &[u64], (i0, i1, first, last): (usize, usize, u64, u64)) ->
         words[i0] & first == first
             && words[i0 + 1..i1].iter().all(|&w| w == u64::MAX)
             && words[i1] & last == last
+    }
+}
+
+/// The larger of `a` and `b`, neither NaN (`f64::max` without its test for
+/// NaN; either zero where they are `±0`).
+#[inline(always)]
+fn larger(a: f64, b: f64) -> f64 {
+    if a > b {
+        a
+    } else {
+        b
+    }
+}
+
+/// The smaller of `a` and `b`, neither NaN (`f64::min` without its test
+/// for NaN; either zero where they are `±0`).
+#[inline(always)]
+fn smaller(a: f64, b: f64) -> f64 {
+    if a < b {
+        a
+    } else {
+        b
     }
 }

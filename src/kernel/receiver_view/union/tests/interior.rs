@@ -26,6 +26,16 @@ fn some_blocks_cover(interior: &Interior, c: &Course) -> bool {
     })
 }
 
+/// Case `case`'s [`pile`] of `n.0` to `n.0 + n.1` triangles, `depth.0` to
+/// `depth.1` deep, over the disk's square (even cases, `h = 1.5`) or the
+/// square's (odd, `h = 1`): `h` and the triangles.
+fn sized_pile(case: usize, rng: &mut Rng, n: (usize, u64), depth: (f64, f64)) -> (f64, Vec<Tri>) {
+    let h = if case % 2 == 0 { 1.5 } else { 1.0 };
+    let n = n.0 + rng.below(n.1) as usize;
+    let depth = rng.uniform(depth.0, depth.1);
+    (h, pile(case, rng, n, depth, h))
+}
+
 /// Whether `p` is strictly inside `t` (exactly).
 fn strictly_inside(t: &Tri, p: DVec2) -> bool {
     (0..3).all(|k| {
@@ -216,10 +226,7 @@ fn leaving_out_triangles_inside_the_marks_keeps_the_raster() {
     let (mut every, mut skipping) = (Interior::default(), Interior::default());
     let (mut skipped, mut cases_skipping) = (0, 0);
     for case in 0..8 {
-        let h = if case % 2 == 0 { 1.5 } else { 1.0 };
-        let n = 8000 + rng.below(4000) as usize;
-        let depth = rng.uniform(10.0, 18.0);
-        let tris = pile(case, &mut rng, n, depth, h);
+        let (h, tris) = sized_pile(case, &mut rng, (8000, 4000), (10.0, 18.0));
         let built = every.build_skipping::<false>(&tris, h);
         assert_eq!(every.skipped, 0);
         assert_eq!(
@@ -247,5 +254,43 @@ fn leaving_out_triangles_inside_the_marks_keeps_the_raster() {
     assert!(
         cases_skipping >= 5 && skipped > 10_000,
         "{cases_skipping} cases left triangles out, {skipped} in all"
+    );
+}
+
+/// A triangle [`Interior::holds_edges_of`] answers for has each of its
+/// three edges covered by the walk of [`Interior::covers`], on random and
+/// lattice piles 4 to 18 deep (and the raster of the leaving-out test's
+/// deep ones) — most of the deeper piles' triangles are held, which the
+/// test requires, so that the answer is checked where it is given.
+#[test]
+fn a_triangle_held_has_every_edge_covered() {
+    let mut rng = Rng::new(59);
+    let mut interior = Interior::default();
+    let (mut held, mut triangles) = (0, 0);
+    for case in 0..8 {
+        let (h, tris) = sized_pile(case, &mut rng, (6000, 6000), (4.0, 18.0));
+        if !interior.build(&tris, h) {
+            continue;
+        }
+        for (i, t) in tris.iter().enumerate() {
+            triangles += 1;
+            if !interior.holds_edges_of(t) {
+                continue;
+            }
+            held += 1;
+            for e in 0..3 {
+                let (a, b) = t.edge(e);
+                assert!(
+                    interior.covers(a, b),
+                    "case {case}: edge {e} of {i} held but not covered"
+                );
+                let course = interior.course(a, b).expect("inside the square");
+                assert!(interior.cells_cover(&course), "case {case}: {i}, {e}");
+            }
+        }
+    }
+    assert!(
+        held > 10_000 && held < triangles,
+        "{held} of {triangles} triangles held"
     );
 }
