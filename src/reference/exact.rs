@@ -69,21 +69,19 @@
 //! default): a uniform grid of the images' bounds, where an edge is
 //! tested against the images sharing a cell with it, unless at least
 //! [`TREE_FROM`](receiver_view::UnionSearch::TREE_FROM) (8192) image
-//! triangles lie over the light and those too large for the grid's fine
-//! cells have areas summing to at least
-//! [`TREE_DEPTH`](receiver_view::UnionSearch::TREE_DEPTH) (64) times the
-//! light's square: images stacked many deep, whose bounds all hold the
-//! whole square, so that the grid's cells cannot tell them apart and an
-//! edge meets the layers' images one by one until one covers it. There a
-//! tree of bounding boxes that leaves out what the edge's cover already
-//! holds is used: on the layers stacked in `benches/README.md` it costs
-//! at most 1.8 times the grid where the grid does well, while the grid
-//! costs up to 10 times the tree beyond about 10⁴ images, depending on
-//! how the layers lie. The statistic is two passes over the images'
-//! bounds and areas before either search is built, no predicate; a pile
-//! of small images or a polygon given as a fan of slivers (one layer deep)
-//! never reaches it. Every choice gives the same value bit for bit and
-//! its own search's certified bound.
+//! triangles are too large for the grid's fine cells — layers stacked
+//! many deep, or a polygon given as a fan of long slivers — where the
+//! grid tests an edge against every large image its coarse cells hold.
+//! There a tree of bounding boxes that leaves out the subtrees whose
+//! boxes miss the edge or whose part of it is covered already is used:
+//! on the layers stacked and the sliver fans in `benches/README.md` it
+//! costs at most 1.8 times the grid where the grid does well, while the
+//! grid costs up to 10 times the tree on stacks beyond about 10⁴ images
+//! and 11 times on a fan of 10⁵ slivers covering part of the light. The
+//! statistic is one pass over the images' bounds before either search
+//! is built, no predicate; a pile of small images never reaches it.
+//! Every choice gives the same value bit for bit and its own search's
+//! certified bound.
 //!
 //! [`orient3d`]: crate::kernel::predicate::orient3d
 

@@ -442,24 +442,24 @@ type Found<'a> = (&'a mut Vec<[f64; 4]>, &'a mut Vec<(f64, f64)>);
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]
 pub enum Search {
-    /// [`Search::Tree`] where the images lie many deep over the measure in
-    /// large triangles, [`Search::Grid`] otherwise, decided per answer
-    /// before either is built by passes over the image triangles' bounds
-    /// and areas (no predicate): the tree where there are at least
-    /// [`Search::TREE_FROM`] of them and those the grid would list on its
-    /// coarse levels — bounds wider than 4 of its fine cells, about
-    /// `4 / √n` of the clip square — have areas summing to at least
-    /// [`Search::TREE_DEPTH`] times the square's. Images stacked over one
-    /// another (the layers of a mesh between the receiver and the light)
-    /// reach it: their bounds all hold the whole square, so the grid's
-    /// cells cannot tell them apart and an edge meets every layer's image
-    /// in turn until one covers it, while the tree leaves out what the
-    /// edge's cover already holds. A pile of small images (none large), or
-    /// a polygon given as a fan of slivers (large, but one layer deep
-    /// however many), does not: there the grid costs less. On stacks the
-    /// tree costs at most 1.8 times the grid where the grid does well, and
-    /// the grid up to 10 times the tree from about 10⁴ triangles on,
-    /// depending on how the layers lie: the thresholds take the tree early.
+    /// [`Search::Tree`] where many images are large, [`Search::Grid`]
+    /// otherwise, decided per answer before either is built by one pass
+    /// over the image triangles' bounds (no predicate, and none at all
+    /// below [`Search::TREE_FROM`] triangles): the tree where at least
+    /// [`Search::TREE_FROM`] of them are large — bounds wider than 4 of the
+    /// grid's fine cells, about `4 / √n` of the clip square, which the grid
+    /// lists on its coarse levels. There the grid tests an edge against
+    /// every large triangle its coarse cells hold, while the tree leaves
+    /// out the subtrees whose boxes miss the edge or whose part of it is
+    /// covered already. Many large images come from layers stacked over
+    /// one another (the layers of a mesh between the receiver and the
+    /// light) and from a polygon given as a fan of slivers: on stacks the
+    /// grid cost up to 10 times the tree from about 10⁴ triangles on,
+    /// depending on how the layers lie, and 11 times on a fan of 10⁵
+    /// slivers covering part of the light, while the tree cost at most
+    /// 1.8 times the grid (5000 stacked layers) and 1.3 times (a fan
+    /// covering the light whole). A pile of small images (few large) keeps
+    /// the grid.
     #[default]
     Auto,
     /// Uniform grids of the triangles' bounds (fine, and coarse levels for
@@ -473,31 +473,19 @@ pub enum Search {
 }
 
 impl Search {
-    /// The fewest triangles [`Search::Auto`] takes the tree for.
+    /// The fewest large triangles [`Search::Auto`] takes the tree for.
     pub const TREE_FROM: usize = 8192;
 
-    /// The least depth of the large triangles (their summed area over the
-    /// clip square's) for which [`Search::Auto`] takes the tree.
-    pub const TREE_DEPTH: f64 = 64.0;
-
     /// The search used for the union of `tris` in the square
-    /// `[−half, half]²`: [`Search::Auto`] decided (passes over the
-    /// triangles' bounds and areas, no predicate: first all the triangles'
-    /// areas, which the large ones' cannot exceed, then the large ones'
-    /// with [`Grid::large_area`]), the others as they are.
+    /// `[−half, half]²`: [`Search::Auto`] decided (a pass over the
+    /// triangles' bounds, [`Grid::large_count`], once there are
+    /// [`Search::TREE_FROM`] of them), the others as they are.
     pub(super) fn resolve(self, tris: &[Tri], half: f64) -> Search {
         match self {
             Search::Auto => {
-                // Twice the least summed area: the triangles' areas are
-                // summed doubled.
-                let least = Search::TREE_DEPTH * 8.0 * half * half;
-                let deep = tris.len() >= Search::TREE_FROM
-                    && tris.iter().map(Tri::doubled_area).sum::<f64>() >= least
-                    && {
-                        let (count, doubled) = Grid::large_area(tris, half);
-                        count >= Search::TREE_FROM && doubled >= least
-                    };
-                if deep {
+                let many_large = tris.len() >= Search::TREE_FROM
+                    && Grid::large_count(tris, half) >= Search::TREE_FROM;
+                if many_large {
                     Search::Tree
                 } else {
                     Search::Grid

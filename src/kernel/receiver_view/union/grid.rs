@@ -94,20 +94,13 @@ impl Grid {
     }
 
     /// How many of `tris` a grid over `[−half, half]²` would put on its
-    /// coarse levels ([`Grid::level_of`]), and the sum of their doubled
-    /// areas.
-    pub(super) fn large_area(tris: &[Tri], half: f64) -> (usize, f64) {
+    /// coarse levels ([`Grid::level_of`]).
+    pub(super) fn large_count(tris: &[Tri], half: f64) -> usize {
         let side = Grid::side(tris.len());
         let levels = Grid::levels(side);
-        let mut count = 0;
-        let mut doubled = 0.0;
-        for t in tris {
-            if Grid::level_of(t, side, levels, half).is_some() {
-                count += 1;
-                doubled += t.doubled_area();
-            }
-        }
-        (count, doubled)
+        tris.iter()
+            .filter(|t| Grid::level_of(t, side, levels, half).is_some())
+            .count()
     }
 
     /// The key that orders a coarse level's triangles (decreasing area of

@@ -364,10 +364,10 @@ fn the_union_is_the_brute_force_area_on_small_piles() {
 /// half-width `h`, with what it must choose: layers stacked many deep
 /// (homothets about a point outside, in steps of `10⁻⁶`–`2·10⁻⁵`), nested
 /// ones (about their centroid), coincident and near-coincident copies of
-/// one large triangle, all at random non-dyadic corners and more than
-/// [`Search::TREE_FROM`] of them (the tree); and as many slivers of a fan
-/// (one layer deep), a random pile of small triangles a few deep, and a
-/// stack of fewer than [`Search::TREE_FROM`] layers (the grid).
+/// one large triangle, and twice as many slivers of a fan (one layer
+/// deep), all at random non-dyadic corners and more than
+/// [`Search::TREE_FROM`] of them (the tree); a random pile of as many small triangles a few deep,
+/// and a stack of fewer than [`Search::TREE_FROM`] layers (the grid).
 fn auto_cases(rng: &mut Rng, h: f64) -> Vec<(&'static str, Vec<Tri>, Search)> {
     let many = Search::TREE_FROM + 1 + rng.below(2000) as usize;
     let corner = |rng: &mut Rng| DVec2::new(rng.uniform(-h, h), rng.uniform(-h, h));
@@ -389,8 +389,8 @@ fn auto_cases(rng: &mut Rng, h: f64) -> Vec<(&'static str, Vec<Tri>, Search)> {
     let fan = fan(
         corner(rng) * 0.5,
         corner(rng) * 0.2,
-        rng.uniform(0.5, 3.0),
-        many,
+        rng.uniform(0.3, 0.7) * h,
+        2 * many,
         h,
     );
     let depth = rng.uniform(2.0, 5.0);
@@ -399,28 +399,24 @@ fn auto_cases(rng: &mut Rng, h: f64) -> Vec<(&'static str, Vec<Tri>, Search)> {
         ("stacked", stacked, Search::Tree),
         ("nested", nested, Search::Tree),
         ("copies", copies, Search::Tree),
-        ("fan", fan, Search::Grid),
+        ("fan", fan, Search::Tree),
         ("pile", pile, Search::Grid),
         ("fewer stacked", few, Search::Grid),
     ]
 }
 
-/// [`Search::Auto`] takes the tree on images stacked, nested or copied
-/// many deep, and the grid on a fan of slivers, a pile of small images
-/// and a shallower stack (that the searches it chooses between give the
+/// [`Search::Auto`] takes the tree on many large images (stacked, nested
+/// or copied many deep, or a fan of slivers), and the grid on a pile of
+/// small images and a smaller stack (that the searches it chooses between give the
 /// same value bits, and that its bound is the chosen one's, is checked
 /// through the whole exact reference by `tests/union_search.rs`).
 #[test]
-fn the_automatic_search_is_the_tree_on_deep_stacks_only() {
+fn the_automatic_search_is_the_tree_on_many_large_images_only() {
     let mut rng = Rng::new(71);
     for h in [1.5, 1.0, 0.73] {
         for (what, tris, expected) in auto_cases(&mut rng, h) {
-            let (count, doubled) = Grid::large_area(&tris, h);
-            let depth = doubled / (8.0 * h * h);
-            let shown = format!(
-                "{what}: {} triangles, {count} large, depth {depth}",
-                tris.len()
-            );
+            let count = Grid::large_count(&tris, h);
+            let shown = format!("{what}: {} triangles, {count} large", tris.len());
             // The tree's cases as many as it asks for, the grid's many.
             let fewest = if expected == Search::Tree {
                 Search::TREE_FROM
