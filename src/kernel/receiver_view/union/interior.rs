@@ -153,7 +153,6 @@ impl Interior {
         self.half = half;
         self.w = 2.0 * half / n as f64;
         self.inv_w = n as f64 / (2.0 * half);
-        self.block_words = (n / Interior::BLOCK).div_ceil(64);
         self.bits.clear();
         self.bits.resize(n * (n / 64), 0);
         let margin = self.w / f64::from(1_u32 << 20);
@@ -260,6 +259,7 @@ impl Interior {
     fn find_full_blocks(&mut self) {
         const B: usize = Interior::BLOCK;
         let (words, blocks) = (self.n / 64, self.n / B);
+        self.block_words = blocks.div_ceil(64);
         let block_words = self.block_words;
         self.full.clear();
         self.full.resize(blocks * block_words, 0);
