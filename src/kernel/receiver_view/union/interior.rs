@@ -61,6 +61,8 @@ pub(super) struct Interior {
     /// The blocks of [`Interior::BLOCK`] cells a side all marked, in the
     /// same layout: `n / BLOCK` blocks a side, a row's bits in whole words.
     full: Vec<u64>,
+    /// Words a row of [`Interior::full`].
+    block_words: usize,
     /// How many triangles the last build left out, their cells marked
     /// already.
     pub(super) skipped: usize,
@@ -243,7 +245,7 @@ impl Interior {
             (self.cell(t.hi.x) + 1).min(self.n - 1),
         );
         let masks = span_masks(k0, k1);
-        let held = |r: usize| all_masked(self.row(r), masks);
+        let held = |r: usize| all_masked(&self.bits, r * (self.n / 64), masks);
         held(r0) && held(r1) && (r0 + 1..r1).all(held)
     }
 
@@ -257,7 +259,8 @@ impl Interior {
     fn find_full_blocks(&mut self) {
         const B: usize = Interior::BLOCK;
         let (words, blocks) = (self.n / 64, self.n / B);
-        let block_words = self.block_words();
+        self.block_words = blocks.div_ceil(64);
+        let block_words = self.block_words;
         self.full.clear();
         self.full.resize(blocks * block_words, 0);
         let group = u64::MAX >> (64 - B);
@@ -275,15 +278,11 @@ impl Interior {
         }
     }
 
-    /// Words a row of [`Interior::full`].
-    fn block_words(&self) -> usize {
-        (self.n / Interior::BLOCK).div_ceil(64)
-    }
-
     /// Row `r` of [`Interior::full`] (the blocks over the rows `BLOCK r..
     /// BLOCK (r + 1)` of cells).
+    #[cfg(test)]
     pub(super) fn block_row(&self, r: usize) -> &[u64] {
-        let words = self.block_words();
+        let words = self.block_words;
         &self.full[r * words..(r + 1) * words]
     }
 
@@ -293,6 +292,7 @@ impl Interior {
     }
 
     /// Row `r` of the marks.
+    #[cfg(test)]
     pub(super) fn row(&self, r: usize) -> &[u64] {
         let words = self.n / 64;
         &self.bits[r * words..(r + 1) * words]
@@ -357,7 +357,7 @@ impl Interior {
         );
         // A loop written out, which the compiler keeps inline.
         for br in r0 / B..=r1 / B {
-            if !all_set(self.block_row(br), k0, k1) {
+            if !all_set_at(&self.full, br * self.block_words, k0, k1) {
                 return false;
             }
         }
@@ -417,7 +417,7 @@ impl Interior {
         let mut cells = None;
         for block_row in in_blocks.rows.0..=in_blocks.rows.1 {
             let (k0, k1) = blocks.step(block_row);
-            if all_set(self.block_row(block_row), k0, k1) {
+            if all_set_at(&self.full, block_row * self.block_words, k0, k1) {
                 continue;
             }
             let cells = cells.get_or_insert_with(|| blocks.over(c, self.n));
@@ -425,7 +425,7 @@ impl Interior {
             cells.enter(*rows.start());
             for r in rows {
                 let (k0, k1) = cells.step(r);
-                if !all_set(self.row(r), k0, k1) {
+                if !all_set_at(&self.bits, r * (self.n / 64), k0, k1) {
                     return false;
                 }
             }
@@ -633,20 +633,29 @@ pub(super) fn span_masks(k0: usize, k1: usize) -> (usize, usize, u64, u64) {
 
 /// Whether the bits `k0..=k1` (`k0 ≤ k1`) of the row `words` are all set.
 #[inline(always)]
+#[cfg(test)]
 pub(super) fn all_set(words: &[u64], k0: usize, k1: usize) -> bool {
-    all_masked(words, span_masks(k0, k1))
+    all_set_at(words, 0, k0, k1)
 }
 
-/// Whether the bits of the row `words` that [`span_masks`] gave are all
-/// set.
+/// Whether the bits `k0..=k1` (`k0 ≤ k1`) of the row that begins at word
+/// `at` of `bits` are all set: [`all_set`] of that row, its words indexed
+/// in `bits` (one bounds check a word read, none for the row's slice).
 #[inline(always)]
-fn all_masked(words: &[u64], (i0, i1, first, last): (usize, usize, u64, u64)) -> bool {
+fn all_set_at(bits: &[u64], at: usize, k0: usize, k1: usize) -> bool {
+    all_masked(bits, at, span_masks(k0, k1))
+}
+
+/// Whether the bits that [`span_masks`] gave of the row that begins at
+/// word `at` of `bits` are all set.
+#[inline(always)]
+fn all_masked(bits: &[u64], at: usize, (i0, i1, first, last): (usize, usize, u64, u64)) -> bool {
     if i0 == i1 {
-        words[i0] & first & last == first & last
+        bits[at + i0] & first & last == first & last
     } else {
-        words[i0] & first == first
-            && words[i0 + 1..i1].iter().all(|&w| w == u64::MAX)
-            && words[i1] & last == last
+        bits[at + i0] & first == first
+            && bits[at + i0 + 1..at + i1].iter().all(|&w| w == u64::MAX)
+            && bits[at + i1] & last == last
     }
 }
 
