@@ -639,7 +639,7 @@ pub(super) fn all_set(words: &[u64], k0: usize, k1: usize) -> bool {
 }
 
 /// Whether the bits `k0..=k1` (`k0 ≤ k1`) of the row that begins at word
-/// `at` of `bits` are all set: [`all_set`] of that row, its words indexed
+/// `at` of `bits` are all set: the test of that row alone, its words indexed
 /// in `bits` (one bounds check a word read, none for the row's slice).
 #[inline(always)]
 fn all_set_at(bits: &[u64], at: usize, k0: usize, k1: usize) -> bool {
