@@ -457,7 +457,7 @@ pub enum Search {
     /// grid cost up to 10 times the tree from about 10⁴ triangles on,
     /// depending on how the layers lie, and 11 times on a fan of 10⁵
     /// slivers covering part of the light, while the tree cost at most
-    /// 1.8 times the grid (5000 stacked layers) and 1.3 times (a fan
+    /// 1.8 times the grid (5000 stacked layers) and 1.2 times (a fan
     /// covering the light whole). A pile of small images (few large) keeps
     /// the grid.
     #[default]
