@@ -66,6 +66,9 @@ pub(super) struct Interior {
     /// How many triangles the last build left out, their cells marked
     /// already.
     pub(super) skipped: usize,
+    /// Which ones (bit `i % 64` of word `i / 64` for the triangle `i`),
+    /// where any were.
+    left_out: Vec<u64>,
 }
 
 impl Interior {
@@ -114,6 +117,7 @@ impl Interior {
     pub(super) fn build_skipping<const SKIP: bool>(&mut self, tris: &[Tri], half: f64) -> bool {
         self.n = 0;
         self.skipped = 0;
+        self.left_out.clear();
         if tris.len() < Interior::FEWEST {
             return false;
         }
@@ -159,6 +163,10 @@ impl Interior {
         let last = n as f64;
         'tris: for (index, t) in tris.iter().enumerate() {
             if SKIP && index >= skip_from && self.marked_already(t) {
+                if self.left_out.is_empty() {
+                    self.left_out.resize(tris.len().div_ceil(64), 0);
+                }
+                self.left_out[index / 64] |= 1 << (index % 64);
                 self.skipped += 1;
                 continue;
             }
@@ -247,6 +255,19 @@ impl Interior {
         let masks = span_masks(k0, k1);
         let held = |r: usize| all_masked(&self.bits, r * (self.n / 64), masks);
         held(r0) && held(r1) && (r0 + 1..r1).all(held)
+    }
+
+    /// Whether the last build left the triangle `i` out, its bounds' cells
+    /// marked already: then every point of it lies within a few units in
+    /// the last place of a marked cell ([`Interior::marked_already`]'s
+    /// rows and columns hold its bounds, to the rounding of their cells),
+    /// so at least half [`Interior::margin`] inside some triangle the
+    /// build kept, not itself.
+    #[inline(always)]
+    pub(super) fn left_out(&self, i: usize) -> bool {
+        self.left_out
+            .get(i / 64)
+            .is_some_and(|&w| (w >> (i % 64)) & 1 != 0)
     }
 
     /// How far inside some triangle every point of a marked cell lies:
