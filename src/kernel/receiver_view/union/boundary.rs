@@ -20,7 +20,9 @@ use glam::DVec2;
 /// by area). The helpers it calls per edge, per candidate and per triangle
 /// are `#[inline(always)]`, else the compiler keeps them out of line in its
 /// two copies (chosen by measurement: see benches/README.md § The union's
-/// constants and its two copies of the loop).
+/// constants and its two copies of the loop); so is it, in
+/// [`union_area`](super::union_area) (measured: see benches/README.md §
+/// The union's search).
 ///
 /// The bound (`B`) sums: each edge's allowance unless it is shared (an
 /// edge and its exact reverse move together, both sides covered) or
@@ -40,6 +42,7 @@ use glam::DVec2;
 /// kernel's (`3 ε` a piece for the unit disk; the square's `½ a × b`
 /// likewise); and the compensated sum's (`2 ε` of the sum and `4 n ε²` of
 /// the terms' magnitudes).
+#[inline(always)]
 pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
     tris: &[Tri],
     (weights, reach): (&[[f64; 3]], f64),
@@ -108,12 +111,13 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
             unbuilt_left = 0;
         }
         if !built {
-            if DEEP && !B {
-                // Without the triangles the raster left out (see
-                // [`walk_edges`]).
-                grid.build_without::<DEEP>(tris, half, |j| interior.left_out(j));
+            if DEEP {
+                // In the raster's order by area, without the triangles it
+                // left out where there is no bound (see [`walk_edges`]).
+                let left_out = |j: usize| !B && interior.left_out(j);
+                grid.build_without::<true>(tris, half, left_out, interior.by_area());
             } else {
-                grid.build::<DEEP>(tris, half);
+                grid.build::<false>(tris, half);
             }
             stamp.clear();
             stamp.resize(tris.len(), u32::MAX);

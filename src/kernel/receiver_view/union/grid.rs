@@ -111,17 +111,19 @@ impl Grid {
     }
 
     pub(super) fn build<const BY_AREA: bool>(&mut self, tris: &[Tri], half: f64) {
-        self.build_without::<BY_AREA>(tris, half, |_| false);
+        self.build_without::<BY_AREA>(tris, half, |_| false, None);
     }
 
     /// [`Grid::build`] with the triangles `i` that `left_out(i)` says
     /// listed in no cell (the same cells, and the others in the same
-    /// order).
+    /// order); with `BY_AREA`, `by_area` may give every triangle's key of
+    /// [`Grid::put_by_area`] and index, sorted (the same order, no sort).
     pub(super) fn build_without<const BY_AREA: bool>(
         &mut self,
         tris: &[Tri],
         half: f64,
         left_out: impl Fn(usize) -> bool,
+        by_area: Option<&[(u64, u32)]>,
     ) {
         let side = Grid::side(tris.len());
         self.half = half;
@@ -150,7 +152,7 @@ impl Grid {
         }
         self.fine.prefix(&mut self.fill);
         if BY_AREA {
-            self.put_by_area(tris);
+            self.put_by_area(tris, by_area);
         } else {
             for (range, i) in self.ranges.iter().zip(0_u32..) {
                 if *range != Grid::COARSE {
@@ -182,8 +184,20 @@ impl Grid {
     }
 
     /// Lists the triangles of the fine level ([`Grid::ranges`]) in it, by
-    /// decreasing area.
-    fn put_by_area(&mut self, tris: &[Tri]) {
+    /// decreasing area: the key `!doubled_area` and the index, sorted, or
+    /// the sorted keys and indices of every triangle given (`sorted`:
+    /// those of the fine level among them are in the order their own sort
+    /// gives, the pairs being distinct).
+    fn put_by_area(&mut self, tris: &[Tri], sorted: Option<&[(u64, u32)]>) {
+        if let Some(sorted) = sorted {
+            for &(_, i) in sorted {
+                let range = self.ranges[i as usize];
+                if range != Grid::COARSE {
+                    self.fine.put_in(cells(range), i, &mut self.fill);
+                }
+            }
+            return;
+        }
         self.order.clear();
         self.order.extend(
             tris.iter()

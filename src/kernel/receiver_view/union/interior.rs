@@ -69,6 +69,9 @@ pub(super) struct Interior {
     /// Which ones (bit `i % 64` of word `i / 64` for the triangle `i`),
     /// where any were.
     left_out: Vec<u64>,
+    /// The triangles by decreasing area (a key and the index), the order
+    /// they are marked in.
+    order: Vec<(u64, u32)>,
 }
 
 impl Interior {
@@ -89,14 +92,15 @@ impl Interior {
     /// The most cells a side.
     const MOST: usize = 1024;
 
-    /// The estimated depth of the triangles marked so far from which a
-    /// triangle whose bounds' cells are all marked already is left out:
+    /// The estimated depth of the triangles marked so far (larger ones
+    /// first) from which a triangle whose bounds' cells are all marked
+    /// already is left out:
     /// testing its bounds costs a few instructions a row against tens for
     /// marking it, and a triangle left out takes no part in the union's
     /// walk and grid either ([`Interior::left_out`]): it pays where the
     /// pile is deep enough that many bounds lie in marked cells (ours,
     /// chosen by measurement: see benches/README.md § The union's search).
-    const SKIP_DEPTH: f64 = 2.0;
+    const SKIP_DEPTH: f64 = 1.0;
 
     /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
     pub(super) const BLOCK: usize = 8;
@@ -114,7 +118,10 @@ impl Interior {
 
     /// [`Interior::build`]; with `SKIP`, a triangle whose bounds lie in
     /// cells marked already is left out (the same marks), once the
-    /// triangles before it pile [`Interior::SKIP_DEPTH`] deep.
+    /// triangles before it pile [`Interior::SKIP_DEPTH`] deep. The
+    /// triangles are marked by decreasing area ([`Interior::by_area`]),
+    /// so that the small ones, most often inside the marks of larger ones,
+    /// come last: the raster is the same in any order.
     pub(super) fn build_skipping<const SKIP: bool>(&mut self, tris: &[Tri], half: f64) -> bool {
         self.n = 0;
         self.skipped = 0;
@@ -162,12 +169,23 @@ impl Interior {
         self.bits.resize(n * (n / 64), 0);
         let margin = self.w / f64::from(1_u32 << 20);
         let last = n as f64;
-        'tris: for (index, t) in tris.iter().enumerate() {
+        // Larger triangles first (the grid's fine level lists them in this
+        // order too).
+        let mut order = std::mem::take(&mut self.order);
+        order.clear();
+        order.extend(
+            tris.iter()
+                .zip(0_u32..)
+                .map(|(t, i)| (!t.doubled_area().to_bits(), i)),
+        );
+        order.sort_unstable();
+        'tris: for (index, &(_, i)) in order.iter().enumerate() {
+            let (t, i) = (&tris[i as usize], i as usize);
             if SKIP && index >= skip_from && self.marked_already(t) {
                 if self.left_out.is_empty() {
                     self.left_out.resize(tris.len().div_ceil(64), 0);
                 }
-                self.left_out[index / 64] |= 1 << (index % 64);
+                self.left_out[i / 64] |= 1 << (i % 64);
                 self.skipped += 1;
                 continue;
             }
@@ -237,6 +255,7 @@ impl Interior {
                 }
             }
         }
+        self.order = order;
         self.find_full_blocks();
         true
     }
@@ -269,6 +288,13 @@ impl Interior {
         self.left_out
             .get(i / 64)
             .is_some_and(|&w| (w >> (i % 64)) & 1 != 0)
+    }
+
+    /// Every triangle's key `!doubled_area` (by its bits) and index,
+    /// sorted: by decreasing area, the order the last build marked them in
+    /// (`None` where it was not built).
+    pub(super) fn by_area(&self) -> Option<&[(u64, u32)]> {
+        (self.n > 0).then_some(&self.order[..])
     }
 
     /// How far inside some triangle every point of a marked cell lies:
