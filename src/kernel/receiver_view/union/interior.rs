@@ -129,17 +129,8 @@ impl Interior {
         if tris.len() < Interior::FEWEST {
             return false;
         }
-        // The depth and mean width from an even sample of the triangles
-        // (cheaper than a pass over all of them on shallow piles).
-        let step = tris.len() / Interior::SAMPLES;
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(-f64::INFINITY));
-        let (mut area, mut width) = (0.0, 0.0);
-        for t in tris.iter().step_by(step).take(Interior::SAMPLES) {
-            (lo, hi) = (lo.min(t.lo), hi.max(t.hi));
-            area += 0.5 * t.doubled_area();
-            width += (t.hi - t.lo).max_element();
-        }
-        let bounds = (hi - lo).x * (hi - lo).y;
+        // The depth and mean width, estimated.
+        let (bounds, area, width) = sampled(tris);
         let scale = tris.len() as f64 / Interior::SAMPLES as f64;
         if area * scale < Interior::DEPTH * bounds {
             return false;
@@ -172,21 +163,11 @@ impl Interior {
         // Larger triangles first (the grid's fine level lists them in this
         // order too).
         let mut order = std::mem::take(&mut self.order);
-        order.clear();
-        order.extend(
-            tris.iter()
-                .zip(0_u32..)
-                .map(|(t, i)| (!t.doubled_area().to_bits(), i)),
-        );
-        order.sort_unstable();
+        sort_by_area(tris, &mut order);
         'tris: for (index, &(_, i)) in order.iter().enumerate() {
             let (t, i) = (&tris[i as usize], i as usize);
             if SKIP && index >= skip_from && self.marked_already(t) {
-                if self.left_out.is_empty() {
-                    self.left_out.resize(tris.len().div_ceil(64), 0);
-                }
-                self.left_out[i / 64] |= 1 << (i % 64);
-                self.skipped += 1;
+                self.leave_out(i, tris.len());
                 continue;
             }
             // The edges' lines as bounds on the cells of a row inside them.
@@ -258,6 +239,15 @@ impl Interior {
         self.order = order;
         self.find_full_blocks();
         true
+    }
+
+    /// Records the triangle `i` of `count` as left out.
+    fn leave_out(&mut self, i: usize, count: usize) {
+        if self.left_out.is_empty() {
+            self.left_out.resize(count.div_ceil(64), 0);
+        }
+        self.left_out[i / 64] |= 1 << (i % 64);
+        self.skipped += 1;
     }
 
     /// Whether every cell of the rows and columns of `t`'s bounds (a
@@ -496,6 +486,33 @@ impl Interior {
     pub(super) fn cells_cover(&self, c: &Course) -> bool {
         walk_covers(c, self.n, |r| self.row(r))
     }
+}
+
+/// The area of the common bounds, the summed area and the summed width
+/// of the bounds of an even sample of [`Interior::SAMPLES`] triangles
+/// (cheaper than a pass over all of them on shallow piles).
+fn sampled(tris: &[Tri]) -> (f64, f64, f64) {
+    let step = tris.len() / Interior::SAMPLES;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(-f64::INFINITY));
+    let (mut area, mut width) = (0.0, 0.0);
+    for t in tris.iter().step_by(step).take(Interior::SAMPLES) {
+        (lo, hi) = (lo.min(t.lo), hi.max(t.hi));
+        area += 0.5 * t.doubled_area();
+        width += (t.hi - t.lo).max_element();
+    }
+    ((hi - lo).x * (hi - lo).y, area, width)
+}
+
+/// Every triangle's key `!doubled_area` (by its bits) and index into
+/// `order`, sorted: by decreasing area.
+fn sort_by_area(tris: &[Tri], order: &mut Vec<(u64, u32)>) {
+    order.clear();
+    order.extend(
+        tris.iter()
+            .zip(0_u32..)
+            .map(|(t, i)| (!t.doubled_area().to_bits(), i)),
+    );
+    order.sort_unstable();
 }
 
 /// A triangle's edges as [`Interior::build`] bounds the cells of a row
