@@ -304,9 +304,7 @@ fn a_triangle_held_has_every_edge_covered() {
 /// which the test requires.
 #[test]
 fn triangles_left_out_lie_inside_the_kept_ones() {
-    let mut rng = Rng::new(61);
-    let mut scratch = UnionScratch::default();
-    let mut left_out = 0;
+    let (mut rng, mut scratch, mut left_out) = (Rng::new(61), UnionScratch::default(), 0);
     for case in 0..6 {
         let (h, tris) = sized_pile(case, &mut rng, (8000, 4000), (10.0, 18.0));
         let measure = if h > 1.0 {
