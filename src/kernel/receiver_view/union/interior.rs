@@ -66,6 +66,12 @@ pub(super) struct Interior {
     /// How many triangles the last build left out, their cells marked
     /// already.
     pub(super) skipped: usize,
+    /// Which ones (bit `i % 64` of word `i / 64` for the triangle `i`),
+    /// where any were.
+    left_out: Vec<u64>,
+    /// The triangles by decreasing area (a key and the index), the order
+    /// they are marked in.
+    order: Vec<(u64, u32)>,
 }
 
 impl Interior {
@@ -86,13 +92,15 @@ impl Interior {
     /// The most cells a side.
     const MOST: usize = 1024;
 
-    /// The estimated depth of the triangles marked so far from which a
-    /// triangle whose bounds' cells are all marked already is left out:
+    /// The estimated depth of the triangles marked so far (larger ones
+    /// first) from which a triangle whose bounds' cells are all marked
+    /// already is left out:
     /// testing its bounds costs a few instructions a row against tens for
-    /// marking it, and pays where the pile is deep enough that most bounds
-    /// lie in marked cells (ours, chosen by measurement: see
-    /// benches/README.md § The union's search).
-    const SKIP_DEPTH: f64 = 4.0;
+    /// marking it, and a triangle left out takes no part in the union's
+    /// walk and grid either ([`Interior::left_out`]): it pays where the
+    /// pile is deep enough that many bounds lie in marked cells (ours,
+    /// chosen by measurement: see benches/README.md § The union's search).
+    const SKIP_DEPTH: f64 = 1.0;
 
     /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
     pub(super) const BLOCK: usize = 8;
@@ -110,24 +118,19 @@ impl Interior {
 
     /// [`Interior::build`]; with `SKIP`, a triangle whose bounds lie in
     /// cells marked already is left out (the same marks), once the
-    /// triangles before it pile [`Interior::SKIP_DEPTH`] deep.
+    /// triangles before it pile [`Interior::SKIP_DEPTH`] deep. The
+    /// triangles are marked by decreasing area ([`Interior::by_area`]),
+    /// so that the small ones, most often inside the marks of larger ones,
+    /// come last: the raster is the same in any order.
     pub(super) fn build_skipping<const SKIP: bool>(&mut self, tris: &[Tri], half: f64) -> bool {
         self.n = 0;
         self.skipped = 0;
+        self.left_out.clear();
         if tris.len() < Interior::FEWEST {
             return false;
         }
-        // The depth and mean width from an even sample of the triangles
-        // (cheaper than a pass over all of them on shallow piles).
-        let step = tris.len() / Interior::SAMPLES;
-        let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(-f64::INFINITY));
-        let (mut area, mut width) = (0.0, 0.0);
-        for t in tris.iter().step_by(step).take(Interior::SAMPLES) {
-            (lo, hi) = (lo.min(t.lo), hi.max(t.hi));
-            area += 0.5 * t.doubled_area();
-            width += (t.hi - t.lo).max_element();
-        }
-        let bounds = (hi - lo).x * (hi - lo).y;
+        // The depth and mean width, estimated.
+        let (bounds, area, width) = sampled(tris);
         let scale = tris.len() as f64 / Interior::SAMPLES as f64;
         if area * scale < Interior::DEPTH * bounds {
             return false;
@@ -157,9 +160,14 @@ impl Interior {
         self.bits.resize(n * (n / 64), 0);
         let margin = self.w / f64::from(1_u32 << 20);
         let last = n as f64;
-        'tris: for (index, t) in tris.iter().enumerate() {
+        // Larger triangles first (the grid's fine level lists them in this
+        // order too).
+        let mut order = std::mem::take(&mut self.order);
+        sort_by_area(tris, &mut order);
+        'tris: for (index, &(_, i)) in order.iter().enumerate() {
+            let (t, i) = (&tris[i as usize], i as usize);
             if SKIP && index >= skip_from && self.marked_already(t) {
-                self.skipped += 1;
+                self.leave_out(i, tris.len());
                 continue;
             }
             // The edges' lines as bounds on the cells of a row inside them.
@@ -228,8 +236,18 @@ impl Interior {
                 }
             }
         }
+        self.order = order;
         self.find_full_blocks();
         true
+    }
+
+    /// Records the triangle `i` of `count` as left out.
+    fn leave_out(&mut self, i: usize, count: usize) {
+        if self.left_out.is_empty() {
+            self.left_out.resize(count.div_ceil(64), 0);
+        }
+        self.left_out[i / 64] |= 1 << (i % 64);
+        self.skipped += 1;
     }
 
     /// Whether every cell of the rows and columns of `t`'s bounds (a
@@ -247,6 +265,26 @@ impl Interior {
         let masks = span_masks(k0, k1);
         let held = |r: usize| all_masked(&self.bits, r * (self.n / 64), masks);
         held(r0) && held(r1) && (r0 + 1..r1).all(held)
+    }
+
+    /// Whether the last build left the triangle `i` out, its bounds' cells
+    /// marked already: then every point of it lies within a few units in
+    /// the last place of a marked cell ([`Interior::marked_already`]'s
+    /// rows and columns hold its bounds, to the rounding of their cells),
+    /// so at least half [`Interior::margin`] inside some triangle the
+    /// build kept, not itself.
+    #[inline(always)]
+    pub(super) fn left_out(&self, i: usize) -> bool {
+        self.left_out
+            .get(i / 64)
+            .is_some_and(|&w| (w >> (i % 64)) & 1 != 0)
+    }
+
+    /// Every triangle's key `!doubled_area` (by its bits) and index,
+    /// sorted: by decreasing area, the order the last build marked them in
+    /// (`None` where it was not built).
+    pub(super) fn by_area(&self) -> Option<&[(u64, u32)]> {
+        (self.n > 0).then_some(&self.order[..])
     }
 
     /// How far inside some triangle every point of a marked cell lies:
@@ -448,6 +486,33 @@ impl Interior {
     pub(super) fn cells_cover(&self, c: &Course) -> bool {
         walk_covers(c, self.n, |r| self.row(r))
     }
+}
+
+/// The area of the common bounds, the summed area and the summed width
+/// of the bounds of an even sample of [`Interior::SAMPLES`] triangles
+/// (cheaper than a pass over all of them on shallow piles).
+fn sampled(tris: &[Tri]) -> (f64, f64, f64) {
+    let step = tris.len() / Interior::SAMPLES;
+    let (mut lo, mut hi) = (DVec2::splat(f64::INFINITY), DVec2::splat(-f64::INFINITY));
+    let (mut area, mut width) = (0.0, 0.0);
+    for t in tris.iter().step_by(step).take(Interior::SAMPLES) {
+        (lo, hi) = (lo.min(t.lo), hi.max(t.hi));
+        area += 0.5 * t.doubled_area();
+        width += (t.hi - t.lo).max_element();
+    }
+    ((hi - lo).x * (hi - lo).y, area, width)
+}
+
+/// Every triangle's key `!doubled_area` (by its bits) and index into
+/// `order`, sorted: by decreasing area.
+fn sort_by_area(tris: &[Tri], order: &mut Vec<(u64, u32)>) {
+    order.clear();
+    order.extend(
+        tris.iter()
+            .zip(0_u32..)
+            .map(|(t, i)| (!t.doubled_area().to_bits(), i)),
+    );
+    order.sort_unstable();
 }
 
 /// A triangle's edges as [`Interior::build`] bounds the cells of a row
