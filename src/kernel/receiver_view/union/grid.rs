@@ -110,6 +110,14 @@ impl Grid {
         !(d.x * d.y).to_bits()
     }
 
+    /// The key that orders the fine level's triangles under a deep pile
+    /// ([`Grid::put_by_area`]; [`Interior`](super::interior::Interior)
+    /// marks in the same order): decreasing area, by the bits of the
+    /// doubled area.
+    pub(super) fn fine_key(t: &Tri) -> u64 {
+        !t.doubled_area().to_bits()
+    }
+
     pub(super) fn build<const BY_AREA: bool>(&mut self, tris: &[Tri], half: f64) {
         self.build_in::<BY_AREA>(tris, half, None);
     }
@@ -178,7 +186,7 @@ impl Grid {
     }
 
     /// Lists the triangles of the fine level ([`Grid::ranges`]) in it, by
-    /// decreasing area: the key `!doubled_area` and the index, sorted, or
+    /// decreasing area: the key [`Grid::fine_key`] and the index, sorted, or
     /// the sorted keys and indices of every triangle given (`sorted`:
     /// those of the fine level among them are in the order their own sort
     /// gives, the pairs being distinct).
@@ -198,7 +206,7 @@ impl Grid {
                 .zip(&self.ranges)
                 .zip(0_u32..)
                 .filter(|((_, range), _)| **range != Grid::COARSE)
-                .map(|((t, _), i)| (!t.doubled_area().to_bits(), i)),
+                .map(|((t, _), i)| (Grid::fine_key(t), i)),
         );
         self.order.sort_unstable();
         for &(_, i) in &self.order {

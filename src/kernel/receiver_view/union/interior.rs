@@ -293,8 +293,8 @@ impl Interior {
             .is_some_and(|&w| (w >> (i % 64)) & 1 != 0)
     }
 
-    /// Every triangle's key `!doubled_area` (by its bits) and index,
-    /// sorted: by decreasing area, the order the last build marked them in
+    /// Every triangle's key [`Grid::fine_key`] and index, sorted: by
+    /// decreasing area, the order the last build marked them in
     /// (`None` where it was not built).
     pub(super) fn by_area(&self) -> Option<&[(u64, u32)]> {
         (self.n > 0).then_some(&self.order[..])
@@ -516,14 +516,14 @@ fn sampled(tris: &[Tri]) -> (f64, f64, f64) {
     ((hi - lo).x * (hi - lo).y, area, width)
 }
 
-/// Every triangle's key `!doubled_area` (by its bits) and index into
-/// `order`, sorted: by decreasing area.
+/// Every triangle's key [`Grid::fine_key`] and index into `order`,
+/// sorted: by decreasing area, the grid's order.
 fn sort_by_area(tris: &[Tri], order: &mut Vec<(u64, u32)>) {
     order.clear();
     order.extend(
         tris.iter()
             .zip(0_u32..)
-            .map(|(t, i)| (!t.doubled_area().to_bits(), i)),
+            .map(|(t, i)| (Grid::fine_key(t), i)),
     );
     order.sort_unstable();
 }
