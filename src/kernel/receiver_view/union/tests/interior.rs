@@ -591,7 +591,6 @@ fn long_and_sliver() -> (Tri, Tri) {
 /// −0.75)`, a unit away from the sliver (near `(0.1, 0.44)`), and the
 /// rounded cuts leave a span `4·10⁻¹⁵` long there.
 #[test]
-#[ignore = "fails: a sliver's span lies far outside it (covered_span's rounded cuts)"]
 fn a_slivers_span_lies_within_rounding_of_it() {
     let (long, sliver) = long_and_sliver();
     let (a, b) = long.edge(0);
@@ -672,7 +671,6 @@ fn a_left_out_sliver_keeps_the_area() {
 /// triangle's edge (as a search over every triangle does), which the
 /// tree's boxes leave out.
 #[test]
-#[ignore = "fails: the grid meets a sliver's span far from it, the tree does not"]
 fn ten_slivers_give_the_grids_area_in_the_tree() {
     let h = 1.5;
     // One triangle a line: its corners' x and y in turn.
