@@ -112,8 +112,10 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
         }
         if !built {
             if DEEP {
-                // In the raster's order by area.
-                grid.build_in::<true>(tris, half, interior.by_area());
+                // In the raster's order by area, without the triangles it
+                // left out where there is no bound (see [`walk_edges`]).
+                let left_out = |j: usize| !B && interior.left_out(j);
+                grid.build_without::<true>(tris, half, left_out, interior.by_area());
             } else {
                 grid.build::<false>(tris, half);
             }
@@ -291,6 +293,29 @@ struct Settle<'s> {
 /// dropped, and every other edge goes to `search`, which adds its pieces
 /// on the boundary to the sum (and with `B`, their cuts' errors to the
 /// bound); with `B`, the bound's allowances of [`union_area_in`] too.
+///
+/// Without `B`, a triangle the raster left out ([`Interior::left_out`]:
+/// its bounds' cells were marked by others) takes no part: its edges are
+/// neither asked about nor searched, and the grid of [`union_area_in`]
+/// lists it in no cell. That changes no bit of the area. Every point of
+/// such a triangle `t` lies at least `μ / 2` inside a triangle `j` the
+/// raster kept (`μ` its [`margin`](Interior::margin)), and `j` is not
+/// the searched edge's own, whose points are on its boundary. So no
+/// point of `t` is on the union's boundary, and none of its edges has a
+/// piece there (an edge on a side of the square has none of its points
+/// that deep, so `t` has no edge the sides' sweep takes). And on another
+/// triangle's edge `e`, `t`'s span lies inside the union of the spans the
+/// search finds without `t`: each point of it, its ends to rounding, lies
+/// `μ / 2` inside some such `j`, whose bounds meet `e`'s there, and whose
+/// span then holds the point's parameter with at least `2⁻³²` of the
+/// range to spare (the argument of [`Interior`]), far above the spans'
+/// rounding; where the cell of that point is left out of the search
+/// ([`searched_cells`]), its covered passage holds it instead. The union
+/// of the spans is the same, so are the pieces outside it, in the same
+/// order. The table of shared edges still holds `t`'s edges: an edge
+/// whose reverse is one of them is dropped as before. With `B` the walk
+/// and the grid keep `t`, the bound's allowances and the spans its
+/// cut errors are found from being those of every edge searched.
 #[inline(always)]
 fn walk_edges<const DEEP: bool, const B: bool>(
     tris: &[Tri],
@@ -310,6 +335,10 @@ fn walk_edges<const DEEP: bool, const B: bool>(
     let mut sum = Sum::default();
     let mut bound = 0.0;
     for (i, ti) in tris.iter().enumerate() {
+        if DEEP && !B && interior.left_out(i) {
+            // Inside the others' union: no part of the boundary.
+            continue;
+        }
         // Every edge covered by the raster, shown once for the triangle.
         let held = DEEP && interior.holds_edges_of(ti);
         #[allow(clippy::needless_range_loop)] // `k` names the edge and its weight.

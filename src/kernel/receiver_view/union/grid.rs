@@ -37,7 +37,7 @@ pub(super) struct Grid {
     order: Vec<(u64, u32)>,
     /// Each triangle's cells in the fine level while building (found once
     /// for the count and the listing), [`Grid::COARSE`] for one on a
-    /// coarse level.
+    /// coarse level or left out.
     ranges: Vec<[u16; 4]>,
 }
 
@@ -62,7 +62,7 @@ impl Grid {
     /// building it quadratic, each many fine cells wide, go up).
     pub(super) const LARGE: f64 = 4.0;
 
-    /// In [`Grid::ranges`], a triangle on a coarse level (no fine cell is
+    /// In [`Grid::ranges`], a triangle on a coarse level or left out (no fine cell is
     /// numbered so: the fine grid is at most [`Grid::MAX_SIDE`] a side).
     const COARSE: [u16; 4] = [u16::MAX; 4];
 
@@ -119,16 +119,18 @@ impl Grid {
     }
 
     pub(super) fn build<const BY_AREA: bool>(&mut self, tris: &[Tri], half: f64) {
-        self.build_in::<BY_AREA>(tris, half, None);
+        self.build_without::<BY_AREA>(tris, half, |_| false, None);
     }
 
-    /// [`Grid::build`]; with `BY_AREA`, `by_area` may give every
-    /// triangle's key of [`Grid::put_by_area`] and index, sorted (the same
-    /// lists, no sort).
-    pub(super) fn build_in<const BY_AREA: bool>(
+    /// [`Grid::build`] with the triangles `i` that `left_out(i)` says
+    /// listed in no cell (the same cells, and the others in the same
+    /// order); with `BY_AREA`, `by_area` may give every triangle's key of
+    /// [`Grid::put_by_area`] and index, sorted (the same order, no sort).
+    pub(super) fn build_without<const BY_AREA: bool>(
         &mut self,
         tris: &[Tri],
         half: f64,
+        left_out: impl Fn(usize) -> bool,
         by_area: Option<&[(u64, u32)]>,
     ) {
         let side = Grid::side(tris.len());
@@ -138,6 +140,10 @@ impl Grid {
         self.large.clear();
         self.ranges.clear();
         for (t, i) in tris.iter().zip(0_u32..) {
+            if left_out(i as usize) {
+                self.ranges.push(Grid::COARSE);
+                continue;
+            }
             let range = match Grid::level_of(t, side, levels, half) {
                 Some(k) => {
                     self.large.push((k, Grid::area_key(t), i));

@@ -67,8 +67,7 @@ pub(super) struct Interior {
     /// already.
     pub(super) skipped: usize,
     /// Which ones (bit `i % 64` of word `i / 64` for the triangle `i`),
-    /// where any were: for the tests.
-    #[cfg(test)]
+    /// where any were.
     left_out: Vec<u64>,
     /// The triangles by decreasing area (a key and the index), the order
     /// they are marked in.
@@ -95,10 +94,12 @@ impl Interior {
 
     /// The estimated depth of the triangles marked so far (larger ones
     /// first) from which a triangle whose bounds' cells are all marked
-    /// already is left out: testing its bounds costs a few instructions a
-    /// row against tens for marking it, and pays where the pile is deep
-    /// enough that many bounds lie in marked cells (ours, chosen by
-    /// measurement: see benches/README.md § The union's search).
+    /// already is left out:
+    /// testing its bounds costs a few instructions a row against tens for
+    /// marking it, and a triangle left out takes no part in the union's
+    /// walk and grid either ([`Interior::left_out`]): it pays where the
+    /// pile is deep enough that many bounds lie in marked cells (ours,
+    /// chosen by measurement: see benches/README.md § The union's search).
     const SKIP_DEPTH: f64 = 1.0;
 
     /// Cells a side of a block ([`Interior::full`]), a power of two below 64.
@@ -124,7 +125,6 @@ impl Interior {
     pub(super) fn build_skipping<const SKIP: bool>(&mut self, tris: &[Tri], half: f64) -> bool {
         self.n = 0;
         self.skipped = 0;
-        #[cfg(test)]
         self.left_out.clear();
         if tris.len() < Interior::FEWEST {
             return false;
@@ -243,14 +243,10 @@ impl Interior {
 
     /// Records the triangle `i` of `count` as left out.
     fn leave_out(&mut self, i: usize, count: usize) {
-        #[cfg(test)]
-        {
-            if self.left_out.is_empty() {
-                self.left_out.resize(count.div_ceil(64), 0);
-            }
-            self.left_out[i / 64] |= 1 << (i % 64);
+        if self.left_out.is_empty() {
+            self.left_out.resize(count.div_ceil(64), 0);
         }
-        let _ = (i, count);
+        self.left_out[i / 64] |= 1 << (i % 64);
         self.skipped += 1;
     }
 
@@ -277,16 +273,7 @@ impl Interior {
     /// rows and columns hold its bounds, to the rounding of their cells),
     /// so at least half [`Interior::margin`] inside some triangle the
     /// build kept, not itself.
-    ///
-    /// The union still walks and grids such a triangle. Leaving it out
-    /// would keep the area's bits for a triangle of ordinary shape, whose
-    /// spans on other edges lie inside the kept triangles' spans, but not
-    /// for a sliver: its span on an edge is cut at rounded parameters where
-    /// the edge crosses its three almost coinciding lines, and can be an
-    /// interval of rounding's size far from it, which splits a piece of the
-    /// boundary; leaving it out then moves the area by a few units in the
-    /// last place (benches/README.md § The union's search).
-    #[cfg(test)]
+    #[inline(always)]
     pub(super) fn left_out(&self, i: usize) -> bool {
         self.left_out
             .get(i / 64)

@@ -297,9 +297,9 @@ fn a_triangle_held_has_every_edge_covered() {
 
 /// The triangles the raster leaves out lie inside the others: each corner
 /// of the first 40 in every pile is strictly inside a triangle kept (exact
-/// predicates), and the union's area with the raster is the area without
-/// it, every edge searched, bit for bit (both measures), on random and
-/// lattice piles of 8000 to 12000
+/// predicates), and the union's area with them left out of the walk and
+/// the grid is the area without the raster, every triangle searched, bit
+/// for bit (both measures), on random and lattice piles of 8000 to 12000
 /// triangles 10 to 18 deep — deep enough that thousands are left out,
 /// which the test requires.
 #[test]
