@@ -81,11 +81,7 @@
 //! statistic is one pass over the images' bounds before either search
 //! is built, no predicate; a pile of small images never reaches it.
 //! Every choice gives the same value bit for bit and its own search's
-//! certified bound, except where a sliver image (a face seen nearly
-//! edge-on) cuts another image's edge in a span of rounding's size far
-//! from itself, which one search meets and another can leave out: there
-//! the values may differ by a few units in the last place (a known
-//! defect of the span test, [`UnionSearch`](receiver_view::UnionSearch)).
+//! certified bound.
 //!
 //! [`orient3d`]: crate::kernel::predicate::orient3d
 
@@ -107,8 +103,7 @@ impl Scratch {
     /// Chooses the union's search ([`UnionSearch`](receiver_view::UnionSearch)):
     /// by default `Auto`, decided per answer (module documentation, Cost);
     /// every choice gives the same value bit for bit, each with its own
-    /// search's certified bound (but for a few units in the last place
-    /// under sliver images: module documentation, Cost).
+    /// search's certified bound.
     pub fn set_union_search(&mut self, search: receiver_view::UnionSearch) {
         self.view.set_union_search(search);
     }

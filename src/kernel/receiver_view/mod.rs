@@ -237,9 +237,7 @@ impl Scratch {
     /// images that may cover it ([`UnionSearch`]; by default
     /// [`UnionSearch::Auto`], decided per answer from the images' sizes).
     /// Every choice gives the same value bit for bit, with its own
-    /// search's certified bound — except, by a few units in the last
-    /// place, where a sliver image's span of rounding's size lies far from
-    /// it (see [`UnionSearch`]); the explicit ones are there so that
+    /// search's certified bound; the explicit ones are there so that
     /// benchmarks and tests can compare the two designs.
     pub fn set_union_search(&mut self, search: UnionSearch) {
         self.union.search = search;

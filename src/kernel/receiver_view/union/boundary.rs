@@ -171,9 +171,7 @@ pub(super) fn union_area_in<const DEEP: bool, const B: bool>(
 /// grids: the same spans' union for every edge (the tree leaves out only
 /// triangles whose spans lie inside the cover already found; see
 /// [`tree`](super::tree)), so the same pieces, summed in the same order:
-/// the same area, bit for bit (but for a sliver's span of rounding's size
-/// far from it, which the grid can meet and the tree leave out: see
-/// [`Search`]), and the same bound where the images' reach
+/// the same area, bit for bit, and the same bound where the images' reach
 /// is unknown (infinite). With a known reach, the bands each search's
 /// spans hold deep inside drop out, and the spans found before an edge is
 /// covered whole differ between the searches: each bound holds, not
@@ -405,9 +403,7 @@ pub(super) fn prepare_sides(tris: &[Tri], half: f64, sides: &mut [SideSet; 4], s
 /// whole: then so is the answer). A cell is left out where the edge does
 /// not pass through it, or where [`Interior::covers`] the passage.
 ///
-/// That changes no bit of the area (but where a sliver listed only in
-/// left-out cells has a span of rounding's size elsewhere on the edge:
-/// see [`Search`]). Every point of a covered passage lies
+/// That changes no bit of the area. Every point of a covered passage lies
 /// in a marked cell, so inside some triangle whose span covers it with
 /// `2⁻³¹` of the parameter to spare (the argument of [`Interior`]): the
 /// passage lies within the union of the search's spans. A triangle listed
@@ -478,14 +474,7 @@ type Found<'a> = (&'a mut Vec<[f64; 4]>, &'a mut Vec<(f64, f64)>);
 
 /// How an edge finds the triangles that may cover it. Every choice gives
 /// the same area, bit for bit, and its search's own certified bound (see
-/// `union_area_tree`); they differ in cost only — with one known
-/// exception: a sliver (a triangle whose three edge lines almost coincide,
-/// the image of a face seen nearly edge-on) can cover another edge, where
-/// that edge crosses its lines far from it, in a span of rounding's size
-/// (its ends are rounded parameters); the grid tests every triangle whose
-/// bounds meet the edge's and finds that span, the tree's boxes can leave
-/// it out, and where it falls on a piece of the boundary the two areas
-/// differ by a few units in the last place. Further choices may be
+/// `union_area_tree`); they differ in cost only. Further choices may be
 /// added: a `match` on it needs a wildcard arm.
 #[derive(Clone, Copy, Debug, Default, PartialEq, Eq)]
 #[non_exhaustive]

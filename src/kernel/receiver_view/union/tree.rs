@@ -9,9 +9,9 @@
 //! or stacked images by the largest, which the root holds.
 //!
 //! Leaving a subtree out changes no span of the union: every span a
-//! triangle gives an edge has its ends' points, to within `10⁻¹¹` of the
-//! clip square's half-width (the cut parameters' rounding, at most
-//! `3 · 2⁻⁴⁰` of the edge), inside the triangle's bounds; the edge's part
+//! triangle gives an edge has its points within `2⁻³⁴` of the clip
+//! square's half-width of the triangle's bounds (a span that is not is
+//! none: see [`near_bounds`](super::span::near_bounds)); the edge's part
 //! in a node's box is taken with the box grown by `10⁻⁹` of the half-width,
 //! far above that and above the rounding of the clip (see [`Ray::range`]).
 //! So the spans of a subtree left out lie inside the cover already found,
