@@ -303,11 +303,13 @@ struct Settle<'s> {
 /// piece there (an edge on a side of the square has none of its points
 /// that deep, so `t` has no edge the sides' sweep takes). And on another
 /// triangle's edge `e`, `t`'s span lies inside the union of the spans the
-/// search finds without `t`: each point of it, its ends to rounding, lies
-/// `μ / 2` inside some such `j`, whose bounds meet `e`'s there, and whose
-/// span then holds the point's parameter with at least `2⁻³²` of the
-/// range to spare (the argument of [`Interior`]), far above the spans'
-/// rounding; where the cell of that point is left out of the search
+/// search finds without `t`: each point of it lies within `2⁻³³` of the
+/// half-width of `t` (a span's points do, of their triangle:
+/// [`near_bounds`](super::span::near_bounds)), against `μ / 2 ≥ 2⁻³⁰·⁵`
+/// of it, so at least `0.4 μ` inside some such `j`, whose bounds meet
+/// `e`'s there, and whose span then holds the point's parameter with at
+/// least `2⁻³³` of the range to spare (the argument of [`Interior`]), far
+/// above the spans' rounding; where the cell of that point is left out of the search
 /// ([`searched_cells`]), its covered passage holds it instead. The union
 /// of the spans is the same, so are the pieces outside it, in the same
 /// order. The table of shared edges still holds `t`'s edges: an edge

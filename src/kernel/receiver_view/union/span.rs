@@ -53,7 +53,15 @@ pub(super) fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option
 /// the rounded cuts there in the wrong order by rounding's size. Dropping
 /// it moves the area toward the exact union's, and makes the premise of
 /// every pruning of the search true: each span's points lie within
-/// `2⁻³⁴ m` (its length included) of its triangle's bounds.
+/// `2⁻³⁴ m` (its length included) of its triangle's bounds — and within
+/// `2⁻³³ m` of the triangle itself. For they also lie in the triangle
+/// with each line moved out by `δ = 2⁻³⁷ m`; a point of that outside the
+/// triangle and more than `δ` from it lies past a corner, within `δ` of
+/// its bisector and at most `δ / sin(α/2)` beyond it (`α` the corner's
+/// angle); where that reaches past `2⁻³⁵ m`, `α` is so sharp that the
+/// corner is the triangle's farthest point along the coordinate axis
+/// nearest the bisector, and the grown bounds stop the point within
+/// `√2 (2⁻³⁵ m + 2δ)` of it.
 #[inline(always)]
 pub(super) fn near_bounds(a: DVec2, b: DVec2, (s, e): (f64, f64), t: &Tri) -> bool {
     let d = b - a;
