@@ -1,7 +1,7 @@
 //! The pieces of the union's error bound: the cuts' errors, and the part
 //! of an edge's band that other triangles hold deep inside.
 
-use super::span::{cut_by_edge, near_bounds};
+use super::span::{credible, cut_by_edge};
 use super::tri::Tri;
 use crate::kernel::predicate::{orient2d_value_bounded, Bounded};
 use glam::DVec2;
@@ -78,7 +78,7 @@ pub(super) fn covered_span_bounded(
         (span[0], span[1]) = narrowed;
         inside = deep.narrow(inside, va, vb, (f1 - f0).abs().max_element());
     }
-    (span[0] < span[1] && near_bounds(a, b, (span[0], span[1]), t)).then_some((span, inside))
+    (span[0] < span[1] && credible(a, b, (span[0], span[1]), t)).then_some((span, inside))
 }
 
 /// How deep inside a covering triangle a point of a searched edge must lie

@@ -305,7 +305,7 @@ struct Settle<'s> {
 /// triangle's edge `e`, `t`'s span lies inside the union of the spans the
 /// search finds without `t`: each point of it lies within `2⁻³³` of the
 /// half-width of `t` (a span's points do, of their triangle:
-/// [`near_bounds`](super::span::near_bounds)), against `μ / 2 ≥ 2⁻³⁰·⁵`
+/// [`credible`](super::span::credible)), against `μ / 2 ≥ 2⁻³⁰·⁵`
 /// of it, so at least `0.4 μ` inside some such `j`, whose bounds meet
 /// `e`'s there, and whose span then holds the point's parameter with at
 /// least `2⁻³³` of the range to spare (the argument of [`Interior`]), far

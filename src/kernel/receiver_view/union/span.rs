@@ -9,8 +9,8 @@ use glam::DVec2;
 /// the edge runs along an edge of `t` the rule of the
 /// [module documentation](super) applies: covered when `t` lies on the
 /// other side, or on the same side and `t_first` (it comes first in index
-/// order). A span whose points lie nowhere near the triangle's bounds is
-/// none ([`near_bounds`]).
+/// order). A span of rounding's length whose points lie nowhere near the
+/// triangle's bounds is none ([`credible`]).
 #[inline(always)]
 pub(super) fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
     let mut span = (0.0_f64, 1.0_f64);
@@ -33,37 +33,48 @@ pub(super) fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option
     );
     cut_by_edge(&mut span, v[0], v[1], a, b, (v1, v2), t_first)?;
     cut_by_edge(&mut span, v[2], v[3], a, b, (v2, v0), t_first)?;
-    (span.0 < span.1 && near_bounds(a, b, span, t)).then_some(span)
+    (span.0 < span.1 && credible(a, b, span, t)).then_some(span)
 }
 
-/// Whether the points of the edge `a → b` at the parameters `span` come
-/// within `2⁻³⁵ m` of the triangle's bounds, `m` the largest coordinate of
-/// the edge's ends and the bounds.
+/// Whether a span of the edge `a → b` that [`covered_span`] found may be
+/// one the exact cuts leave non-empty: longer than `2⁻³⁷` of the edge, or
+/// its points within `2⁻³⁵ m` of the triangle's bounds, `m` the largest
+/// coordinate of the edge's ends and the bounds.
 ///
-/// Every span [`covered_span`] finds where the edge truly meets the
-/// triangle does: its ends are cuts by the triangle's lines, each within
-/// `3 · 2⁻⁴⁰` of the exact cut's parameter (signed areas within `2⁻⁴⁰`
-/// of their own value, of opposite signs), the exact span's ends are
-/// points of the triangle, and the maximum of the entering cuts and the
-/// minimum of the leaving ones move no further than the cuts do; with the
-/// point's own rounding, its ends lie within `2⁻³⁷ m` of the triangle.
-/// A span that does not is one the exact cuts leave empty: a **sliver**
-/// (a triangle whose three lines almost coincide, the image of a face seen
-/// nearly edge-on) crossed by the edge where its lines run on far from it,
-/// the rounded cuts there in the wrong order by rounding's size. Dropping
-/// it moves the area toward the exact union's, and makes the premise of
-/// every pruning of the search true: each span's points lie within
-/// `2⁻³⁴ m` (its length included) of its triangle's bounds — and within
-/// `2⁻³³ m` of the triangle itself. For they also lie in the triangle
-/// with each line moved out by `δ = 2⁻³⁷ m`; a point of that outside the
-/// triangle and more than `δ` from it lies past a corner, within `δ` of
-/// its bisector and at most `δ / sin(α/2)` beyond it (`α` the corner's
-/// angle); where that reaches past `2⁻³⁵ m`, `α` is so sharp that the
-/// corner is the triangle's farthest point along the coordinate axis
-/// nearest the bisector, and the grown bounds stop the point within
+/// A span the exact cuts leave empty is shorter: its ends are two cuts,
+/// each within `3 · 2⁻⁴⁰` of the exact one's parameter (signed areas
+/// within `2⁻⁴⁰` of their own value, of opposite signs), and the exact
+/// ones are in the other order. And every span found where the edge truly
+/// meets the triangle is near its bounds: the exact span's ends are points
+/// of the triangle, and the maximum of the entering cuts and the minimum
+/// of the leaving ones move no further than the cuts do; with the point's
+/// own rounding, its ends lie within `2⁻³⁷ m` of the triangle. So the
+/// spans dropped are all false: those of a **sliver** (a triangle whose
+/// three lines almost coincide, the image of a face seen nearly edge-on)
+/// or of a very sharp corner, crossed by the edge where its lines run on
+/// far from it, the rounded cuts there in the wrong order by rounding's
+/// size. Dropping them moves the area toward the exact union's, and makes
+/// the premise of every pruning of the search true: each span's points
+/// lie within `2⁻³⁴ m` (its length included) of its triangle's bounds —
+/// and within `2⁻³³ m` of the triangle itself. For they also lie in the
+/// triangle with each line moved out by `δ = 2⁻³⁷ m`; a point of that
+/// outside the triangle and more than `δ` from it lies past a corner,
+/// within `δ` of its bisector and at most `δ / sin(α/2)` beyond it (`α`
+/// the corner's angle); where that reaches past `2⁻³⁵ m`, `α` is so sharp
+/// that the corner is the triangle's farthest point along the coordinate
+/// axis nearest the bisector, and the grown bounds stop the point within
 /// `√2 (2⁻³⁵ m + 2δ)` of it.
 #[inline(always)]
-pub(super) fn near_bounds(a: DVec2, b: DVec2, (s, e): (f64, f64), t: &Tri) -> bool {
+pub(super) fn credible(a: DVec2, b: DVec2, (s, e): (f64, f64), t: &Tri) -> bool {
+    e - s > SHORT || near_bounds(a, b, (s, e), t)
+}
+
+/// Whether the points of the edge `a → b` at the parameters `(s, e)` lie
+/// within `2⁻³⁵ m` of the triangle's bounds ([`credible`]), out of the
+/// search's loop: few spans are that short.
+#[cold]
+#[inline(never)]
+fn near_bounds(a: DVec2, b: DVec2, (s, e): (f64, f64), t: &Tri) -> bool {
     let d = b - a;
     let (p, q) = (a + d * s, a + d * e);
     let m = a
@@ -76,9 +87,13 @@ pub(super) fn near_bounds(a: DVec2, b: DVec2, (s, e): (f64, f64), t: &Tri) -> bo
     p.min(q).cmple(t.hi + g).all() && p.max(q).cmpge(t.lo - g).all()
 }
 
-/// How near its triangle's bounds a span must come, relatively
-/// ([`near_bounds`]): `2⁻³⁵`.
+/// How near its triangle's bounds a short span must come, relatively
+/// ([`credible`]): `2⁻³⁵`.
 const NEAR: f64 = 1.0 / (1_u64 << 35) as f64;
+
+/// The longest span of an edge's parameter the exact cuts may leave empty
+/// ([`credible`]): `2⁻³⁷`.
+const SHORT: f64 = 1.0 / (1_u64 << 37) as f64;
 
 /// Narrows `span` (parameters of the edge `a → b`) to the inner side of
 /// the triangle's edge `f`, given the signed areas `va`, `vb` of `a` and

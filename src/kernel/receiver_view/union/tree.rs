@@ -11,7 +11,7 @@
 //! Leaving a subtree out changes no span of the union: every span a
 //! triangle gives an edge has its points within `2⁻³⁴` of the clip
 //! square's half-width of the triangle's bounds (a span that is not is
-//! none: see [`near_bounds`](super::span::near_bounds)); the edge's part
+//! none: see [`credible`](super::span::credible)); the edge's part
 //! in a node's box is taken with the box grown by `10⁻⁹` of the half-width,
 //! far above that and above the rounding of the clip (see [`Ray::range`]).
 //! So the spans of a subtree left out lie inside the cover already found,
