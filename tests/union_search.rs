@@ -5,7 +5,10 @@
 //! exact reference — every
 //! built-in scene's floor grid under its own light, a pile of random
 //! occluders, layers stacked `10⁻⁴` apart, and convex polygons given as
-//! fans of slivers. Their certified bounds are each search's own: an
+//! fans of slivers; and under a pile deep enough for the union's raster,
+//! the value without the bound (`visibility_with`, whose union leaves out
+//! the images the raster shows inside others) is the bounded value, bit
+//! for bit. Their certified bounds are each search's own: an
 //! edge's band held deep inside another image is left out of the bound,
 //! and which covering image a search meets first depends on its order, so
 //! the bounds agree closely but not bit for bit.
@@ -14,9 +17,12 @@ use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
 use softshadow::glam::DVec3;
 use softshadow::kernel::receiver_view::UnionSearch;
-use softshadow::reference::exact::{visibility_bounded_with, Scratch};
+use softshadow::reference::exact::{visibility_bounded_with, visibility_with, Scratch};
 use softshadow::scene::builtin::{builtin, floor_receivers, BUILTIN_NAMES};
 use softshadow::scene::Light;
+
+#[path = "../benches/support/pile.rs"]
+mod pile;
 
 /// The largest certified bound either search may give here (the largest
 /// on these cases is 1.4·10⁻¹², under the pile of 3000).
@@ -200,5 +206,41 @@ fn the_automatic_search_takes_the_tree_under_deep_stacks() {
         let bvh = Bvh::new(Occluders::from_triangles(layers));
         let partial = compare(what, &bvh, &light, &receivers, true);
         assert!(partial > 0, "{what}: no receiver in a penumbra");
+    }
+}
+
+/// Under the benchmark's pile of 4096 occluders (`benches/support/pile.rs`:
+/// ordinary coordinates, images deep enough for the union's raster, which
+/// leaves about a quarter of them out of its marks and, where no bound is
+/// asked for, out of the union), the value without the bound is the
+/// bounded value bit for bit, under either search, for receivers about
+/// the pile's axis.
+#[test]
+fn the_value_without_the_bound_is_the_bounded_one_under_a_deep_pile() {
+    let light = Light::sphere(DVec3::new(0.0, 0.0, 4.0), 0.5).expect("a light");
+    let bvh = Bvh::new(Occluders::from_triangles(pile::occluders(4096)));
+    let receivers = [
+        DVec3::new(0.0137, -0.0211, 0.0),
+        DVec3::new(0.0419, 0.0073, 0.0),
+        DVec3::new(-0.0291, 0.0347, 0.0),
+    ];
+    for search in [UnionSearch::Grid, UnionSearch::Tree] {
+        let mut scratch = Scratch::default();
+        scratch.set_union_search(search);
+        for p in receivers {
+            let bounded = visibility_bounded_with(&bvh, &light, p, &mut scratch)
+                .expect("a receiver in range");
+            let value =
+                visibility_with(&bvh, &light, p, &mut scratch).expect("a receiver in range");
+            assert!(
+                bounded.visibility > 0.0 && bounded.visibility < 1.0,
+                "{search:?}, {p:?}: {bounded:?}, not in a penumbra"
+            );
+            assert_eq!(
+                value.to_bits(),
+                bounded.visibility.to_bits(),
+                "{search:?}, {p:?}: {value:e} without the bound, {bounded:?} with it"
+            );
+        }
     }
 }
