@@ -4,7 +4,8 @@
 //! `support::view`: far offsets (10⁶, 10⁹), tiny and huge lights, grazing
 //! (the receiver near the light's plane, or far and at elevation 10⁻⁶),
 //! contact (a triangle 10⁻⁹ … 10⁻¹² above the receiver), slivers close
-//! above it, near-tangent chords. For each case: the error, and the bound
+//! above it, near-tangent chords, sliver images whose lines cross large
+//! images' edges far from them. For each case: the error, and the bound
 //! (`exact::visibility_bounded`), which must contain it.
 #![cfg(all(feature = "reference", feature = "arbitrary"))]
 
@@ -12,6 +13,7 @@ mod support;
 
 use softshadow::arbitrary::Rng;
 use softshadow::glam::DVec3;
+use softshadow::kernel::receiver_view::UnionSearch;
 use softshadow::reference::exact;
 use softshadow::scene::Light;
 use softshadow::{Bvh, Occluders};
@@ -86,6 +88,42 @@ fn aim(rng: &mut Rng, light: &Light, r: f64) -> DVec3 {
     }
 }
 
+/// A small triangle between `p` and the light point `at` whose image on
+/// the light is a **sliver**, its three lines nearly coinciding: either a
+/// face seen edge-on (its plane within `10⁻¹⁸ … 10⁻¹²` of `p` and holding
+/// the direction to `at`), or a needle (a corner within `10⁻¹⁶ … 10⁻¹⁰`
+/// of its size off the line through the other two). Its image is
+/// `10⁻⁴ … 10⁻¹` of the light's angular size `rel` long, so that its
+/// lines, run on across the light, cross other images' edges far from it.
+fn sliver(rng: &mut Rng, p: DVec3, at: DVec3, rel: f64) -> [DVec3; 3] {
+    let d = (at - p).normalize();
+    let w = d.any_orthonormal_vector() + v3(rng, 0.5);
+    let w = (w - d * w.dot(d)).normalize();
+    let n = d.cross(w);
+    let t = rng.uniform(0.2, 0.8) * (at - p).length();
+    let s = t * rel * rng.log_uniform(-4.0, -1.0);
+    if rng.chance(0.5) {
+        let h = rng.log_uniform(-18.0, -12.0);
+        let q = p + n * if rng.chance(0.5) { h } else { -h };
+        let corner = |rng: &mut Rng| {
+            q + d * (t + s * rng.uniform(-1.0, 1.0)) + w * s * rng.uniform(-1.0, 1.0)
+        };
+        [corner(rng), corner(rng), corner(rng)]
+    } else {
+        let a = p + d * t + (w * rng.uniform(-1.0, 1.0) + n * rng.uniform(-1.0, 1.0)) * s;
+        let b = a + (w + v3(rng, 0.5)).normalize() * s * rng.uniform(0.5, 2.0);
+        let off =
+            (b - a).any_orthonormal_vector() * (b - a).length() * rng.log_uniform(-16.0, -10.0);
+        // Along the side, or near a corner (a very sharp one).
+        let f = if rng.chance(0.5) {
+            rng.uniform(0.1, 0.9)
+        } else {
+            rng.log_uniform(-9.0, -3.0)
+        };
+        [a, b, a + (b - a) * f + off]
+    }
+}
+
 /// The families of issue 40's table.
 pub const FAMILIES: &[&str] = &[
     "ordinary",
@@ -103,6 +141,7 @@ pub const FAMILIES: &[&str] = &[
     "tiny light at 1e9, rim",
     "just above a curved surface",
     "deep pile",
+    "slivers over large images",
 ];
 
 /// A case of `family` with light `kind`, or `None` where the generator
@@ -429,6 +468,24 @@ pub fn case(family: &str, kind: usize, rng: &mut Rng) -> Option<Case> {
             }
             Case { p, light, tris }
         }
+        "slivers over large images" => {
+            let light = light_of(kind, rng, c, r, p)?;
+            let mut tris: Vec<[DVec3; 3]> = (0..rng.below(3) + 2)
+                .map(|_| {
+                    let at = aim(rng, &light, r);
+                    crossing_triangle(rng, p, at)
+                })
+                .collect();
+            for _ in 0..rng.below(3) + 2 {
+                let at = aim(rng, &light, r);
+                tris.push(sliver(rng, p, at, r / dist));
+            }
+            // The slivers anywhere in index order (the order decides
+            // which of two coinciding edges covers the other).
+            let k = rng.below(tris.len() as u64) as usize;
+            tris.rotate_left(k);
+            Case { p, light, tris }
+        }
         _ => panic!("unknown family {family}"),
     };
     case.light.emitter(case.p).ok()?;
@@ -617,4 +674,117 @@ fn a_receiver_beside_a_ball_s_face_has_a_tight_bound() {
         }
     }
     assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Seeds of [`case`]`("slivers over large images", kind, Rng::new(seed))`
+/// (`kind` first) at which the span test, before it dropped the spans far
+/// from their triangle, gave the grid's and the tree's searches different
+/// bits, or an error above [`ACCURATE`].
+const SLIVER_SEEDS: &[(usize, u64)] = &[
+    (0, 124_349_059),
+    (0, 114_933_368),
+    (1, 89_624_245),
+    (1, 121_300_245),
+    (2, 103_522_091),
+    (2, 55_382_490),
+];
+
+/// Every way of asking for `V` on the case: `visibility` and
+/// `visibility_bounded` under the grid, the tree and the automatic
+/// search, each its `V` and bound (none for `visibility`).
+fn every_way(case: &Case) -> Vec<(f64, Option<f64>)> {
+    let bvh = Bvh::new(Occluders::from_triangles(case.tris.clone()));
+    let mut out = Vec::new();
+    for search in [UnionSearch::Grid, UnionSearch::Tree, UnionSearch::Auto] {
+        let mut scratch = exact::Scratch::default();
+        scratch.set_union_search(search);
+        let v = exact::visibility_with(&bvh, &case.light, case.p, &mut scratch)
+            .expect("receiver accepted");
+        let b = exact::visibility_bounded_with(&bvh, &case.light, case.p, &mut scratch)
+            .expect("receiver accepted");
+        out.push((v, None));
+        out.push((b.visibility, Some(b.bound)));
+    }
+    out
+}
+
+/// Sliver images crossed by large ones' edges far from them (the family
+/// "slivers over large images", every area light kind, and the seeds of
+/// [`SLIVER_SEEDS`]): `visibility` and `visibility_bounded` under the grid,
+/// the tree and the automatic search give the same bits; every bound
+/// contains the error against the 256-bit evaluation, and the error is
+/// within [`ACCURATE`]. 16 cases a kind, or 800 in exhaustive runs.
+#[test]
+fn sliver_images_give_the_same_bits_every_way_within_the_bound() {
+    let per = support::samples(16) as u64;
+    let family = "slivers over large images";
+    let seeds =
+        (0..3).flat_map(|kind| (0..per).map(move |i| (kind, 0x5117 + 7919 * i + kind as u64)));
+    let mut failures = Vec::new();
+    for (kind, seed) in seeds.chain(SLIVER_SEEDS.iter().copied()) {
+        let Some(case) = case(family, kind, &mut Rng::new(seed)) else {
+            continue;
+        };
+        let answers = every_way(&case);
+        let truth = view::visibility(&case.light, case.p, &case.tris);
+        let v = answers[0].0;
+        let err = (v - truth).abs();
+        for &(w, bound) in &answers {
+            if w.to_bits() != v.to_bits() {
+                failures.push(format!("{} {seed}: {answers:?}", KINDS[kind]));
+                break;
+            }
+            let Some(bound) = bound else { continue };
+            if err.is_nan() || err > bound {
+                failures.push(format!(
+                    "{} {seed}: error {err:e} > bound {bound:e}",
+                    KINDS[kind]
+                ));
+            }
+        }
+        if err > ACCURATE {
+            failures.push(format!(
+                "{} {seed}: error {err:e} above {ACCURATE:e}",
+                KINDS[kind]
+            ));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// One needle (sides `6.5·10⁻³`, `6.5·10⁻³` and `1.1·10⁻⁸`: a corner of
+/// about `1.7·10⁻⁶` radians, the receiver `1.2·10⁻³` off its plane) before
+/// a rect light, from the family "slivers over large images" (rect, the
+/// 897th case of [`every_family_every_light_kind`]'s exhaustive run): the
+/// answer is within `1.1·10⁻¹⁶` of the 256-bit value, but its bound is
+/// `4.7·10⁻¹²`, above the `10⁻¹²` every family is held to.
+#[test]
+#[ignore = "fails: the bound of an image with a very sharp corner is 4.7e-12"]
+fn a_needle_with_a_sharp_corner_has_a_tight_bound() {
+    let light = Light::rect(
+        DVec3::new(0.7901238294905627, 1.1692513310525783, 2.634207329174778),
+        DVec3::new(
+            -0.02647442289233379,
+            -0.3639909866085162,
+            0.07670008500339835,
+        ),
+        DVec3::new(
+            -0.26514937719970033,
+            -0.050388952112145606,
+            0.1593837202906631,
+        ),
+    )
+    .expect("a rect");
+    let case = Case {
+        p: DVec3::new(0.5054298927970633, 0.09324257801914226, -0.3946406617210759),
+        light,
+        tris: vec![[
+            DVec3::new(0.6450008495458672, 0.34755131419519497, 0.5089775481677694),
+            DVec3::new(0.6445154835185046, 0.35399702992457666, 0.5084852325300062),
+            DVec3::new(0.6450008487375024, 0.34755132493037116, 0.5089775473478302),
+        ]],
+    };
+    let (v, bound, truth) = measure(&case);
+    assert!((v - truth).abs() <= bound, "{v} {truth} {bound:e}");
+    assert!(bound <= 1e-12, "bound {bound:e}");
 }
