@@ -540,7 +540,10 @@ const ORDINARY: &[&str] = &[
 /// error is within [`ACCURATE`] (`V` is a fraction: a few ulps of 1), and
 /// far from the origin within that of the same scene moved to the origin; on the ordinary families the largest bound is within 10³ of
 /// the largest error (or of `ε` where every answer came out exact), and
-/// every bound is below `10⁻¹²`. `SOFTSHADOW_PRINT_ACCURACY=1` prints the
+/// every bound is below `10⁻¹²` — but on the slivers' family, whose
+/// needles can have corners sharp enough for the bound's allowance at a
+/// corner (inversely as the sine of its angle) to pass that (recorded by
+/// [`a_needle_with_a_sharp_corner_has_a_tight_bound`]). `SOFTSHADOW_PRINT_ACCURACY=1` prints the
 /// table of `docs/accuracy/references.md` (cases, of which partly lit;
 /// worst error; worst bound; median bound ÷ error).
 #[test]
@@ -585,7 +588,7 @@ fn every_family_every_light_kind() {
                         "{family}, {name}: error {err:e} > bound {bound:e}\n{case:?}"
                     ));
                 }
-                if bound > 1e-12 {
+                if bound > 1e-12 && *family != "slivers over large images" {
                     failures.push(format!(
                         "{family}, {name}: bound {bound:e} > 1e-12\n{case:?}"
                     ));
