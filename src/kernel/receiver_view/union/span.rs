@@ -48,7 +48,8 @@ pub(super) fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option
 /// meets the triangle is near its bounds: the exact span's ends are points
 /// of the triangle, and the maximum of the entering cuts and the minimum
 /// of the leaving ones move no further than the cuts do; with the point's
-/// own rounding, its ends lie within `2⁻³⁷ m` of the triangle. So the
+/// own rounding, its ends lie within `2⁻³⁷ m` of the triangle in each
+/// coordinate (`|b − a|` at most `2 m` in each), `2⁻³⁶ m` in distance. So the
 /// spans dropped are all false: those of a **sliver** (a triangle whose
 /// three lines almost coincide, the image of a face seen nearly edge-on)
 /// or of a very sharp corner, crossed by the edge where its lines run on
@@ -57,7 +58,7 @@ pub(super) fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option
 /// the premise of every pruning of the search true: each span's points
 /// lie within `2⁻³⁴ m` (its length included) of its triangle's bounds —
 /// and within `2⁻³³ m` of the triangle itself. For they also lie in the
-/// triangle with each line moved out by `δ = 2⁻³⁷ m`; a point of that
+/// triangle with each line moved out by `δ = 2⁻³⁶ m`; a point of that
 /// outside the triangle and more than `δ` from it lies past a corner,
 /// within `δ` of its bisector and at most `δ / sin(α/2)` beyond it (`α`
 /// the corner's angle); where that reaches past `2⁻³⁵ m`, `α` is so sharp
