@@ -2,6 +2,7 @@
 
 mod interior;
 mod searches;
+mod spans;
 
 use super::boundary::*;
 use super::cover::*;
