@@ -1,6 +1,7 @@
 //! Tests of the union's parts and of its area on shapes with known answers.
 
 mod interior;
+mod needles;
 mod searches;
 mod spans;
 

@@ -430,7 +430,7 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
             // sharp tip, along, across or at any angle, or just inside it.
             let tip = f.point(rng);
             let theta = angle(rng);
-            let alpha = 10f64.powf(rng.uniform(-14.0, -5.0));
+            let alpha = 10f64.powf(rng.uniform(-16.0, -5.0));
             let len = s * rng.uniform(0.05, 1.0);
             let t = Tri::new(
                 tip,
@@ -457,7 +457,7 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
             // A long edge and a tiny triangle on or near it.
             let (a, b) = (f.point(rng), f.point(rng));
             let at = a + (b - a) * rng.uniform(-0.1, 1.1);
-            let r = s * 10f64.powf(rng.uniform(-12.0, -3.0));
+            let r = s * 10f64.powf(rng.uniform(-16.0, -3.0));
             let mut near = || at + dir(angle(rng)) * r * rng.uniform(0.0, 1.0);
             let t = Tri::new(near(), near(), near())?;
             Some((a, b, t, "long edge, tiny triangle"))
