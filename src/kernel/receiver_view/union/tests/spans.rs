@@ -426,10 +426,17 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
             Some((a, b, t, "sliver"))
         }
         2 => {
-            // A needle (one corner's angle 10⁻¹⁴ to 10⁻⁵) crossed past its
-            // sharp tip, along, across or at any angle, or just inside it.
+            // A needle (one corner's angle 10⁻¹⁶ to 10⁻⁵) crossed past its
+            // sharp tip (10⁻¹⁴ to 20 of its length), along, across or at
+            // any angle, or just inside it.
             let tip = f.point(rng);
-            let theta = angle(rng);
+            let theta = if rng.chance(0.3) {
+                // Near an axis or a diagonal: the bounds stop the tip's
+                // spike least along a diagonal.
+                rng.below(8) as f64 * std::f64::consts::FRAC_PI_4 + rng.uniform(-1e-3, 1e-3)
+            } else {
+                angle(rng)
+            };
             let alpha = 10f64.powf(rng.uniform(-16.0, -5.0));
             let len = s * rng.uniform(0.05, 1.0);
             let t = Tri::new(
@@ -438,7 +445,7 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
                 tip + dir(theta - alpha / 2.0) * len,
             )?;
             let beyond = if rng.chance(0.8) {
-                -10f64.powf(rng.uniform(-6.0, 1.3))
+                -10f64.powf(rng.uniform(-14.0, 1.3))
             } else {
                 10f64.powf(rng.uniform(-8.0, 0.0))
             };
