@@ -14,7 +14,7 @@ use softshadow::arbitrary::Rng;
 use softshadow::bvh::{Bvh, Occluders};
 use softshadow::glam::DVec3;
 use softshadow::kernel::receiver_view::UnionSearch;
-use softshadow::reference::exact::{visibility_bounded_with, Scratch};
+use softshadow::reference::exact::{visibility_bounded_with, visibility_with, Scratch};
 use softshadow::scene::builtin::{builtin, floor_receivers, BUILTIN_NAMES};
 use softshadow::scene::Light;
 
@@ -23,7 +23,7 @@ use softshadow::scene::Light;
 const TIGHT: f64 = 1e-11;
 
 /// Every receiver's `V` bits under each search, compared with the grid's
-/// (and every bound tight, at most [`TIGHT`]); the automatic choice's
+/// and with the value asked for without a bound (and every bound tight, at most [`TIGHT`]); the automatic choice's
 /// bound is the grid's or the tree's bits, the tree's if `tree` (the
 /// cases where it must choose the tree, else the grid's). How many answers
 /// lie strictly between 0 and 1.
@@ -41,9 +41,19 @@ fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3], tree: bool
     for &p in receivers {
         let answers: Vec<(u64, u64)> = scratch
             .iter_mut()
-            .map(|s| match visibility_bounded_with(bvh, light, p, s) {
-                Ok(b) => (b.visibility.to_bits(), b.bound.to_bits()),
-                Err(_) => (u64::MAX, u64::MAX),
+            .map(|s| {
+                let unbounded = visibility_with(bvh, light, p, s).map(f64::to_bits);
+                match visibility_bounded_with(bvh, light, p, s) {
+                    Ok(b) => {
+                        assert_eq!(
+                            unbounded,
+                            Ok(b.visibility.to_bits()),
+                            "{what}, receiver {p:?}: the value without a bound"
+                        );
+                        (b.visibility.to_bits(), b.bound.to_bits())
+                    }
+                    Err(_) => (u64::MAX, u64::MAX),
+                }
             })
             .collect();
         let shown = |search: &UnionSearch, answer: &(u64, u64)| {
@@ -216,7 +226,6 @@ fn the_automatic_search_takes_the_tree_under_deep_stacks() {
 /// reaching out of the pile: 2 piles, or `SOFTSHADOW_EDGE_ON_PILES`.
 #[test]
 fn edge_on_faces_and_needles_give_the_bounded_value() {
-    use softshadow::reference::exact::visibility_with;
     let mut rng = Rng::new(4601);
     let light = Light::sphere(DVec3::new(0.0131, -0.0217, 4.0), 0.5).expect("a light");
     let (mut partial, mut cases) = (0, 0);
