@@ -23,7 +23,8 @@ use softshadow::scene::Light;
 const TIGHT: f64 = 1e-11;
 
 /// Every receiver's `V` bits under each search, compared with the grid's
-/// and with the value asked for without a bound (and every bound tight, at most [`TIGHT`]); the automatic choice's
+/// and, under one search in turn, with the value asked for without a
+/// bound (and every bound tight, at most [`TIGHT`]); the automatic choice's
 /// bound is the grid's or the tree's bits, the tree's if `tree` (the
 /// cases where it must choose the tree, else the grid's). How many answers
 /// lie strictly between 0 and 1.
@@ -37,25 +38,26 @@ fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3], tree: bool
             scratch
         })
         .collect();
-    let mut partial = 0;
+    let (mut partial, mut seen) = (0, 0);
     for &p in receivers {
         let answers: Vec<(u64, u64)> = scratch
             .iter_mut()
-            .map(|s| {
-                let unbounded = visibility_with(bvh, light, p, s).map(f64::to_bits);
-                match visibility_bounded_with(bvh, light, p, s) {
-                    Ok(b) => {
-                        assert_eq!(
-                            unbounded,
-                            Ok(b.visibility.to_bits()),
-                            "{what}, receiver {p:?}: the value without a bound"
-                        );
-                        (b.visibility.to_bits(), b.bound.to_bits())
-                    }
-                    Err(_) => (u64::MAX, u64::MAX),
-                }
+            .map(|s| match visibility_bounded_with(bvh, light, p, s) {
+                Ok(b) => (b.visibility.to_bits(), b.bound.to_bits()),
+                Err(_) => (u64::MAX, u64::MAX),
             })
             .collect();
+        // The value without a bound, under each search in turn.
+        let k = seen % searches.len();
+        seen += 1;
+        if let Ok(v) = visibility_with(bvh, light, p, &mut scratch[k]) {
+            assert_eq!(
+                v.to_bits(),
+                answers[k].0,
+                "{what}, receiver {p:?}, {:?}: {v:e} without a bound",
+                searches[k]
+            );
+        }
         let shown = |search: &UnionSearch, answer: &(u64, u64)| {
             format!(
                 "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
