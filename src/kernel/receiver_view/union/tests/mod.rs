@@ -48,6 +48,12 @@ fn clipped_like(rng: &mut Rng, n: usize, h: f64) -> Vec<Tri> {
     tris
 }
 
+/// The count the environment variable `name` gives (a campaign's), if
+/// it is set to a number.
+fn count_from_env(name: &str) -> Option<usize> {
+    std::env::var(name).ok().and_then(|s| s.parse().ok())
+}
+
 /// A generator seeded `seed` and an empty scratch: what a randomised
 /// test of the union starts from.
 fn seeded(seed: u64) -> (Rng, UnionScratch) {

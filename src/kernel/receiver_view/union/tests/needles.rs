@@ -248,10 +248,7 @@ fn measure_of(case: usize) -> (Measure, f64) {
 /// build the raster and leave triangles out, which the test requires.
 #[test]
 fn needles_past_their_tips_change_no_bit() {
-    let cases: usize = std::env::var("SOFTSHADOW_NEEDLE_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(2);
+    let cases = count_from_env("SOFTSHADOW_NEEDLE_CASES").unwrap_or(2);
     let (mut rng, mut scratch) = seeded(7101);
     let (mut built, mut left_out, mut sharp) = (0, 0, 0);
     for case in 0..cases {
@@ -294,10 +291,7 @@ fn needles_past_their_tips_change_no_bit() {
 /// `SOFTSHADOW_NEEDLE_CASES` times 15.
 #[test]
 fn needles_in_small_piles_change_no_bit() {
-    let cases: usize = std::env::var("SOFTSHADOW_NEEDLE_CASES")
-        .ok()
-        .and_then(|s| s.parse::<usize>().ok())
-        .map_or(30, |n| 15 * n);
+    let cases = count_from_env("SOFTSHADOW_NEEDLE_CASES").map_or(30, |n| 15 * n);
     let (mut rng, mut scratch) = seeded(7103);
     let mut swept = 0;
     for case in 0..cases {

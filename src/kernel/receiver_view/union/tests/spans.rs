@@ -543,10 +543,7 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
 /// The number of cases per kind and frame: `default`, or
 /// `SOFTSHADOW_SPAN_CASES`.
 fn span_cases(default: usize) -> usize {
-    std::env::var("SOFTSHADOW_SPAN_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(default)
+    count_from_env("SOFTSHADOW_SPAN_CASES").unwrap_or(default)
 }
 
 /// [`covered_span`] decides as the exact test does wherever the exact
