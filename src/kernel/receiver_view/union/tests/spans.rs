@@ -340,7 +340,7 @@ impl Frame {
 /// The frames inside the predicates' domain (every coordinate at least
 /// `10⁻¹⁴⁰` and at most about `10¹⁵⁰` in magnitude, or zero; the far
 /// crossings reach 40 times the frame's size from it).
-fn frames() -> [(&'static str, Frame); 5] {
+fn frames() -> [(&'static str, Frame); 6] {
     let f = |x: f64, y: f64, s: f64| Frame {
         o: DVec2::new(x, y) * s,
         s,
@@ -354,6 +354,9 @@ fn frames() -> [(&'static str, Frame); 5] {
         ),
         ("tiny 1e-140", f(123.45, -98.76, 1.234e-140)),
         ("huge 1e148", f(0.37, -0.21, 0.987e148)),
+        // Corners a few thousand ulps apart near `10⁻¹⁴⁰`: products of
+        // differences down in the subnormal range, exact there.
+        ("ulps at 1e-140", f(1.2345e12, -1.0987e12, 1.0e-152)),
     ]
 }
 
@@ -550,7 +553,7 @@ fn span_cases(default: usize) -> usize {
 /// span is longer than the cuts' errors, its ends lie within `3·2⁻⁴⁰` of
 /// the exact ones, [`near_bounds`] drops no span the exact test finds,
 /// and every span kept has its points within `2⁻³³ m` of the triangle
-/// (`2⁻³⁷ m` for true spans): 8 kinds of case in 5 frames, 25 cases
+/// (`2⁻³⁷ m` for true spans): 8 kinds of case in 6 frames, 25 cases
 /// each, or `SOFTSHADOW_SPAN_CASES` (a campaign in release mode).
 #[test]
 fn the_span_test_is_the_exact_one() {
