@@ -175,8 +175,9 @@ fn largest(a: DVec2, b: DVec2, t: &Tri) -> f64 {
         .max_element()
 }
 
-/// The distance of `p` from the closed triangle `t`, over `m` (computed
-/// on coordinates divided by `m`: within a few ulps).
+/// The distance of `p` from the closed triangle `t`, over `m` (the
+/// differences taken before dividing by `m`, so that a triangle a few
+/// ulps across keeps its edges: within a few ulps).
 fn distance_over(p: DVec2, t: &Tri, m: f64) -> f64 {
     let inside = (0..3).all(|k| {
         let (f0, f1) = t.edge(k);
@@ -185,14 +186,16 @@ fn distance_over(p: DVec2, t: &Tri, m: f64) -> f64 {
     if inside {
         return 0.0;
     }
-    let q = p / m;
     (0..3)
         .map(|k| {
             let (f0, f1) = t.edge(k);
-            let (f0, f1) = (f0 / m, f1 / m);
-            let d = f1 - f0;
-            let s = ((q - f0).dot(d) / d.length_squared()).clamp(0.0, 1.0);
-            (f0 + d * s - q).length()
+            let (d, w) = ((f1 - f0) / m, (p - f0) / m);
+            let s = if d == DVec2::ZERO {
+                0.0
+            } else {
+                (w.dot(d) / d.length_squared()).clamp(0.0, 1.0)
+            };
+            (d * s - w).length()
         })
         .fold(f64::INFINITY, f64::min)
 }
