@@ -54,6 +54,10 @@ impl Exact {
         BigFloat::from_f64(x, self.p)
     }
 
+    fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
+        x.add(y, self.p, RM)
+    }
+
     fn sub(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
         x.sub(y, self.p, RM)
     }
@@ -112,7 +116,7 @@ impl Exact {
                         &self.sub(&self.of(q.y), &self.of(p.y)),
                         &self.sub(&self.of(s.y), &self.of(r.y)),
                     );
-                    sign(&x.add(&y, self.p, RM))
+                    sign(&self.add(&x, &y))
                 };
                 if dot(a, b, f0, f1) > 0 && !t_first {
                     return None;
@@ -318,12 +322,6 @@ impl Tally {
     }
 }
 
-impl Exact {
-    fn add(&self, x: &BigFloat, y: &BigFloat) -> BigFloat {
-        x.add(y, self.p, RM)
-    }
-}
-
 const TWO_M40: f64 = 1.0 / (1_u64 << 40) as f64;
 const TWO_M33: f64 = 1.0 / (1_u64 << 33) as f64;
 
@@ -395,6 +393,75 @@ fn edge_through(rng: &mut Rng, x: DVec2, d: DVec2, len: f64) -> (DVec2, DVec2) {
     (x - d * len * w, x + d * len * (1.0 - w))
 }
 
+/// A sliver (its third corner a few ulps off the line through the
+/// other two) crossed by an edge where its lines run on far from it,
+/// or nearly along them, in `f`: `(a, b, t)`, or `None` where degenerate.
+fn sliver_case(rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'static str)> {
+    let s = f.s;
+    let angle = |rng: &mut Rng| rng.uniform(0.0, std::f64::consts::TAU);
+    let (p, q) = (f.point(rng), f.point(rng));
+    let c = p + (q - p) * rng.uniform(0.05, 0.95);
+    let c = DVec2::new(rng.nudge(c.x, 3), rng.nudge(c.y, 3));
+    let t = Tri::new(p, q, c)?;
+    let mu = if rng.chance(0.5) {
+        rng.uniform(-40.0, 40.0)
+    } else {
+        rng.sign() * rng.uniform(1.0, 1.5) + 0.5
+    };
+    let x = p + (q - p) * mu;
+    let along = (q - p).normalize();
+    let d = match rng.below(3) {
+        0 => dir(angle(rng)),
+        1 => {
+            let turn = rng.sign() * 10f64.powf(rng.uniform(-14.0, -1.0));
+            DVec2::from_angle(turn).rotate(along)
+        }
+        _ => along.perp(),
+    };
+    let len = s * rng.uniform(0.01, 2.0);
+    let (a, b) = edge_through(rng, x, d, len);
+    Some((a, b, t, "sliver"))
+}
+
+/// A needle (one corner's angle `10⁻¹⁶` to `10⁻⁵`) crossed past its
+/// sharp tip (`10⁻¹⁴` to 20 of its length), along, across or at any
+/// angle, or just inside it, in `f`: `(a, b, t)`, or `None` where
+/// degenerate.
+fn needle_case(rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'static str)> {
+    let s = f.s;
+    let angle = |rng: &mut Rng| rng.uniform(0.0, std::f64::consts::TAU);
+    let tip = f.point(rng);
+    let theta = if rng.chance(0.3) {
+        // Near an axis or a diagonal: the bounds stop the tip's
+        // spike least along a diagonal.
+        rng.below(8) as f64 * std::f64::consts::FRAC_PI_4 + rng.uniform(-1e-3, 1e-3)
+    } else {
+        angle(rng)
+    };
+    let alpha = 10f64.powf(rng.uniform(-16.0, -5.0));
+    let len = s * rng.uniform(0.05, 1.0);
+    let t = Tri::new(
+        tip,
+        tip + dir(theta + alpha / 2.0) * len,
+        tip + dir(theta - alpha / 2.0) * len,
+    )?;
+    let beyond = if rng.chance(0.8) {
+        -10f64.powf(rng.uniform(-14.0, 1.3))
+    } else {
+        10f64.powf(rng.uniform(-8.0, 0.0))
+    };
+    let off = rng.sign() * len * 10f64.powf(rng.uniform(-18.0, -6.0));
+    let x = tip + dir(theta) * len * beyond + dir(theta).perp() * off;
+    let d = match rng.below(3) {
+        0 => dir(angle(rng)),
+        1 => dir(theta + rng.sign() * alpha * 10f64.powf(rng.uniform(-2.0, 2.0))),
+        _ => dir(theta + std::f64::consts::FRAC_PI_2 + rng.uniform(-1e-3, 1e-3)),
+    };
+    let len = s * rng.uniform(1e-3, 2.0);
+    let (a, b) = edge_through(rng, x, d, len);
+    Some((a, b, t, "needle"))
+}
+
 /// Case `kind` in `frame`: `(a, b, t)`, or `None` where the triangle is
 /// degenerate.
 fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'static str)> {
@@ -405,67 +472,8 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
             let t = Tri::new(f.point(rng), f.point(rng), f.point(rng))?;
             Some((f.point(rng), f.point(rng), t, "random"))
         }
-        1 => {
-            // A sliver crossed by an edge where its lines run on far from
-            // it, or nearly along them.
-            let (p, q) = (f.point(rng), f.point(rng));
-            let c = p + (q - p) * rng.uniform(0.05, 0.95);
-            let c = DVec2::new(rng.nudge(c.x, 3), rng.nudge(c.y, 3));
-            let t = Tri::new(p, q, c)?;
-            let mu = if rng.chance(0.5) {
-                rng.uniform(-40.0, 40.0)
-            } else {
-                rng.sign() * rng.uniform(1.0, 1.5) + 0.5
-            };
-            let x = p + (q - p) * mu;
-            let along = (q - p).normalize();
-            let d = match rng.below(3) {
-                0 => dir(angle(rng)),
-                1 => {
-                    let turn = rng.sign() * 10f64.powf(rng.uniform(-14.0, -1.0));
-                    DVec2::from_angle(turn).rotate(along)
-                }
-                _ => along.perp(),
-            };
-            let len = s * rng.uniform(0.01, 2.0);
-            let (a, b) = edge_through(rng, x, d, len);
-            Some((a, b, t, "sliver"))
-        }
-        2 => {
-            // A needle (one corner's angle 10⁻¹⁶ to 10⁻⁵) crossed past its
-            // sharp tip (10⁻¹⁴ to 20 of its length), along, across or at
-            // any angle, or just inside it.
-            let tip = f.point(rng);
-            let theta = if rng.chance(0.3) {
-                // Near an axis or a diagonal: the bounds stop the tip's
-                // spike least along a diagonal.
-                rng.below(8) as f64 * std::f64::consts::FRAC_PI_4 + rng.uniform(-1e-3, 1e-3)
-            } else {
-                angle(rng)
-            };
-            let alpha = 10f64.powf(rng.uniform(-16.0, -5.0));
-            let len = s * rng.uniform(0.05, 1.0);
-            let t = Tri::new(
-                tip,
-                tip + dir(theta + alpha / 2.0) * len,
-                tip + dir(theta - alpha / 2.0) * len,
-            )?;
-            let beyond = if rng.chance(0.8) {
-                -10f64.powf(rng.uniform(-14.0, 1.3))
-            } else {
-                10f64.powf(rng.uniform(-8.0, 0.0))
-            };
-            let off = rng.sign() * len * 10f64.powf(rng.uniform(-18.0, -6.0));
-            let x = tip + dir(theta) * len * beyond + dir(theta).perp() * off;
-            let d = match rng.below(3) {
-                0 => dir(angle(rng)),
-                1 => dir(theta + rng.sign() * alpha * 10f64.powf(rng.uniform(-2.0, 2.0))),
-                _ => dir(theta + std::f64::consts::FRAC_PI_2 + rng.uniform(-1e-3, 1e-3)),
-            };
-            let len = s * rng.uniform(1e-3, 2.0);
-            let (a, b) = edge_through(rng, x, d, len);
-            Some((a, b, t, "needle"))
-        }
+        1 => sliver_case(rng, f),
+        2 => needle_case(rng, f),
         3 => {
             // A long edge and a tiny triangle on or near it.
             let (a, b) = (f.point(rng), f.point(rng));
