@@ -209,6 +209,8 @@ fn distance_over(p: DVec2, t: &Tri, m: f64) -> f64 {
 struct Tally {
     cases: usize,
     exact_some: usize,
+    /// Cases whose edge lies along a line of the triangle.
+    along: usize,
     /// Exact spans too short for the rounded cuts (`≤ 2⁻³⁷`) that they
     /// leave empty.
     tiny_missed: usize,
@@ -234,6 +236,10 @@ impl Tally {
             .collect();
         let ex = Exact::for_coordinates(&all);
         let exact = ex.span(a, b, t, t_first);
+        self.along += usize::from((0..3).any(|k| {
+            let (f0, f1) = t.edge(k);
+            orient2d(f0, f1, a) == Sign::Zero && orient2d(f0, f1, b) == Sign::Zero
+        }));
         let raw = raw_span(a, b, t, t_first);
         let got = covered_span(a, b, t, t_first);
         let m = largest(a, b, t);
@@ -462,6 +468,37 @@ fn needle_case(rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'static s
     Some((a, b, t, "needle"))
 }
 
+/// Points of one slanted line exactly, in `f`: a point `p` and a step
+/// `d` on a grid of about `2⁻⁴⁰` of the frame's size (a power of two)
+/// about its centre (the line's points `p + k d` for small integers `k`
+/// are sums on that grid, exact where the centre is within `2¹²` sizes of
+/// the origin), the triangle's first edge and the edge along it (either way,
+/// overlapping or not), or the edge through its corners; or the
+/// triangle's third corner on the edge's line.
+fn slanted_case(rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'static str)> {
+    // A power of two near `2⁻⁴⁰` of the frame's size.
+    let unit = 2f64.powi(f.s.log2().floor() as i32 - 40);
+    let grid = |rng: &mut Rng, bits: u32| {
+        let k = |rng: &mut Rng| rng.below(1 << bits) as f64 - (1_u64 << (bits - 1)) as f64;
+        DVec2::new(k(rng), k(rng))
+    };
+    // The centre snapped to the grid, so that every point is on it.
+    let o = (f.o / unit).round() * unit;
+    let p = o + grid(rng, 38) * unit;
+    let d = grid(rng, 12) * unit;
+    let at = |k: i64| p + d * k as f64;
+    let mut k = || rng.below(64) as i64 - 32;
+    let (k0, k1, k2, k3) = (k(), k(), k(), k());
+    let off = o + grid(rng, 38) * unit;
+    if rng.chance(0.75) {
+        let t = Tri::new(at(k0), at(k1), off)?;
+        Some((at(k2), at(k3), t, "along a slanted line"))
+    } else {
+        let t = Tri::new(off, at(k0), o + grid(rng, 38) * unit)?;
+        Some((at(k1), at(k2), t, "a corner on a slanted line"))
+    }
+}
+
 /// Case `kind` in `frame`: `(a, b, t)`, or `None` where the triangle is
 /// degenerate.
 fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'static str)> {
@@ -536,6 +573,7 @@ fn case(kind: usize, rng: &mut Rng, f: Frame) -> Option<(DVec2, DVec2, Tri, &'st
             let (a, b) = if rng.chance(0.5) { (b, a) } else { (a, b) };
             Some((a, b, t, "from a corner"))
         }
+        8 => slanted_case(rng, f),
         _ => {
             // Through a corner: exactly (a horizontal edge through it) or
             // to rounding.
@@ -564,7 +602,7 @@ fn span_cases(default: usize) -> usize {
 /// span is longer than the cuts' errors, its ends lie within `3·2⁻⁴⁰` of
 /// the exact ones, [`near_bounds`] drops no span the exact test finds,
 /// and every span kept has its points within `2⁻³³ m` of the triangle
-/// (`2⁻³⁷ m` for true spans): 8 kinds of case in 6 frames, 25 cases
+/// (`2⁻³⁷ m` for true spans): 9 kinds of case in 6 frames, 25 cases
 /// each, or `SOFTSHADOW_SPAN_CASES` (a campaign in release mode).
 #[test]
 fn the_span_test_is_the_exact_one() {
@@ -572,7 +610,7 @@ fn the_span_test_is_the_exact_one() {
     let mut rng = Rng::new(7001);
     let mut tally = Tally::default();
     for (name, f) in frames() {
-        for kind in 0..8 {
+        for kind in 0..9 {
             for _ in 0..n {
                 if let Some((a, b, t, what)) = case(kind, &mut rng, f) {
                     let first = rng.chance(0.5);
@@ -583,10 +621,11 @@ fn the_span_test_is_the_exact_one() {
     }
     let Tally { failures, .. } = &tally;
     eprintln!(
-        "{} cases, {} exact spans, {} too short for the cuts, {} spans the exact \
-         cuts leave empty ({} dropped), true ends within {}·2⁻⁴⁰, true points \
-         within {:e} m, others within {:e} m; {} failures",
+        "{} cases ({} along a line of the triangle), {} exact spans, {} too short \
+         for the cuts, {} spans the exact cuts leave empty ({} dropped), true ends \
+         within {}·2⁻⁴⁰, true points within {:e} m, others within {:e} m; {} failures",
         tally.cases,
+        tally.along,
         tally.exact_some,
         tally.tiny_missed,
         tally.fake,
@@ -614,7 +653,7 @@ fn the_span_test_outside_the_domain() {
     let mut rng = Rng::new(7003);
     for (name, f) in frames_outside() {
         let mut tally = Tally::default();
-        for kind in 0..8 {
+        for kind in 0..9 {
             for _ in 0..n {
                 if let Some((a, b, t, what)) = case(kind, &mut rng, f) {
                     let first = rng.chance(0.5);
