@@ -29,7 +29,8 @@ mod pile;
 const TIGHT: f64 = 1e-11;
 
 /// Every receiver's `V` bits under each search, compared with the grid's
-/// (and every bound tight, at most [`TIGHT`]); the automatic choice's
+/// and, under one search in turn, with the value asked for without a
+/// bound (and every bound tight, at most [`TIGHT`]); the automatic choice's
 /// bound is the grid's or the tree's bits, the tree's if `tree` (the
 /// cases where it must choose the tree, else the grid's). How many answers
 /// lie strictly between 0 and 1.
@@ -43,7 +44,7 @@ fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3], tree: bool
             scratch
         })
         .collect();
-    let mut partial = 0;
+    let (mut partial, mut seen) = (0, 0);
     for &p in receivers {
         let answers: Vec<(u64, u64)> = scratch
             .iter_mut()
@@ -52,6 +53,17 @@ fn compare(what: &str, bvh: &Bvh, light: &Light, receivers: &[DVec3], tree: bool
                 Err(_) => (u64::MAX, u64::MAX),
             })
             .collect();
+        // The value without a bound, under each search in turn.
+        let k = seen % searches.len();
+        seen += 1;
+        if let Ok(v) = visibility_with(bvh, light, p, &mut scratch[k]) {
+            assert_eq!(
+                v.to_bits(),
+                answers[k].0,
+                "{what}, receiver {p:?}, {:?}: {v:e} without a bound",
+                searches[k]
+            );
+        }
         let shown = |search: &UnionSearch, answer: &(u64, u64)| {
             format!(
                 "{what}, receiver {p:?}: grid {:?}, {search:?} {:?}",
@@ -243,4 +255,92 @@ fn the_value_without_the_bound_is_the_bounded_one_under_a_deep_pile() {
             );
         }
     }
+}
+
+/// Faces seen edge-on and needles in a deep pile: `V` from
+/// `visibility_with` (no bound asked for: the triangles the raster of a
+/// deep pile leaves out take no part in the union's walk) and the value
+/// of `visibility_bounded_with` (every triangle walked) are the same
+/// bits, under each search. Over each receiver `p`, 5000 small
+/// triangles over the middle of the light (deep enough for the raster,
+/// which leaves about 1600 of them out), faces whose planes pass within
+/// `10⁻¹⁵` to `10⁻⁸` (relatively) of `p` (their images slivers whose
+/// lines nearly coincide, running on across the other images), and
+/// needles (a corner's angle `10⁻¹²` to `10⁻⁷`), a few far longer,
+/// reaching out of the pile: 2 piles, or `SOFTSHADOW_EDGE_ON_PILES`.
+#[test]
+fn edge_on_faces_and_needles_give_the_bounded_value() {
+    let mut rng = Rng::new(4601);
+    let light = Light::sphere(DVec3::new(0.0131, -0.0217, 4.0), 0.5).expect("a light");
+    let (mut partial, mut cases) = (0, 0);
+    let piles: usize = std::env::var("SOFTSHADOW_EDGE_ON_PILES")
+        .ok()
+        .and_then(|s| s.parse().ok())
+        .unwrap_or(2);
+    for _ in 0..piles {
+        let p = DVec3::new(rng.uniform(-0.3, 0.3), rng.uniform(-0.3, 0.3), 0.0);
+        let mut tris: Vec<[DVec3; 3]> = Vec::new();
+        let in_pile = |rng: &mut Rng| {
+            let target = DVec3::new(0.0131, -0.0217, 4.0)
+                + DVec3::new(rng.uniform(-0.2, 0.2), rng.uniform(-0.2, 0.2), 0.0);
+            p + (target - p) * rng.uniform(0.2, 0.8)
+        };
+        for _ in 0..5000 {
+            let q = in_pile(&mut rng);
+            let s = 0.025 * q.z / 4.0;
+            let mut corner =
+                || q + DVec3::new(rng.uniform(-s, s), rng.uniform(-s, s), rng.uniform(-s, s));
+            tris.push([corner(), corner(), corner()]);
+        }
+        for _ in 0..300 {
+            let (a, b) = (in_pile(&mut rng), in_pile(&mut rng));
+            let b = a + (b - a) * rng.uniform(0.02, 0.1);
+            if rng.chance(0.5) {
+                // In the plane through p, a and b, then moved off it.
+                let c = a + (b - a) * rng.uniform(-0.5, 1.5) + (a - p) * rng.uniform(-0.1, 0.1);
+                let n = (a - p).cross(b - p).normalize();
+                let off = rng.sign() * 10f64.powf(rng.uniform(-15.0, -8.0)) * (a - p).length();
+                tris.push([a, b, c + n * off]);
+            } else {
+                let alpha = 10f64.powf(rng.uniform(-12.0, -7.0));
+                let d = b - a;
+                let side = d
+                    .cross(DVec3::new(rng.uniform(-1.0, 1.0), 1.0, 0.3))
+                    .normalize();
+                let reach = if rng.chance(0.03) { 6.0 } else { 1.0 };
+                tris.push([
+                    a,
+                    a + d * reach,
+                    a + (d + side * d.length() * alpha) * reach,
+                ]);
+            }
+        }
+        let bvh = Bvh::new(Occluders::from_triangles(tris));
+        let receivers = [
+            p,
+            p + DVec3::new(rng.uniform(-1e-3, 1e-3), rng.uniform(-1e-3, 1e-3), 0.0),
+        ];
+        for search in [UnionSearch::Grid, UnionSearch::Tree, UnionSearch::Auto] {
+            let mut scratch = Scratch::default();
+            scratch.set_union_search(search);
+            for &r in &receivers {
+                let v = visibility_with(&bvh, &light, r, &mut scratch);
+                let b = visibility_bounded_with(&bvh, &light, r, &mut scratch);
+                match (v, b) {
+                    (Ok(v), Ok(b)) => {
+                        assert_eq!(
+                            v.to_bits(),
+                            b.visibility.to_bits(),
+                            "{search:?}, receiver {r:?}: {v:e} against the bounded {:e}",
+                            b.visibility
+                        );
+                        cases += 1;
+                        partial += usize::from(v > 0.0 && v < 1.0);
+                    }
+                    (v, b) => panic!("{search:?}, receiver {r:?}: {v:?}, {b:?}"),
+                }
+            }
+        }
+    }
+    assert!(partial * 2 > cases, "{partial} of {cases} in a penumbra");
 }

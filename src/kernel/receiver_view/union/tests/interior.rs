@@ -515,10 +515,7 @@ fn five_areas(
 /// requires.
 #[test]
 fn left_out_triangles_change_no_bit_on_adversarial_piles() {
-    let cases: usize = std::env::var("SOFTSHADOW_LEFT_OUT_CASES")
-        .ok()
-        .and_then(|s| s.parse().ok())
-        .unwrap_or(10);
+    let cases = count_from_env("SOFTSHADOW_LEFT_OUT_CASES").unwrap_or(10);
     let (mut rng, mut scratch) = (Rng::new(67), UnionScratch::default());
     let (mut built, mut left_out) = (0, 0);
     for case in 0..cases {

@@ -1,7 +1,9 @@
 //! Tests of the union's parts and of its area on shapes with known answers.
 
 mod interior;
+mod needles;
 mod searches;
+mod spans;
 
 use super::boundary::*;
 use super::cover::*;
@@ -44,6 +46,12 @@ fn clipped_like(rng: &mut Rng, n: usize, h: f64) -> Vec<Tri> {
         }
     }
     tris
+}
+
+/// The count the environment variable `name` gives (a campaign's), if
+/// it is set to a number.
+fn count_from_env(name: &str) -> Option<usize> {
+    std::env::var(name).ok().and_then(|s| s.parse().ok())
 }
 
 /// A generator seeded `seed` and an empty scratch: what a randomised
