@@ -5,7 +5,7 @@
 //! them whole), on ordinary, sliver, needle, coinciding and cornered
 //! cases at scales from `10⁻¹⁴⁰` to `10¹⁴⁸`.
 
-use super::super::span::{covered_span, cut_by_edge, near_bounds};
+use super::super::span::{covered_span, credible, cut_by_edge};
 use super::*;
 use crate::kernel::predicate::{orient2d, orient2d_value_finite, Sign};
 use astro_float::{BigFloat, RoundingMode};
@@ -154,7 +154,7 @@ fn sign(x: &BigFloat) -> i32 {
     }
 }
 
-/// [`covered_span`] before [`near_bounds`]: the same signed areas one at
+/// [`covered_span`] before [`credible`]: the same signed areas one at
 /// a time, the same cuts.
 fn raw_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
     let mut span = (0.0, 1.0);
@@ -170,7 +170,7 @@ fn raw_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option<(f64, f64)> {
 }
 
 /// The largest coordinate of the edge's ends and the triangle's bounds
-/// (the `m` of [`near_bounds`]).
+/// (the `m` of [`credible`]).
 fn largest(a: DVec2, b: DVec2, t: &Tri) -> f64 {
     a.abs()
         .max(b.abs())
@@ -215,7 +215,7 @@ struct Tally {
     /// leave empty.
     tiny_missed: usize,
     /// Spans the exact cuts leave empty, kept by the rounded ones before
-    /// [`near_bounds`], and of those, how many it drops.
+    /// [`credible`], and of those, how many it drops.
     fake: usize,
     fake_dropped: usize,
     /// The largest distance from its triangle, over `m`, of a point of a
@@ -247,12 +247,12 @@ impl Tally {
             "{what}: a {a:?} b {b:?} t {:?} first {t_first}: got {got:?}, raw {raw:?}",
             t.v
         );
-        let expected = raw.filter(|&s| near_bounds(a, b, s, t));
+        let expected = raw.filter(|&s| credible(a, b, s, t));
         if got.map(|s| (s.0.to_bits(), s.1.to_bits()))
             != expected.map(|s| (s.0.to_bits(), s.1.to_bits()))
         {
             self.failures
-                .push(format!("{case}: not the raw span filtered by near_bounds"));
+                .push(format!("{case}: not the raw span filtered by credible"));
         }
         let far = |s: (f64, f64)| {
             let d = b - a;
@@ -276,7 +276,7 @@ impl Tally {
                 }
                 if got.is_none() {
                     self.failures
-                        .push(format!("{case}: a true span dropped by near_bounds"));
+                        .push(format!("{case}: a true span dropped by credible"));
                 }
                 let f = far(r);
                 self.true_far = self.true_far.max(f);
@@ -600,7 +600,7 @@ fn span_cases(default: usize) -> usize {
 
 /// [`covered_span`] decides as the exact test does wherever the exact
 /// span is longer than the cuts' errors, its ends lie within `3·2⁻⁴⁰` of
-/// the exact ones, [`near_bounds`] drops no span the exact test finds,
+/// the exact ones, [`credible`] drops no span the exact test finds,
 /// and every span kept has its points within `2⁻³³ m` of the triangle
 /// (`2⁻³⁷ m` for true spans): 9 kinds of case in 6 frames, 25 cases
 /// each, or `SOFTSHADOW_SPAN_CASES` (a campaign in release mode).
