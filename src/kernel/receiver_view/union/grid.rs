@@ -62,8 +62,9 @@ impl Grid {
     /// building it quadratic, each many fine cells wide, go up).
     pub(super) const LARGE: f64 = 4.0;
 
-    /// In [`Grid::ranges`], a triangle on a coarse level or left out (no fine cell is
-    /// numbered so: the fine grid is at most [`Grid::MAX_SIDE`] a side).
+    /// In [`Grid::ranges`], a triangle on a coarse level or left out (no
+    /// fine cell is numbered so: the fine grid is at most
+    /// [`Grid::MAX_SIDE`] a side).
     const COARSE: [u16; 4] = [u16::MAX; 4];
 
     /// The fine grid's cells a side for `n` triangles.

@@ -94,12 +94,12 @@ impl Interior {
 
     /// The estimated depth of the triangles marked so far (larger ones
     /// first) from which a triangle whose bounds' cells are all marked
-    /// already is left out:
-    /// testing its bounds costs a few instructions a row against tens for
-    /// marking it, and a triangle left out takes no part in the union's
-    /// walk and grid either ([`Interior::left_out`]): it pays where the
-    /// pile is deep enough that many bounds lie in marked cells (ours,
-    /// chosen by measurement: see benches/README.md § The union's search).
+    /// already is left out: testing its bounds costs a few instructions a
+    /// row against tens for marking it, and a triangle left out takes no
+    /// part in the union's walk and grid either ([`Interior::left_out`]):
+    /// it pays where the pile is deep enough that many bounds lie in
+    /// marked cells (ours, chosen by measurement: see benches/README.md
+    /// § The union's search).
     const SKIP_DEPTH: f64 = 1.0;
 
     /// Cells a side of a block ([`Interior::full`]), a power of two below 64.

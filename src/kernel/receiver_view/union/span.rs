@@ -49,12 +49,12 @@ pub(super) fn covered_span(a: DVec2, b: DVec2, t: &Tri, t_first: bool) -> Option
 /// of the triangle, and the maximum of the entering cuts and the minimum
 /// of the leaving ones move no further than the cuts do; with the point's
 /// own rounding, its ends lie within `2⁻³⁷ m` of the triangle in each
-/// coordinate (`|b − a|` at most `2 m` in each), `2⁻³⁶ m` in distance. So the
-/// spans dropped are all false: those of a **sliver** (a triangle whose
-/// three lines almost coincide, the image of a face seen nearly edge-on)
-/// or of a very sharp corner, crossed by the edge where its lines run on
-/// far from it, the rounded cuts there in the wrong order by rounding's
-/// size. Dropping them moves the area toward the exact union's, and makes
+/// coordinate (`|b − a|` at most `2 m` in each), `2⁻³⁶ m` in distance.
+/// So the spans dropped are all false: those of a **sliver** (a triangle
+/// whose three lines almost coincide, the image of a face seen nearly
+/// edge-on) or of a very sharp corner, crossed by the edge where its
+/// lines run on far from it, the rounded cuts there in the wrong order by
+/// rounding's size. Dropping them moves the area toward the exact union's, and makes
 /// the premise of every pruning of the search true: each span's points
 /// lie within `2⁻³⁴ m` (its length included) of its triangle's bounds —
 /// and within `2⁻³³ m` of the triangle itself. For they also lie in the
@@ -92,8 +92,9 @@ fn near_bounds(a: DVec2, b: DVec2, (s, e): (f64, f64), t: &Tri) -> bool {
 /// ([`credible`]): `2⁻³⁵`.
 const NEAR: f64 = 1.0 / (1_u64 << 35) as f64;
 
-/// The longest span of an edge's parameter the exact cuts may leave empty
-/// ([`credible`]): `2⁻³⁷`.
+/// How long a span must be for [`credible`] to keep it unchecked:
+/// `2⁻³⁷` of the edge, above the `6 · 2⁻⁴⁰` a span the exact cuts leave
+/// empty can reach.
 const SHORT: f64 = 1.0 / (1_u64 << 37) as f64;
 
 /// Narrows `span` (parameters of the edge `a → b`) to the inner side of
