@@ -305,15 +305,15 @@ struct Settle<'s> {
 /// triangle's edge `e`, `t`'s span lies inside the union of the spans the
 /// search finds without `t`: each point of it lies within `2⁻³³` of the
 /// half-width of `t` (a span's points do, of their triangle:
-/// [`credible`](super::span::credible)), against `μ / 2 ≥ 2⁻³⁰·⁵`
-/// of it, so at least `0.4 μ` inside some such `j`, whose bounds meet
-/// `e`'s there, and whose span then holds the point's parameter with at
-/// least `2⁻³³` of the range to spare (the argument of [`Interior`]), far
-/// above the spans' rounding; where the cell of that point is left out of the search
-/// ([`searched_cells`]), its covered passage holds it instead. The union
-/// of the spans is the same, so are the pieces outside it, in the same
-/// order. The table of shared edges still holds `t`'s edges: an edge
-/// whose reverse is one of them is dropped as before. With `B` the walk
+/// [`credible`](super::span::credible)), against `μ / 2 ≥ 2⁻³⁰·⁵` of it,
+/// so at least `0.4 μ` inside some such `j`, whose bounds meet `e`'s
+/// there, and whose span then holds the point's parameter with at least
+/// `2⁻³³` of the range to spare (the argument of [`Interior`]), far above
+/// the spans' rounding; where the cell of that point is left out of the
+/// search ([`searched_cells`]), its covered passage holds it instead. The
+/// union of the spans is the same, so are the pieces outside it, in the
+/// same order. The table of shared edges still holds `t`'s edges: an edge
+/// whose reverse is one of them is dropped, as with `t` walked. With `B` the walk
 /// and the grid keep `t`, the bound's allowances and the spans its
 /// cut errors are found from being those of every edge searched.
 #[inline(always)]

@@ -631,12 +631,12 @@ fn pile_with_sliver() -> Vec<Tri> {
 
 /// On [`pile_with_sliver`] the raster leaves the sliver out of its marks
 /// and the union out of its walk and grid: the area is still the area
-/// with every triangle marked, bit for bit. Before the span test dropped
-/// spans far from their triangle, it was not (`1.814766858685965`
-/// against `1.8147668586859653`): the sliver's span on the long edge (see
-/// [`a_slivers_span_lies_within_rounding_of_it`]) lay on a piece of the
-/// boundary, outside every other span, and split it in two where the
-/// sliver was searched.
+/// with every triangle marked, bit for bit. With a span test keeping
+/// spans far from their triangle it is not (`1.814766858685965` against
+/// `1.8147668586859653`): the sliver's span on the long edge (see
+/// [`a_slivers_span_lies_within_rounding_of_it`]) lies on a piece of the
+/// boundary, outside every other span, and splits it in two where the
+/// sliver is searched.
 #[test]
 fn a_left_out_sliver_keeps_the_area() {
     let (h, tris) = (1.5, pile_with_sliver());
