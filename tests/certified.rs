@@ -680,9 +680,9 @@ fn a_receiver_beside_a_ball_s_face_has_a_tight_bound() {
 }
 
 /// Seeds of [`case`]`("slivers over large images", kind, Rng::new(seed))`
-/// (`kind` first) at which the span test, before it dropped the spans far
-/// from their triangle, gave the grid's and the tree's searches different
-/// bits, or an error above [`ACCURATE`].
+/// (`kind` first) at which a span test keeping the spans far from their
+/// triangle gives the grid's and the tree's searches different bits, or
+/// an error above [`ACCURATE`].
 const SLIVER_SEEDS: &[(usize, u64)] = &[
     (0, 124_349_059),
     (0, 114_933_368),
