@@ -481,35 +481,11 @@ fn stress_pile(kind: usize, rng: &mut Rng, h: f64, w: f64) -> Vec<Tri> {
     tris
 }
 
-/// The areas of the union of `tris` with the deep pile's raster and the
-/// triangles it leaves out (grid and tree), with the raster but none
-/// left out, and without the raster (grid and tree), and how many were
-/// left out (0 where the raster is not built).
-fn five_areas(
-    tris: &[Tri],
-    measure: Measure,
-    h: f64,
-    scratch: &mut UnionScratch,
-) -> ([f64; 5], usize) {
-    let none = (&[][..], f64::INFINITY);
-    let mut areas = [0.0; 5];
-    if !scratch.interior.build(tris, h) {
-        return (areas, 0);
-    }
-    let skipped = scratch.interior.skipped;
-    areas[0] = union_area_in::<true, false>(tris, none, measure, h, scratch, SWEEP_FROM).0;
-    areas[1] = union_area_tree::<true, false>(tris, none, measure, h, scratch, SWEEP_FROM).0;
-    scratch.interior.build_skipping::<false>(tris, h);
-    areas[2] = union_area_in::<true, false>(tris, none, measure, h, scratch, SWEEP_FROM).0;
-    areas[3] = union_area_in::<false, false>(tris, none, measure, h, scratch, SWEEP_FROM).0;
-    areas[4] = union_area_tree::<false, false>(tris, none, measure, h, scratch, SWEEP_FROM).0;
-    (areas, skipped)
-}
-
 /// Adversarial piles for the raster ([`stress_pile`]): the union's area
 /// with triangles left out of the marks and the union is, bit for bit, the
-/// area with every triangle marked and the area without the raster (grid
-/// and tree alike), on both measures and a non-dyadic square: 10 cases, or
+/// area with every triangle marked and the area without the raster, with
+/// a bound asked for and without, every way ([`every_area`]), on both
+/// measures and a non-dyadic square: 10 cases, or
 /// `SOFTSHADOW_LEFT_OUT_CASES` of them (a campaign in release mode).
 /// Most cases build the raster and leave thousands out, which the test
 /// requires.
@@ -537,20 +513,20 @@ fn left_out_triangles_change_no_bit_on_adversarial_piles() {
             0.0
         };
         let tris = stress_pile(kind, &mut rng, h, w);
-        let (areas, skipped) = five_areas(&tris, measure, h, &mut scratch);
-        if areas[0] == 0.0 && skipped == 0 {
+        let none = vec![[0.0; 3]; tris.len()];
+        let (areas, skipped) = every_area(&tris, (&none, 0.0), measure, h, &mut scratch);
+        if scratch.interior.n == 0 {
             continue;
         }
         built += 1;
         left_out += skipped;
-        for (k, a) in areas.iter().enumerate() {
-            assert_eq!(
-                a.to_bits(),
-                areas[3].to_bits(),
-                "case {case} (kind {kind}, {} triangles, {skipped} left out): area {k}: {areas:?}",
+        assert_same_bits(
+            &areas,
+            &format!(
+                "case {case} (kind {kind}, {} triangles, {skipped} left out)",
                 tris.len()
-            );
-        }
+            ),
+        );
     }
     eprintln!("{cases} cases, {built} with the raster, {left_out} triangles left out");
     assert!(
@@ -631,7 +607,8 @@ fn pile_with_sliver() -> Vec<Tri> {
 
 /// On [`pile_with_sliver`] the raster leaves the sliver out of its marks
 /// and the union out of its walk and grid: the area is still the area
-/// with every triangle marked, bit for bit. With a span test keeping
+/// with every triangle marked, and every other way ([`every_area`]), bit
+/// for bit. With a span test keeping
 /// spans far from their triangle it is not (`1.814766858685965` against
 /// `1.8147668586859653`): the sliver's span on the long edge (see
 /// [`a_slivers_span_lies_within_rounding_of_it`]) lies on a piece of the
@@ -641,21 +618,14 @@ fn pile_with_sliver() -> Vec<Tri> {
 fn a_left_out_sliver_keeps_the_area() {
     let (h, tris) = (1.5, pile_with_sliver());
     let mut scratch = UnionScratch::default();
-    let (areas, _) = five_areas(&tris, Measure::Disk(1.0), h, &mut scratch);
+    let none = vec![[0.0; 3]; tris.len()];
+    let (areas, _) = every_area(&tris, (&none, 0.0), Measure::Disk(1.0), h, &mut scratch);
     scratch.interior.build(&tris, h);
     assert!(
         scratch.interior.left_out(tris.len() - 1),
         "the sliver is kept"
     );
-    assert_eq!(
-        areas[0].to_bits(),
-        areas[2].to_bits(),
-        "left out {} against marked {} (no raster {}, tree {})",
-        areas[0],
-        areas[2],
-        areas[3],
-        areas[4]
-    );
+    assert_same_bits(&areas, "the pile with a sliver");
 }
 
 /// The grid's search and the tree's give the same area, bit for bit (the

@@ -748,3 +748,88 @@ fn bands_held_deep_inside_other_triangles_are_left_out() {
         }
     }
 }
+
+/// The area of the union of `tris` every way: the grid and the tree, with
+/// the raster (triangles left out, then none) and without, the value
+/// with a bound (reach `reach`, the allowances `w`) and without, and
+/// through [`union_area`]'s own choice; with how many the raster left
+/// out (0 where it is not built).
+fn every_area(
+    tris: &[Tri],
+    (w, reach): (&[[f64; 3]], f64),
+    measure: Measure,
+    h: f64,
+    scratch: &mut UnionScratch,
+) -> (Vec<(&'static str, f64)>, usize) {
+    let none = (&[][..], f64::INFINITY);
+    let bands = (w, reach);
+    let mut out = Vec::new();
+    let s = SWEEP_FROM;
+    let deep = scratch.interior.build(tris, h);
+    let skipped = if deep { scratch.interior.skipped } else { 0 };
+    if deep {
+        out.push((
+            "grid, raster",
+            union_area_in::<true, false>(tris, none, measure, h, scratch, s).0,
+        ));
+        out.push((
+            "tree, raster",
+            union_area_tree::<true, false>(tris, none, measure, h, scratch, s).0,
+        ));
+        out.push((
+            "grid, raster, bound",
+            union_area_in::<true, true>(tris, bands, measure, h, scratch, s).0,
+        ));
+        out.push((
+            "tree, raster, bound",
+            union_area_tree::<true, true>(tris, bands, measure, h, scratch, s).0,
+        ));
+        scratch.interior.build_skipping::<false>(tris, h);
+        out.push((
+            "grid, raster, none left out",
+            union_area_in::<true, false>(tris, none, measure, h, scratch, s).0,
+        ));
+        out.push((
+            "tree, raster, none left out",
+            union_area_tree::<true, false>(tris, none, measure, h, scratch, s).0,
+        ));
+    }
+    out.push((
+        "grid",
+        union_area_in::<false, false>(tris, none, measure, h, scratch, s).0,
+    ));
+    out.push((
+        "tree",
+        union_area_tree::<false, false>(tris, none, measure, h, scratch, s).0,
+    ));
+    out.push((
+        "grid, bound",
+        union_area_in::<false, true>(tris, bands, measure, h, scratch, s).0,
+    ));
+    out.push((
+        "tree, bound",
+        union_area_tree::<false, true>(tris, bands, measure, h, scratch, s).0,
+    ));
+    scratch.search = Search::Auto;
+    out.push((
+        "auto",
+        union_area::<false>(tris, none.0, none.1, measure, h, scratch, s).0,
+    ));
+    out.push((
+        "auto, bound",
+        union_area::<true>(tris, w, reach, measure, h, scratch, s).0,
+    ));
+    (out, skipped)
+}
+
+/// Every area of [`every_area`] is the same, bit for bit.
+fn assert_same_bits(areas: &[(&str, f64)], what: &str) {
+    let (name0, a0) = areas[0];
+    for &(name, a) in areas {
+        assert_eq!(
+            a.to_bits(),
+            a0.to_bits(),
+            "{what}: {name} {a:e} against {name0} {a0:e}: {areas:?}"
+        );
+    }
+}
