@@ -800,11 +800,17 @@ proptest! {
         let whole = k64::segment_disk_area(c.r, c.a, c.b);
         let parts = k64::segment_disk_area(c.r, c.a, m) + k64::segment_disk_area(c.r, m, c.b);
         // m is rounded, so it may sit off the segment: the two pieces then
-        // differ from the whole by (at most) the thin triangle (a, m, b).
-        let d1 = m - c.a;
-        let d2 = c.b - c.a;
-        let off = Big::new(d1.x).mul(&Big::new(d2.y)).sub(&Big::new(d1.y).mul(&Big::new(d2.x))).to_f64().abs() / 2.0;
-        let tol = 3.0 * BUDGET_SEGMENT * EPS64 * c.r * c.r + off * (1.0 + 1e-9);
+        // differ from the whole by the part of the thin triangle (a, m, b)
+        // inside the disk — at most its area, and at most the disk's chord
+        // (2r) times its height over ab. Both from the coordinates' exact
+        // differences: far from the disk, rounding m − a and b − a moves
+        // that area by far more than it is.
+        let d1 = (Big::new(m.x).sub(&Big::new(c.a.x)), Big::new(m.y).sub(&Big::new(c.a.y)));
+        let d2 = (Big::new(c.b.x).sub(&Big::new(c.a.x)), Big::new(c.b.y).sub(&Big::new(c.a.y)));
+        let off = d1.0.mul(&d2.1).sub(&d1.1.mul(&d2.0)).to_f64().abs() / 2.0;
+        let height = 2.0 * off / (c.b - c.a).length();
+        let inside = off.min(2.0 * c.r * height);
+        let tol = 3.0 * BUDGET_SEGMENT * EPS64 * c.r * c.r + inside * (1.0 + 1e-9);
         prop_assert!((whole - parts).abs() <= tol, "{:?} t={}: {} vs {}", c, t, whole, parts);
     }
 
