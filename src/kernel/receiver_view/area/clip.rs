@@ -178,7 +178,11 @@ impl Clip {
             let j = if k + 1 == n { 0 } else { k + 1 };
             let (fa, fb) = (f[k], f[j]);
             if fa >= 0.0 {
-                push(self.image.v[k], self.image.err[k], self.on[k]);
+                // A vertex on the line whose next one is outside: the
+                // boundary leaves it along the new line (its old edge runs
+                // out of the half-plane), and no crossing follows.
+                let next = if fa == 0.0 && fb < 0.0 { id } else { self.on[k] };
+                push(self.image.v[k], self.image.err[k], next);
             }
             if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
                 let (a, b) = (self.image.v[k], self.image.v[j]);
