@@ -255,13 +255,23 @@ impl Clip {
                 (_, None) => (0.0, DVec2::ZERO),
             };
         }
-        // On a side, a vertex is exactly on it (its coordinate ±half is
-        // kept exactly by every construction).
-        let dist = |q: DVec2, l: &Option<Line>| l.as_ref().map_or(0.0, |l| distance(l, q));
+        // On a side, a vertex's distance is its coordinate's from ±half
+        // (0 for every vertex constructed there, which keeps it exactly;
+        // measured all the same, so that no edge is taken on a side it
+        // does not run along).
+        let half = self.half;
+        let dist = |q: DVec2, id: On, l: &Option<Line>| match (id, l) {
+            (On::Side(0), _) => (q.y + half).abs(),
+            (On::Side(1), _) => (q.x - half).abs(),
+            (On::Side(2), _) => (q.y - half).abs(),
+            (On::Side(_), _) => (q.x + half).abs(),
+            (_, l) => l.as_ref().map_or(0.0, |l| distance(l, q)),
+        };
         let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
         let mut rho = [0.0; Image::CAP];
         for (k, (r, &q)) in rho.iter_mut().zip(&image.v[..n]).enumerate() {
-            *r = dist(q, &lines[prev(k)]).max(dist(q, &lines[k]));
+            let a = prev(k);
+            *r = dist(q, self.on[a], &lines[a]).max(dist(q, self.on[k], &lines[k]));
         }
         let mut ext = [0.0; Image::CAP];
         for k in 0..n {
