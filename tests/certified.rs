@@ -774,6 +774,41 @@ fn a_face_on_a_line_through_the_receiver_hides_nothing() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Found by comparing `arbitrary::scene::visibility_case` (seed 746) with
+/// the 256-bit answer: a face seen edge-on from the receiver (its plane
+/// `10⁻¹⁸` from it) hides `9.9·10⁻¹⁷` of a segment light, an interval
+/// whose rounded ends cross. The interval was dropped with nothing added
+/// to the bound: `V = 1` with a bound of 0, the truth a unit in the last
+/// place below. The crossed interval's ends now count for the bound.
+#[test]
+fn a_segment_s_interval_lost_to_rounding_counts_for_the_bound() {
+    let d = DVec3::new;
+    let light = Light::segment(
+        d(-0.023960415809670732, 0.23077192327554494, 4.226318928755276),
+        d(0.41166900153215585, 0.47189829923601856, 4.120008129849893),
+    )
+    .expect("a segment");
+    let p = d(-0.27215046544600663, -0.3724811788852893, -0.026759721229377836);
+    let face = [
+        d(-0.30733975687753556, -0.3484687903136826, 0.15431751550725972),
+        d(-0.3425290483090645, -0.32445640174207585, 0.33539475224389725),
+        d(-0.20762298780124472, -0.2742285696110518, 0.5592632370702157),
+    ];
+    for order in [[0, 1, 2], [1, 2, 0], [2, 0, 1], [2, 1, 0], [1, 0, 2], [0, 2, 1]] {
+        let case = Case {
+            p,
+            light,
+            tris: vec![order.map(|k| face[k])],
+        };
+        let (v, bound, truth) = measure(&case);
+        assert!(truth < 1.0, "the face hides some of the light: {truth}");
+        assert!(
+            (v - truth).abs() <= bound,
+            "{order:?}: V {v} truth {truth} bound {bound:e}"
+        );
+    }
+}
+
 /// Seeds of [`case`]`("slivers over large images", kind, Rng::new(seed))`
 /// (`kind` first) at which a span test keeping the spans far from their
 /// triangle gives the grid's and the tree's searches different bits, or

@@ -90,11 +90,16 @@ impl SegmentView {
     /// [`segment_blocked`]: crate::kernel::segment::segment_blocked
     #[must_use]
     pub fn blocked(&self, tri: &[DVec3; 3]) -> Option<(f64, f64)> {
-        self.blocked_bounded(tri).map(|(span, _)| span)
+        self.blocked_bounded(tri)
+            .map(|(span, _)| span)
+            .filter(|&(lo, hi)| lo < hi)
     }
 
     /// [`SegmentView::blocked`] with a bound on the error of either end
-    /// of the interval.
+    /// of the interval; `None` only where the triangle certainly hides
+    /// nothing of positive length. Where the rounded ends cross (`s₀ ≥
+    /// s₁`) the exact interval, within the bound of them, may still be up
+    /// to twice the bound long: then the ends are returned as they are.
     pub(super) fn blocked_bounded(&self, tri: &[DVec3; 3]) -> Option<((f64, f64), f64)> {
         if !tri.iter().all(|v| v.is_finite()) {
             return None;
@@ -141,7 +146,7 @@ impl SegmentView {
             &Row::diff(b, tri[0]),
         );
         span.cut(fa.signed(sigma), fb.signed(sigma), false)?;
-        (span.lo < span.hi).then_some(((span.lo, span.hi), span.err))
+        Some(((span.lo, span.hi), span.err))
     }
 
     /// How the light is seen from `p` among the triangles: [`Pieces::of`]
@@ -172,8 +177,9 @@ impl SegmentView {
 
     /// [`SegmentView::occluded_fraction`] and a certified bound on its
     /// error: each interval's ends within their bounds, the union's length
-    /// moves by at most the sum of those bounds, and its sum by one
-    /// rounding of the unit interval a term.
+    /// moves by at most the sum of those bounds — an interval whose
+    /// rounded ends cross, which adds nothing to the length, included —
+    /// and its sum by one rounding of the unit interval a term.
     #[must_use]
     pub fn occluded_fraction_bounded<'t>(
         &self,
@@ -318,8 +324,10 @@ struct Span {
 
 impl Span {
     /// Narrows the span to where `(1 − s) fa + s fb` is positive (or zero,
-    /// if `closed`); `None` when nothing of positive length is left. The
-    /// signs of `fa` and `fb` are exact.
+    /// if `closed`); `None` when the condition holds nowhere on the light
+    /// (decided exactly: the signs of `fa` and `fb` are exact). A span
+    /// whose rounded ends cross is kept: its exact counterpart may be
+    /// as long as twice their error.
     #[inline(always)]
     fn cut(&mut self, fa: Bounded, fb: Bounded, closed: bool) -> Option<()> {
         let (a, b) = (fa.value, fb.value);
@@ -342,7 +350,7 @@ impl Span {
                     self.lo = s;
                 }
                 self.err = self.err.max(err);
-                (self.lo < self.hi).then_some(())
+                Some(())
             }
         }
     }
