@@ -12,14 +12,17 @@ use std::f64::consts::SQRT_2;
 pub(super) const WELL_PLACED: f64 = 1.0 / (1u64 << 30) as f64;
 
 /// A half-plane `a X + b Y + c ≥ 0` of the light's plane (view
-/// coordinates), and a bound on how far its line may lie from the exact
-/// one over the square.
+/// coordinates), and bounds on how far its line may lie from the exact
+/// one over the square: `err` from the cheap bounds, which takes every
+/// decision (so that the image is the same with or without the certified
+/// bound), and `tight`, at most `err`, the closer one the bound reports.
 #[derive(Clone, Copy, Debug)]
 pub(super) struct Line {
     pub(super) a: f64,
     pub(super) b: f64,
     pub(super) c: f64,
     pub(super) err: f64,
+    pub(super) tight: f64,
 }
 
 impl Line {
@@ -124,6 +127,7 @@ impl Clip {
                 b: s * l.b,
                 c: s * l.c,
                 err: l.err,
+                tight: l.tight,
             },
             Err(inside) => {
                 if (s > 0.0) != inside {
@@ -152,8 +156,8 @@ impl Clip {
             let (most, err) = (0..n).fold((f64::NEG_INFINITY, 0.0_f64), |(m, e), k| {
                 (m.max(f[k] / norm), e.max(self.image.err[k]))
             });
-            if most > -(line.err + err) * 2.0 {
-                let band = self.band(&self.image.v[..n], &line, 1.0, line.err, err);
+            if most > -(line.tight + err) * 2.0 {
+                let band = self.band(&self.image.v[..n], &line, 1.0, line.tight, err);
                 self.extra += band.min(self.wedge(slot, &line, 1.0, 0.0));
             }
             self.image.len = 0;
@@ -181,7 +185,11 @@ impl Clip {
                 // A vertex on the line whose next one is outside: the
                 // boundary leaves it along the new line (its old edge runs
                 // out of the half-plane), and no crossing follows.
-                let next = if fa == 0.0 && fb < 0.0 { id } else { self.on[k] };
+                let next = if fa == 0.0 && fb < 0.0 {
+                    id
+                } else {
+                    self.on[k]
+                };
                 push(self.image.v[k], self.image.err[k], next);
             }
             if (fa > 0.0 && fb < 0.0) || (fa < 0.0 && fb > 0.0) {
@@ -251,7 +259,7 @@ impl Clip {
             (delta[k], normal[k]) = match (id, lines[k]) {
                 (On::Side(0 | 2), _) => (0.0, DVec2::Y),
                 (On::Side(_), _) => (0.0, DVec2::X),
-                (_, Some(l)) => (l.err, DVec2::new(l.a, l.b)),
+                (_, Some(l)) => (l.tight, DVec2::new(l.a, l.b)),
                 (_, None) => (0.0, DVec2::ZERO),
             };
         }
@@ -318,7 +326,7 @@ impl Clip {
                 .iter()
                 .map(|&q| (l.at(q) - l.rounding(q)) / l.norm())
                 .fold(f64::INFINITY, f64::min);
-            reach = reach.max(l.err + (-near).max(0.0));
+            reach = reach.max(l.tight + (-near).max(0.0));
             let id = if slot == 3 {
                 On::Plane
             } else {
@@ -327,8 +335,8 @@ impl Clip {
             if self.on[..n].contains(&id) {
                 continue;
             }
-            if near < (l.err + most_rho) * 2.0 {
-                let band = self.band(&image.v[..n], l, -1.0, l.err, most_rho);
+            if near < (l.tight + most_rho) * 2.0 {
+                let band = self.band(&image.v[..n], l, -1.0, l.tight, most_rho);
                 image.extra += band.min(self.wedge(slot, l, -1.0, most_rho));
             }
         }
@@ -420,7 +428,7 @@ impl Clip {
             (DVec2::new(s * l.a / h, s * l.b / h), s * l.c / h)
         };
         let (n, c) = unit(line, sigma);
-        let delta = line.err + e;
+        let delta = line.tight + e;
         let mut least = f64::INFINITY;
         for (j, other) in self.lines.iter().enumerate() {
             let Some(other) = other.filter(|_| j != slot) else {
@@ -434,7 +442,7 @@ impl Clip {
             if mu >= -0.5 || mu.is_nan() {
                 continue;
             }
-            let dj = other.err + e;
+            let dj = other.tight + e;
             let a = (d + dj) / -mu + c + delta;
             let b = nu / -mu;
             let slack = SLACK * ((d.abs() + dj) / -mu + c.abs() + delta + rho * (1.0 + b.abs()));

@@ -49,28 +49,37 @@ impl AreaView {
             None => false,
         };
         if settled || !refine {
-            // Decided on the cheap bounds; the bound reports the closer ones.
-            let at = match first {
-                Some((q, _)) if B => {
+            // Decided on the cheap bounds, in both paths alike (every
+            // choice made from them is the same with or without the
+            // bound); the bound reports the closer ones.
+            let tight = match first {
+                Some((_, err)) if B => {
                     let closer = |w: &Cross, b: Bounded| Bounded {
                         bound: w.precise(d.r),
                         ..b
                     };
                     let z = closer(&wz, z);
                     self.corner_from(closer(&wx, nx), closer(&wy, ny), z)
-                        .map(|(_, err)| (q, err))
-                        .or(first)
+                        .map_or(err, |(_, closer)| closer.min(err))
                 }
-                _ => first,
+                Some((_, err)) => err,
+                None => f64::INFINITY,
             };
-            return CornerImage { at, z, settled };
+            return CornerImage {
+                at: first,
+                tight,
+                z,
+                settled,
+            };
         }
         let (c, f0, f1) = (&self.c, &self.rows[0], &self.rows[1]);
         let z = det3_exact(d, f0, f1).signed(direct.sgn);
         let at = self.corner_from(det3_exact(c, d, f1), det3_exact(c, d, f0), z);
         // Beyond the exact arithmetic's range, the rounded image.
+        let at = at.or(first);
         CornerImage {
-            at: at.or(first),
+            at,
+            tight: at.map_or(f64::INFINITY, |(_, err)| err),
             z,
             settled: true,
         }
@@ -120,10 +129,11 @@ impl AreaView {
         );
         let line = self.in_view(a, b, c);
         if let Some(settled) = self.settled(line) {
-            // Decided on the cheap bounds; the bound reports the closer ones.
+            // Decided on the cheap bounds, in both paths alike (`err`
+            // takes every decision); the bound reports the closer ones.
             return match settled {
                 Ok(line) if B => Ok(Line {
-                    err: self
+                    tight: self
                         .in_view(
                             Bounded {
                                 bound: cross.precise(f0.r),
@@ -138,7 +148,8 @@ impl AreaView {
                                 ..c
                             },
                         )
-                        .err,
+                        .err
+                        .min(line.err),
                     ..line
                 }),
                 other => other,
@@ -214,6 +225,7 @@ impl AreaView {
             b: ta + tb,
             c: c.value,
             err: 0.0,
+            tight: 0.0,
         };
         let ea = a.bound * i00.abs() + f64::EPSILON * line.a.abs();
         let eb = a.bound * i01.abs() + b.bound * i11.abs() + f64::EPSILON * (ta.abs() + tb.abs());
@@ -226,7 +238,11 @@ impl AreaView {
         } else {
             f64::INFINITY
         };
-        Line { err, ..line }
+        Line {
+            err,
+            tight: err,
+            ..line
+        }
     }
 
     /// The image of a triangle: its projected corners on the fast path,
@@ -248,6 +264,7 @@ impl AreaView {
         // The corners' images, settled (within the tolerance, or refined)
         // or not yet.
         let mut corners: [Option<Option<(DVec2, f64)>>; 3] = [None; 3];
+        let mut tight = [f64::INFINITY; 3];
         let depth = self.direct.depth;
         let mut fast = self.fast;
         for (k, &v) in tri.iter().enumerate() {
@@ -276,11 +293,12 @@ impl AreaView {
             };
             if corner.settled {
                 corners[k] = Some(corner.at);
+                tight[k] = corner.tight;
             }
         }
         if fast {
             let at = corners.map(|c| c.flatten().expect("every corner projected"));
-            return Polygon::Corners(at.map(|a| a.0), at.map(|a| a.1));
+            return Polygon::Corners(at.map(|a| a.0), tight);
         }
         // The cone: for the edge (j, k) opposite corner i, the plane through
         // p and the edge, oriented toward corner i (σ · det[qⱼ − p, qₖ − p,
@@ -347,6 +365,9 @@ pub(super) const MISS_MARGIN: f64 = 1.0 / (1u64 << 20) as f64;
 #[derive(Clone, Copy, Debug)]
 pub(super) struct CornerImage {
     at: Option<(DVec2, f64)>,
+    /// The closer bound on the image's error, for the certified bound
+    /// (`at`'s own error, from the cheap bounds, takes the decisions).
+    tight: f64,
     z: Bounded,
     settled: bool,
 }
