@@ -28,7 +28,12 @@
 //! fully covered light may give `1e-16` rather than `0`), the same far
 //! from the origin as at it, held to a 256-bit evaluation on stiff
 //! families by the tests (`tests/certified.rs`, `tests/contact.rs`;
-//! `docs/accuracy/references.md`).
+//! `docs/accuracy/references.md`). An edge whose rounding comes near
+//! that `2⁻⁴³` without passing it moves `V` by up to about `10⁻¹³`: on
+//! the fuzz targets' scenes, where a triangle reaches from behind the
+//! receiver to beyond the light at many times the light's size, 5 of
+//! 30,000 answers are off by more than `4·10⁻¹⁵`, at most `6·10⁻¹⁴`,
+//! each within its certified bound.
 //!
 //! **Certified bound**: [`visibility_bounded`] (and `visibility_many_bounded`,
 //! `emitter_visibility_bounded`) returns `V` with a bound `|V − V_true| ≤
