@@ -854,6 +854,92 @@ fn a_face_on_a_line_through_the_receiver_hides_nothing() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// A face whose edge lies on a line through the receiver to an ulp (its
+/// far corner at `p + 2 (a − p)`), its third corner on the ray from `p`
+/// through a corner of the square around a sphere light's facing disk:
+/// its plane holds `p` to `4·10⁻¹⁷` and its cone lines meet at that
+/// corner of the square, so the clipping leaves an image whose vertices
+/// all coincide there. Such an image has no edge of positive length, and
+/// it was taken to cover the whole light (every edge's test holds for an
+/// edge of length 0): `V = 0` with a bound of `8·10⁻¹⁴` for a face that
+/// hides nothing. Found by a campaign of faces aimed at the square's
+/// corners. Every corner order, alone and among three ordinary
+/// occluders, within the bound of the 256-bit answer and within
+/// [`ACCURATE`].
+#[test]
+fn an_image_collapsed_to_a_corner_of_the_square_covers_nothing() {
+    let d = DVec3::new;
+    let light = Light::sphere(
+        d(-0.11010637251695593, 0.7243761743123254, 2.7458141081899825),
+        0.5952661694379173,
+    )
+    .expect("a sphere");
+    let p = d(
+        -0.3356614384785803,
+        -0.3426237614822594,
+        -0.06897200919580837,
+    );
+    let face = [
+        d(-0.13925904218685645, 0.5872576273313435, 2.393781291773079),
+        d(-0.2374602403327184, 0.12231693292454199, 1.1624046412886353),
+        d(-1.9196592021277286, 4.245046929122981, 6.031829402195066),
+    ];
+    let others = [
+        [
+            d(-0.9330184958784239, 1.3874780902691322, 2.2317615287692627),
+            d(
+                -0.14530174667457713,
+                -0.6548988253428611,
+                -0.8927654182422758,
+            ),
+            d(
+                -0.5260211302825835,
+                -0.030348697621657705,
+                0.7548213998506591,
+            ),
+        ],
+        [
+            d(-0.3326059402597054, -2.1724850449354136, 1.3361730461388848),
+            d(-0.38083236808902365, 2.732036172333483, 0.4223840546719342),
+            d(
+                -1.8638762541475262,
+                -0.02249074548472009,
+                0.8754640852650744,
+            ),
+        ],
+        [
+            d(-0.9842727526778591, 0.7213889906019983, 2.737933804774924),
+            d(0.31294987572069843, -1.406636513566517, -2.8758778231665403),
+            d(
+                -0.30422975340441855,
+                -0.2715005459238837,
+                0.35267867231475203,
+            ),
+        ],
+    ];
+    let mut failures = Vec::new();
+    for order in [
+        [0, 1, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+        [1, 0, 2],
+        [0, 2, 1],
+    ] {
+        let tri = order.map(|k| face[k]);
+        let mut all = others.to_vec();
+        all.push(tri);
+        for tris in [vec![tri], all] {
+            let case = Case { p, light, tris };
+            let (v, bound, truth) = measure(&case);
+            if (v - truth).abs() > bound.min(ACCURATE) {
+                failures.push(format!("{order:?}: V {v} truth {truth} bound {bound:e}"));
+            }
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// Found by comparing `arbitrary::scene::visibility_case` (seed 746) with
 /// the 256-bit answer: a face seen edge-on from the receiver (its plane
 /// `10⁻¹⁸` from it) hides `9.9·10⁻¹⁷` of a segment light, an interval
