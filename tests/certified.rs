@@ -940,6 +940,47 @@ fn an_image_collapsed_to_a_corner_of_the_square_covers_nothing() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// Two images meeting where three lines cross: a face with a corner at a
+/// sphere light's centre (so on its facing disk's plane, where its image
+/// is the disk's centre, its plane's line and two cone lines meeting
+/// there) under a large face, `10⁴` from the origin. The 256-bit answer
+/// computed that corner twice, from two pairs of its lines, `10⁻⁷⁷` apart,
+/// and the edge between the copies — its direction of rounding alone —
+/// cut the two images' intersection along an arbitrary line through the
+/// centre: `V` 0.4537 for the 0.47397 of the exact reference (and of
+/// `2²²` Monte Carlo samples, `0.473978 ± 9·10⁻⁶`). Found by a campaign of
+/// faces aimed at the square's corners and the light's centre.
+#[test]
+fn images_meeting_where_three_lines_cross_are_intersected_whole() {
+    let d = DVec3::new;
+    let light = Light::sphere(
+        d(-5909.481230043663, -1195.6297042473939, -49441.97975697864),
+        0.5509940963709583,
+    )
+    .expect("a sphere");
+    let p = d(-5910.311654548627, -1196.8839528014478, -49445.19361044486);
+    let large = [
+        d(-5909.955168856098, -1197.416483310664, -49443.2175516488),
+        d(-5909.771800728946, -1194.2747481042088, -49444.233890247495),
+        d(-5911.382468326656, -1196.115779121045, -49443.38186427811),
+    ];
+    let at_centre = [
+        d(-5909.172270602635, -1195.5712843038825, -49441.540849824145),
+        d(-5909.481230043663, -1195.6297042473939, -49441.97975697864),
+        d(-5910.1881157719545, -1196.3385750633445, -49443.79614889042),
+    ];
+    let case = Case {
+        p,
+        light,
+        tris: vec![large, at_centre],
+    };
+    let (v, bound, truth) = measure(&case);
+    assert!(
+        (v - truth).abs() <= bound.min(ACCURATE),
+        "V {v} truth {truth} bound {bound:e}"
+    );
+}
+
 /// Found by comparing `arbitrary::scene::visibility_case` (seed 746) with
 /// the 256-bit answer: a face seen edge-on from the receiver (its plane
 /// `10⁻¹⁸` from it) hides `9.9·10⁻¹⁷` of a segment light, an interval
