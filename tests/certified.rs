@@ -981,6 +981,61 @@ fn images_meeting_where_three_lines_cross_are_intersected_whole() {
     );
 }
 
+/// A face through the receiver to an ulp (two corners at `p ± (a − p)`:
+/// the receiver on its edge but for rounding), before a rect light, from
+/// a campaign of faces with an edge on a line through the receiver: two
+/// of its lines meet `9·10⁻¹¹` outside the square's left side, within
+/// the slack a vertex from its lines is taken at, and the clipped image
+/// kept that vertex outside the square. The union takes every image to
+/// lie in the square (it sweeps the edges on its sides as the images'),
+/// so the sliver between the vertex and the side, `6·10⁻¹¹` of area,
+/// was counted: `V` off by `1.6·10⁻¹¹` with a bound of `1.4·10⁻¹⁴`. Every
+/// corner order, alone, within the bound of the 256-bit answer and
+/// within [`ACCURATE`].
+#[test]
+fn a_vertex_just_past_a_side_of_the_square_is_kept_on_it() {
+    let d = DVec3::new;
+    let light = Light::rect(
+        d(0.4924273536307737, 0.4347042618319392, 3.7215703408583067),
+        d(
+            0.043252148767866226,
+            -0.4573807285026901,
+            -0.041374416641909,
+        ),
+        d(
+            -0.4634044886318086,
+            -0.08399431851971281,
+            0.09656680946840912,
+        ),
+    )
+    .expect("a rect");
+    let face = [
+        d(-0.4373727837810293, -0.6858754656277597, -5.801950824010419),
+        d(0.9125796934822574, 0.9760793088935316, 3.666377948029549),
+        d(0.4373727837810293, 0.6858754658605903, 5.801950824010419),
+    ];
+    let mut failures = Vec::new();
+    for order in [
+        [0, 1, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+        [1, 0, 2],
+        [0, 2, 1],
+    ] {
+        let case = Case {
+            p: DVec3::ZERO,
+            light,
+            tris: vec![order.map(|k| face[k])],
+        };
+        let (v, bound, truth) = measure(&case);
+        if (v - truth).abs() > bound.min(ACCURATE) {
+            failures.push(format!("{order:?}: V {v} truth {truth} bound {bound:e}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// Found by comparing `arbitrary::scene::visibility_case` (seed 746) with
 /// the 256-bit answer: a face seen edge-on from the receiver (its plane
 /// `10⁻¹⁸` from it) hides `9.9·10⁻¹⁷` of a segment light, an interval
