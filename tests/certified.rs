@@ -773,6 +773,44 @@ fn a_receiver_beside_a_ball_s_face_has_a_tight_bound() {
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 
+/// The face in every corner order, alone and put at index `at` among
+/// `others` (if any): the answers not within their bounds of the 256-bit
+/// one, or not within [`ACCURATE`].
+fn every_corner_order(
+    p: DVec3,
+    light: Light,
+    face: [DVec3; 3],
+    others: &[[DVec3; 3]],
+    at: usize,
+) -> Vec<String> {
+    let orders = [
+        [0, 1, 2],
+        [1, 2, 0],
+        [2, 0, 1],
+        [2, 1, 0],
+        [1, 0, 2],
+        [0, 2, 1],
+    ];
+    let mut failures = Vec::new();
+    for order in orders {
+        let tri = order.map(|k| face[k]);
+        let mut sets = vec![vec![tri]];
+        if !others.is_empty() {
+            let mut all = others.to_vec();
+            all.insert(at, tri);
+            sets.push(all);
+        }
+        for tris in sets {
+            let case = Case { p, light, tris };
+            let (v, bound, truth) = measure(&case);
+            if (v - truth).abs() > bound.min(ACCURATE) {
+                failures.push(format!("{order:?}: V {v} truth {truth} bound {bound:e}"));
+            }
+        }
+    }
+    failures
+}
+
 /// Found by the `exact` fuzz target: a face whose edge lies on a line
 /// through the receiver to an ulp (its far corner at `p + 2 (a − p)`),
 /// straddling the light's plane, over four ordinary occluders. Its cone
@@ -831,26 +869,152 @@ fn a_face_on_a_line_through_the_receiver_hides_nothing() {
             d(0.736241836887888, 0.6411731710069872, 3.7482261642047625),
         ],
     ];
-    let mut failures = Vec::new();
-    for order in [
-        [0, 1, 2],
-        [1, 2, 0],
-        [2, 0, 1],
-        [2, 1, 0],
-        [1, 0, 2],
-        [0, 2, 1],
-    ] {
-        let tri = order.map(|k| face[k]);
-        let mut all = others.to_vec();
-        all.insert(3, tri);
-        for tris in [vec![tri], all] {
-            let case = Case { p, light, tris };
-            let (v, bound, truth) = measure(&case);
-            if (v - truth).abs() > bound.min(ACCURATE) {
-                failures.push(format!("{order:?}: V {v} truth {truth} bound {bound:e}"));
-            }
-        }
-    }
+    let failures = every_corner_order(p, light, face, &others, 3);
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// A face whose edge lies on a line through the receiver to an ulp (its
+/// far corner at `p + 2 (a − p)`), its third corner on the ray from `p`
+/// through a corner of the square around a sphere light's facing disk:
+/// its plane holds `p` to `4·10⁻¹⁷` and its cone lines meet at that
+/// corner of the square, so the clipping leaves an image whose vertices
+/// all coincide there. Such an image has no edge of positive length, and
+/// it was taken to cover the whole light (every edge's test holds for an
+/// edge of length 0): `V = 0` with a bound of `8·10⁻¹⁴` for a face that
+/// hides nothing. Found by a campaign of faces aimed at the square's
+/// corners. Every corner order, alone and among three ordinary
+/// occluders, within the bound of the 256-bit answer and within
+/// [`ACCURATE`].
+#[test]
+fn an_image_collapsed_to_a_corner_of_the_square_covers_nothing() {
+    let d = DVec3::new;
+    let light = Light::sphere(
+        d(-0.11010637251695593, 0.7243761743123254, 2.7458141081899825),
+        0.5952661694379173,
+    )
+    .expect("a sphere");
+    let p = d(
+        -0.3356614384785803,
+        -0.3426237614822594,
+        -0.06897200919580837,
+    );
+    let face = [
+        d(-0.13925904218685645, 0.5872576273313435, 2.393781291773079),
+        d(-0.2374602403327184, 0.12231693292454199, 1.1624046412886353),
+        d(-1.9196592021277286, 4.245046929122981, 6.031829402195066),
+    ];
+    let others = [
+        [
+            d(-0.9330184958784239, 1.3874780902691322, 2.2317615287692627),
+            d(
+                -0.14530174667457713,
+                -0.6548988253428611,
+                -0.8927654182422758,
+            ),
+            d(
+                -0.5260211302825835,
+                -0.030348697621657705,
+                0.7548213998506591,
+            ),
+        ],
+        [
+            d(-0.3326059402597054, -2.1724850449354136, 1.3361730461388848),
+            d(-0.38083236808902365, 2.732036172333483, 0.4223840546719342),
+            d(
+                -1.8638762541475262,
+                -0.02249074548472009,
+                0.8754640852650744,
+            ),
+        ],
+        [
+            d(-0.9842727526778591, 0.7213889906019983, 2.737933804774924),
+            d(0.31294987572069843, -1.406636513566517, -2.8758778231665403),
+            d(
+                -0.30422975340441855,
+                -0.2715005459238837,
+                0.35267867231475203,
+            ),
+        ],
+    ];
+    let failures = every_corner_order(p, light, face, &others, others.len());
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
+/// Two images meeting where three lines cross: a face with a corner at a
+/// sphere light's centre (so on its facing disk's plane, where its image
+/// is the disk's centre, its plane's line and two cone lines meeting
+/// there) under a large face, `10⁴` from the origin. The 256-bit answer
+/// computed that corner twice, from two pairs of its lines, `10⁻⁷⁷` apart,
+/// and the edge between the copies — its direction of rounding alone —
+/// cut the two images' intersection along an arbitrary line through the
+/// centre: `V` 0.4537 for the 0.47397 of the exact reference (and of
+/// `2²²` Monte Carlo samples, `0.473978 ± 9·10⁻⁶`). Found by a campaign of
+/// faces aimed at the square's corners and the light's centre.
+#[test]
+fn images_meeting_where_three_lines_cross_are_intersected_whole() {
+    let d = DVec3::new;
+    let light = Light::sphere(
+        d(-5909.481230043663, -1195.6297042473939, -49441.97975697864),
+        0.5509940963709583,
+    )
+    .expect("a sphere");
+    let p = d(-5910.311654548627, -1196.8839528014478, -49445.19361044486);
+    let large = [
+        d(-5909.955168856098, -1197.416483310664, -49443.2175516488),
+        d(-5909.771800728946, -1194.2747481042088, -49444.233890247495),
+        d(-5911.382468326656, -1196.115779121045, -49443.38186427811),
+    ];
+    let at_centre = [
+        d(-5909.172270602635, -1195.5712843038825, -49441.540849824145),
+        d(-5909.481230043663, -1195.6297042473939, -49441.97975697864),
+        d(-5910.1881157719545, -1196.3385750633445, -49443.79614889042),
+    ];
+    let case = Case {
+        p,
+        light,
+        tris: vec![large, at_centre],
+    };
+    let (v, bound, truth) = measure(&case);
+    assert!(
+        (v - truth).abs() <= bound.min(ACCURATE),
+        "V {v} truth {truth} bound {bound:e}"
+    );
+}
+
+/// A face through the receiver to an ulp (two corners at `p ± (a − p)`:
+/// the receiver on its edge but for rounding), before a rect light, from
+/// a campaign of faces with an edge on a line through the receiver: two
+/// of its lines meet `9·10⁻¹¹` outside the square's left side, within
+/// the slack a vertex from its lines is taken at, and the clipped image
+/// kept that vertex outside the square. The union takes every image to
+/// lie in the square (it sweeps the edges on its sides as the images'),
+/// so the sliver between the vertex and the side, `6·10⁻¹¹` of area,
+/// was counted: `V` off by `1.6·10⁻¹¹` with a bound of `1.4·10⁻¹⁴`. Every
+/// corner order, alone, within the bound of the 256-bit answer and
+/// within [`ACCURATE`].
+#[test]
+fn a_meeting_point_past_a_side_of_the_square_is_taken_on_the_edge() {
+    let d = DVec3::new;
+    let light = Light::rect(
+        d(0.4924273536307737, 0.4347042618319392, 3.7215703408583067),
+        d(
+            0.043252148767866226,
+            -0.4573807285026901,
+            -0.041374416641909,
+        ),
+        d(
+            -0.4634044886318086,
+            -0.08399431851971281,
+            0.09656680946840912,
+        ),
+    )
+    .expect("a rect");
+    let face = [
+        d(-0.4373727837810293, -0.6858754656277597, -5.801950824010419),
+        d(0.9125796934822574, 0.9760793088935316, 3.666377948029549),
+        d(0.4373727837810293, 0.6858754658605903, 5.801950824010419),
+    ];
+    let failures = every_corner_order(DVec3::ZERO, light, face, &[], 0);
     assert!(failures.is_empty(), "{}", failures.join("\n"));
 }
 

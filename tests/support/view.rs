@@ -126,8 +126,14 @@ fn clip(poly: &[P2], h: &Half) -> Vec<P2> {
     out
 }
 
-/// The half-planes of a convex counter-clockwise polygon.
+/// The half-planes of a convex counter-clockwise polygon, its vertices
+/// first [`merged`]; a polygon left with fewer than three vertices has no
+/// area, and its one half-plane holds nothing.
 fn edges(poly: &[P2]) -> Vec<Half> {
+    let poly = merged(poly);
+    if poly.len() < 3 {
+        return vec![Half(Big::zero(), Big::zero(), Big::new(-1.0))];
+    }
     let n = poly.len();
     (0..n)
         .map(|k| {
@@ -137,6 +143,39 @@ fn edges(poly: &[P2]) -> Vec<Half> {
             Half(dy.neg(), dx.clone(), dy.mul(&a.0).sub(&dx.mul(&a.1)))
         })
         .collect()
+}
+
+/// The polygon with each vertex within `2⁻¹⁶⁰` of the polygon's size
+/// (at least 1) of the one kept before it dropped. Where three lines meet
+/// at one point, Sutherland–Hodgman may compute that point twice, from
+/// two pairs of lines, each rounded at 256 bits: the edge between the two
+/// copies has a direction of rounding alone, and its half-plane would cut
+/// a polygon clipped by it along a line through that point at an
+/// arbitrary angle. Dropping the copy moves the polygon by less than
+/// `2⁻¹⁶⁰` of its size.
+fn merged(poly: &[P2]) -> Vec<P2> {
+    let abs = |x: &Big| if x.is_negative() { x.neg() } else { x.clone() };
+    let mut size = Big::new(1.0);
+    for q in poly {
+        for c in [&q.0, &q.1] {
+            let a = abs(c);
+            if size.lt(&a) {
+                size = a;
+            }
+        }
+    }
+    let tol = size.mul(&Big::new(2f64.powi(-160)));
+    let near = |a: &P2, b: &P2| abs(&a.0.sub(&b.0)).lt(&tol) && abs(&a.1.sub(&b.1)).lt(&tol);
+    let mut out: Vec<P2> = Vec::new();
+    for q in poly {
+        if !out.last().is_some_and(|l| near(l, q)) {
+            out.push(q.clone());
+        }
+    }
+    while out.len() > 1 && near(&out[0], &out[out.len() - 1]) {
+        out.pop();
+    }
+    out
 }
 
 fn shoelace(poly: &[P2]) -> Big {

@@ -197,13 +197,16 @@ impl Clip {
                 let (mut q, mut err) = self.meet(id, self.on[k], &mut corner);
                 // Where the two lines are so nearly parallel (or the
                 // corner so ill-placed) that their meeting point falls off
-                // the edge being cut, the crossing on the edge: within its
-                // ends' and the line's errors over the sine of the angle,
-                // and the edge's length.
+                // the edge being cut, or out of the square (the union
+                // takes every image to lie in it), the crossing on the
+                // edge: within its ends' and the line's errors over the
+                // sine of the angle, and the edge's length.
                 let (lo, hi) = (a.min(b), a.max(b));
                 let slack = WELL_PLACED * self.half;
                 let on_edge = q.cmpge(lo - slack).all() && q.cmple(hi + slack).all();
-                if !(err <= slack && on_edge) {
+                let h = DVec2::splat(self.half);
+                let in_square = q.cmpge(-h).all() && q.cmple(h).all();
+                if !(err <= slack && on_edge && in_square) {
                     q = crossing(a, fa, b, fb);
                     err = err.min(
                         (b - a).abs().max_element() + self.image.err[k].max(self.image.err[j]),

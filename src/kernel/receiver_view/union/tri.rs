@@ -167,10 +167,15 @@ impl Measure {
 
     /// Whether the convex polygon `v` (counter-clockwise) alone covers the
     /// whole measure: the disk's centre at least `r` inside every edge, or
-    /// every corner of the square on the inner side of every edge.
+    /// every corner of the square on the inner side of every edge. An edge
+    /// of length 0 passes either test and constrains nothing, so a polygon
+    /// needs an edge of positive length to cover anything (then the
+    /// polygon winds at least once around every point of the measure, each
+    /// edge turning about it by a non-negative angle): one whose vertices
+    /// all coincide (a clipped image collapsed to a point) covers nothing.
     pub(in crate::kernel::receiver_view) fn covered_by_convex(self, v: &[DVec2]) -> bool {
         let n = v.len();
-        if n < 3 {
+        if n < 3 || v.iter().all(|&q| q == v[0]) {
             return false;
         }
         let edges = (0..n).map(|k| (v[k], v[(k + 1) % n]));
