@@ -1080,6 +1080,44 @@ fn a_segment_s_interval_lost_to_rounding_counts_for_the_bound() {
     }
 }
 
+/// A triangle crossing a sphere light's facing disk's plane at a small
+/// angle (its corners `h` off the plane, across the light): the facing
+/// disk's normal is the rounded unit of `c − p`, whose plane is turned by
+/// a few `ε` from the exact one, and the triangle's trace on it moves by
+/// about that over the angle. The answer is the exact one for the rounded
+/// disk (the same triangle before a disk light of that normal is exact to
+/// `2·10⁻¹⁶`); the bound does not count the turn. Measured: `h = 10⁻⁶`
+/// error `4.5·10⁻¹³` with a bound of `3.9·10⁻¹⁴`, growing as `1 / h`
+/// (`4.5·10⁻⁷` at `h = 10⁻¹²`). The receiver view's domain leaves such
+/// occluders out until the bound counts the turn.
+#[test]
+#[ignore = "fails: a sphere light's facing plane crossed at a small angle; the bound does not count the rounded normal's turn"]
+fn a_triangle_crossing_a_sphere_light_s_facing_plane_at_a_small_angle() {
+    let p = DVec3::ZERO;
+    let c = DVec3::new(-0.5109877809882164, -1.07033172249794, 4.416556052863598);
+    let light = Light::sphere(c, 0.4754440439459453).expect("a sphere");
+    let n = (c - p).normalize();
+    let e0 = n.any_orthonormal_vector() * 0.47;
+    let e1 = n.cross(e0);
+    let mut failures = Vec::new();
+    for h in [1e-6, 1e-9, 1e-12] {
+        let tri = [
+            c + e0 * 1.3 + e1 * 0.2 + n * h,
+            c - e0 * 1.1 + e1 * 0.4 - n * h,
+            c + e0 * 0.1 - e1 * 1.4 + n * (0.5 * h),
+        ];
+        let (v, bound, truth) = measure(&Case {
+            p,
+            light,
+            tris: vec![tri],
+        });
+        if (v - truth).abs() > bound {
+            failures.push(format!("h {h:e}: V {v} truth {truth} bound {bound:e}"));
+        }
+    }
+    assert!(failures.is_empty(), "{}", failures.join("\n"));
+}
+
 /// Seeds of [`case`]`("slivers over large images", kind, Rng::new(seed))`
 /// (`kind` first) at which a span test keeping the spans far from their
 /// triangle gives the grid's and the tree's searches different bits, or
