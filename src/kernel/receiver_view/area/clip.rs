@@ -266,23 +266,11 @@ impl Clip {
                 (_, None) => (0.0, DVec2::ZERO),
             };
         }
-        // On a side, a vertex's distance is its coordinate's from ±half
-        // (0 for every vertex constructed there, which keeps it exactly;
-        // measured all the same, so that no edge is taken on a side it
-        // does not run along).
-        let half = self.half;
-        let dist = |q: DVec2, id: On, l: &Option<Line>| match (id, l) {
-            (On::Side(0), _) => (q.y + half).abs(),
-            (On::Side(1), _) => (q.x - half).abs(),
-            (On::Side(2), _) => (q.y - half).abs(),
-            (On::Side(_), _) => (q.x + half).abs(),
-            (_, l) => l.as_ref().map_or(0.0, |l| distance(l, q)),
-        };
+        let dist = |q: DVec2, k: usize| distance_from(self.on[k], &lines[k], q, self.half);
         let prev = |k: usize| if k == 0 { n - 1 } else { k - 1 };
         let mut rho = [0.0; Image::CAP];
         for (k, (r, &q)) in rho.iter_mut().zip(&image.v[..n]).enumerate() {
-            let a = prev(k);
-            *r = dist(q, self.on[a], &lines[a]).max(dist(q, self.on[k], &lines[k]));
+            *r = dist(q, prev(k)).max(dist(q, k));
         }
         let mut ext = [0.0; Image::CAP];
         for k in 0..n {
@@ -495,6 +483,21 @@ impl Clip {
             }
             _ => cramer(&line(l).expect("cut"), &line(e).expect("cut")),
         }
+    }
+}
+
+/// A bound on the distance from `q` to the line an image's edge lies on:
+/// on a side of the square `|X|, |Y| ≤ half`, the coordinate's distance
+/// from `±half` (0 for every vertex constructed there, which keeps it
+/// exactly; measured all the same, so that no edge is taken on a side it
+/// does not run along); else [`distance`] from its line.
+fn distance_from(id: On, line: &Option<Line>, q: DVec2, half: f64) -> f64 {
+    match id {
+        On::Side(0) => (q.y + half).abs(),
+        On::Side(1) => (q.x - half).abs(),
+        On::Side(2) => (q.y - half).abs(),
+        On::Side(_) => (q.x + half).abs(),
+        _ => line.as_ref().map_or(0.0, |l| distance(l, q)),
     }
 }
 
