@@ -78,6 +78,29 @@ fn crossing_triangle(rng: &mut Rng, p: DVec3, aim: DVec3) -> [DVec3; 3] {
     [a, b, e]
 }
 
+/// `count` crossing triangles aimed at points of the light.
+fn crossing_triangles(
+    rng: &mut Rng,
+    p: DVec3,
+    light: &Light,
+    r: f64,
+    count: u64,
+) -> Vec<[DVec3; 3]> {
+    (0..count)
+        .map(|_| {
+            let at = aim(rng, light, r);
+            crossing_triangle(rng, p, at)
+        })
+        .collect()
+}
+
+/// The triangles rotated by a random count, so that any of them may come
+/// first in index order.
+fn rotated(rng: &mut Rng, tris: &mut [[DVec3; 3]]) {
+    let k = rng.below(tris.len() as u64) as usize;
+    tris.rotate_left(k);
+}
+
 /// A light point to aim a crossing triangle at: within `0.6 r` of an area
 /// light's centre, on a segment light, near a point light.
 fn aim(rng: &mut Rng, light: &Light, r: f64) -> DVec3 {
@@ -471,20 +494,15 @@ pub fn case(family: &str, kind: usize, rng: &mut Rng) -> Option<Case> {
         }
         "slivers over large images" => {
             let light = light_of(kind, rng, c, r, p)?;
-            let mut tris: Vec<[DVec3; 3]> = (0..rng.below(3) + 2)
-                .map(|_| {
-                    let at = aim(rng, &light, r);
-                    crossing_triangle(rng, p, at)
-                })
-                .collect();
+            let count = rng.below(3) + 2;
+            let mut tris = crossing_triangles(rng, p, &light, r, count);
             for _ in 0..rng.below(3) + 2 {
                 let at = aim(rng, &light, r);
                 tris.push(sliver(rng, p, at, r / dist));
             }
             // The slivers anywhere in index order (the order decides
             // which of two coinciding edges covers the other).
-            let k = rng.below(tris.len() as u64) as usize;
-            tris.rotate_left(k);
+            rotated(rng, &mut tris);
             Case { p, light, tris }
         }
         "an edge's line through the receiver" => {
@@ -496,12 +514,8 @@ pub fn case(family: &str, kind: usize, rng: &mut Rng) -> Option<Case> {
             // two of its cone lines coincide to the last bit, a cut leaves
             // vertices exactly on a line.
             let light = light_of(kind, rng, c, r, p)?;
-            let mut tris: Vec<[DVec3; 3]> = (0..rng.below(3) + 1)
-                .map(|_| {
-                    let at = aim(rng, &light, r);
-                    crossing_triangle(rng, p, at)
-                })
-                .collect();
+            let count = rng.below(3) + 1;
+            let mut tris = crossing_triangles(rng, p, &light, r, count);
             for _ in 0..rng.below(2) + 1 {
                 let d = aim(rng, &light, r) - p;
                 let a = p + d * rng.uniform(0.2, 1.3);
@@ -515,8 +529,7 @@ pub fn case(family: &str, kind: usize, rng: &mut Rng) -> Option<Case> {
                 }
                 tris.push(tri);
             }
-            let k = rng.below(tris.len() as u64) as usize;
-            tris.rotate_left(k);
+            rotated(rng, &mut tris);
             Case { p, light, tris }
         }
         _ => panic!("unknown family {family}"),
