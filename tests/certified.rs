@@ -713,12 +713,13 @@ fn check_fuzzers_case(seed: u64) -> Result<(), String> {
     Ok(())
 }
 
-/// Seeds of [`fuzzers_case`] that failed [`check_fuzzers_case`]: 746 and
-/// 1988 a segment light's interval lost to rounding with a bound of 0;
-/// 3300 and 25760 the value with the bound 2.2·10⁻¹³ and 1.2·10⁻¹³ from
-/// the one without (choices between a vertex from its two lines and the
-/// crossing on the edge, and the fast path's, taken on the closer error
-/// bounds the certified bound asks for).
+/// Seeds of [`fuzzers_case`] where [`check_fuzzers_case`] catches a
+/// defect: 746 and 1988 a segment light's interval shorter than its ends'
+/// rounding, left out of the bound (a bound of 0); 3300 and 25760 choices
+/// (a vertex from its two lines or the crossing on the edge, the fast
+/// path) taken on the closer error bounds when the bound is asked for,
+/// which move the value with the bound by `2.2·10⁻¹³` and `1.2·10⁻¹³`
+/// from the one without.
 const FUZZERS_SEEDS: &[u64] = &[746, 1988, 3300, 25760];
 
 #[test]
@@ -828,10 +829,10 @@ fn every_corner_order(
 /// through the receiver to an ulp (its far corner at `p + 2 (a − p)`),
 /// straddling the light's plane, over four ordinary occluders. Its cone
 /// planes over the other two edges meet the light's plane in one line, so
-/// the first cut leaves a corner of the square exactly on the second's:
-/// the clipping kept that corner's old edge (up the square's side) instead
-/// of the new line, and the image came out a strip across the light
-/// (`V` 0.4407 for 0.4423, with a bound of `3·10⁻¹³`). Every corner order,
+/// the first cut leaves a corner of the square exactly on the second's,
+/// and the edge leaving that corner runs along the new line (taken up the
+/// square's side instead, the image is a strip across the light: `V`
+/// 0.4407 for 0.4423, with a bound of `3·10⁻¹³`). Every corner order,
 /// alone and among the others, within the bound of the 256-bit answer.
 #[test]
 fn a_face_on_a_line_through_the_receiver_hides_nothing() {
@@ -891,10 +892,10 @@ fn a_face_on_a_line_through_the_receiver_hides_nothing() {
 /// through a corner of the square around a sphere light's facing disk:
 /// its plane holds `p` to `4·10⁻¹⁷` and its cone lines meet at that
 /// corner of the square, so the clipping leaves an image whose vertices
-/// all coincide there. Such an image has no edge of positive length, and
-/// it was taken to cover the whole light (every edge's test holds for an
-/// edge of length 0): `V = 0` with a bound of `8·10⁻¹⁴` for a face that
-/// hides nothing. Found by a campaign of faces aimed at the square's
+/// all coincide there. Such an image has no edge of positive length and
+/// covers nothing (every edge's covering test holds for an edge of length
+/// 0: taken as covering, `V = 0` with a bound of `8·10⁻¹⁴` for a face
+/// that hides nothing). Found by a campaign of faces aimed at the square's
 /// corners. Every corner order, alone and among three ordinary
 /// occluders, within the bound of the 256-bit answer and within
 /// [`ACCURATE`].
@@ -998,11 +999,11 @@ fn images_meeting_where_three_lines_cross_are_intersected_whole() {
 /// the receiver on its edge but for rounding), before a rect light, from
 /// a campaign of faces with an edge on a line through the receiver: two
 /// of its lines meet `9·10⁻¹¹` outside the square's left side, within
-/// the slack a vertex from its lines is taken at, and the clipped image
-/// kept that vertex outside the square. The union takes every image to
-/// lie in the square (it sweeps the edges on its sides as the images'),
-/// so the sliver between the vertex and the side, `6·10⁻¹¹` of area,
-/// was counted: `V` off by `1.6·10⁻¹¹` with a bound of `1.4·10⁻¹⁴`. Every
+/// the slack a vertex from its lines is taken at. The union takes every
+/// image to lie in the square (it sweeps the edges on its sides as the
+/// images'), so the vertex is the crossing on the edge being cut (kept
+/// outside the square, the sliver between it and the side, `6·10⁻¹¹` of
+/// area, counts: `V` off by `1.6·10⁻¹¹` with a bound of `1.4·10⁻¹⁴`). Every
 /// corner order, alone, within the bound of the 256-bit answer and
 /// within [`ACCURATE`].
 #[test]
@@ -1034,9 +1035,9 @@ fn a_meeting_point_past_a_side_of_the_square_is_taken_on_the_edge() {
 /// Found by comparing `arbitrary::scene::visibility_case` (seed 746) with
 /// the 256-bit answer: a face seen edge-on from the receiver (its plane
 /// `10⁻¹⁸` from it) hides `9.9·10⁻¹⁷` of a segment light, an interval
-/// whose rounded ends cross. The interval was dropped with nothing added
-/// to the bound: `V = 1` with a bound of 0, the truth a unit in the last
-/// place below. The crossed interval's ends now count for the bound.
+/// whose rounded ends cross. The crossed interval's ends count for the
+/// bound (dropped with nothing added, `V = 1` comes with a bound of 0,
+/// the truth a unit in the last place below).
 #[test]
 fn a_segment_s_interval_lost_to_rounding_counts_for_the_bound() {
     let d = DVec3::new;
@@ -1212,10 +1213,10 @@ fn sliver_images_give_the_same_bits_every_way_within_the_bound() {
 /// a rect light, from the family "slivers over large images" (rect, the
 /// 897th case of [`every_family_every_light_kind`]'s exhaustive run): the
 /// answer is within `1.1·10⁻¹⁶` of the 256-bit value and its bound
-/// `6.2·10⁻¹⁴`. Clipped by a side of the square, the image had a vertex
-/// exactly on its next line, whose edge leaving it the clipping took on
-/// the wrong line: the bound, from that edge's run past its end, was
-/// `4.7·10⁻¹²`.
+/// `6.2·10⁻¹⁴`. Clipped by a side of the square, the image has a vertex
+/// exactly on its next line, and the edge leaving it runs along that line
+/// (taken on the square's side instead, the bound from that edge's run
+/// past its end is `4.7·10⁻¹²`).
 #[test]
 fn a_needle_with_a_sharp_corner_has_a_tight_bound() {
     let light = Light::rect(
